@@ -1,0 +1,33 @@
+"""rodimpact: longitudinal impact of non-uniform elastic rods.
+
+Direct problem (exact wave propagation method), inverse problem (impactor synthesis by the recursive method),
+analytical references and measurement tools, after J. Burgert, *On direct and inverse problems related to
+longitudinal impact of non-uniform elastic rods* (KIT).
+"""
+
+__version__ = "0.1.0"
+
+from .rods.material import ALUMINIUM_7075, MATERIALS, STEEL, TITANIUM_TI6AL4V, Material
+from .rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, ExponentialHorn, LinearAreaTaper,
+                            QuadraticHorn, Segment, TabulatedProfile, Tube)
+from .rods.rod import Rod
+from .rods.history import History
+from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd, Junction,
+                              NonReflectingEnd, SpringEnd, VelocityEnd)
+from .rods.loads import Bearings, NodalForce
+from .rods.system import InitialState, System
+from .lattice.lattice import Lattice, build_lattice
+from .direct.result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
+from .direct.simulate import simulate
+
+__all__ = [
+    "__version__",
+    "Material", "STEEL", "ALUMINIUM_7075", "TITANIUM_TI6AL4V", "MATERIALS",
+    "Segment", "Cylinder", "Tube", "Cone", "LinearAreaTaper", "ExponentialHorn", "QuadraticHorn", "CoshHorn",
+    "CosHorn", "TabulatedProfile", "AreaFunction",
+    "Rod", "History", "System", "InitialState",
+    "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
+    "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
+    "Lattice", "build_lattice",
+    "simulate", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory",
+]

@@ -1,0 +1,68 @@
+"""Small input checks shared by the model classes.
+
+Every check raises ``ValueError``/``TypeError`` whose message names the quantity and says what would be valid,
+so that bad input never reaches the numerical kernels as NaN.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+
+def positive(name: str, value: Any, unit: str = "") -> float:
+    """Return ``value`` as a float after checking it is a finite number > 0."""
+    x = finite(name, value, unit)
+    if x <= 0.0:
+        raise ValueError(f"{name}: must be > 0, got {value!r}{_unit(unit)}")
+    return x
+
+
+def non_negative(name: str, value: Any, unit: str = "") -> float:
+    """Return ``value`` as a float after checking it is a finite number >= 0."""
+    x = finite(name, value, unit)
+    if x < 0.0:
+        raise ValueError(f"{name}: must be >= 0, got {value!r}{_unit(unit)}")
+    return x
+
+
+def finite(name: str, value: Any, unit: str = "") -> float:
+    """Return ``value`` as a float after checking it is a finite real number."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name}: must be a real number{_unit(unit, ' in ')}, got {type(value).__name__} {value!r}")
+    x = float(value)
+    if not math.isfinite(x):
+        raise ValueError(f"{name}: must be finite, got {value!r}")
+    return x
+
+
+def finite_array(name: str, values: Any, *, ndim: int = 1, min_size: int = 1) -> np.ndarray:
+    """Return ``values`` as a float array after checking shape and finiteness."""
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name}: must be an array of real numbers ({exc})") from None
+    if arr.ndim != ndim:
+        raise ValueError(f"{name}: must be {ndim}-dimensional, got shape {arr.shape}")
+    if arr.size < min_size:
+        raise ValueError(f"{name}: needs at least {min_size} value(s), got {arr.size}")
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        i = int(np.flatnonzero(bad.ravel())[0])
+        raise ValueError(f"{name}: must be finite, entry {i} is {arr.ravel()[i]!r}")
+    return arr
+
+
+def positive_array(name: str, values: Any, *, min_size: int = 1) -> np.ndarray:
+    """Return a 1-d float array after checking every entry is finite and > 0."""
+    arr = finite_array(name, values, min_size=min_size)
+    if (arr <= 0).any():
+        i = int(np.flatnonzero(arr <= 0)[0])
+        raise ValueError(f"{name}: every entry must be > 0, entry {i} is {arr[i]!r}")
+    return arr
+
+
+def _unit(unit: str, sep: str = " ") -> str:
+    return f"{sep}{unit}" if unit else ""

@@ -1,0 +1,290 @@
+"""Numerical kernels of the wave propagation method (thesis Sec. 3.1, eqs. 3.2-3.20).
+
+Symbols as in the thesis: Z = impedance (N s/m), N = normal force (N, tension positive), v = particle
+velocity (m/s); N^+ / N^- = force at the right / left end of an element during a step, V = node velocity.
+
+Pure functions on arrays: no objects, no I/O. Two paths share the boundary code (:func:`boundaries`, written
+with ``register_jitable`` so it runs both as Python and inside compiled code):
+
+* :func:`run_numpy` -- the readable reference: the bulk of the interior nodes is one vectorised numpy
+  expression per step (eqs. 3.6-3.15 literally);
+* :func:`run_numba` -- the compiled path (``numba.njit(cache=True)``): one fused in-place sweep per rod.
+
+Array layout (all rods concatenated left to right; ``rod_start`` has n_rods + 1 entries):
+
+* end codes 0 free/force, 1 fixed, 2 force, 3 velocity, 4 non-reflecting, 5 spring-dashpot, 6 bit-rock;
+  ``end_par[e] = (p0, p1)``: non-reflecting (Z_ext, incoming invariant), spring (k, c), bit-rock (k1, k2);
+  ``end_state[e] = (delta, delta_max)``: outward displacement and largest penetration;
+  ``end_value[e, k]``: prescribed normal force (codes 0, 2) or outward velocity (code 3) in step k.
+* junction codes 0 bonded, 1 contact; ``junction_state`` 1 = touching; ``gap`` in m.
+* special interior nodes (loads, friction): ``sp_elem`` = element left of the node (ascending),
+  ``sp_cap`` = Coulomb friction capacity (N), ``sp_force[i, k]`` = prescribed force (N, +x).
+* ``acc`` accumulates work and impulse: [W_left, W_right, W_loads, W_friction, I_left, I_right, I_loads,
+  I_friction] in J and N s.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+from numba.extending import register_jitable
+
+FREE, FIXED, FORCE, VELOCITY, NONREFLECTING, SPRING, BITROCK = 0, 1, 2, 3, 4, 5, 6
+BONDED, CONTACT = 0, 1
+
+
+@register_jitable
+def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
+    """Solve one outer end for the outward velocity w and the end force N.
+
+    The element side gives N = a + z w (a = N + Z v at a left end, N - Z v at a right end; eqs. 3.16-3.19),
+    the device gives a second relation. Returns (w, N, new delta_max).
+    """
+    h = 0.5 * dt
+    if code == FREE or code == FORCE:
+        n = value
+        w = (n - a) / z
+    elif code == FIXED:
+        w = 0.0
+        n = a
+    elif code == VELOCITY:
+        w = value
+        n = a + z * w
+    elif code == NONREFLECTING:
+        w = (p1 - a) / (z + p0)
+        n = a + z * w
+    elif code == SPRING:
+        w = -(a + p0 * delta) / (z + p1 + p0 * h)
+        n = a + z * w
+    else:  # BITROCK: a + z w + F(delta + w h) = 0 with F piecewise linear and non-decreasing
+        k1 = p0
+        k2 = p1
+        pm = delta_max
+        p_release = pm - k1 * pm / k2
+        w_release = (p_release - delta) / h
+        w_max = (pm - delta) / h
+        if a + z * w_release >= 0.0:
+            w = -a / z
+        elif a + z * w_max + k1 * pm >= 0.0:
+            w = -(a + k1 * pm - k2 * (pm - delta)) / (z + k2 * h)
+        else:
+            w = -(a + k1 * delta) / (z + k1 * h)
+        n = a + z * w
+        p = delta + w * h
+        if p > delta_max:
+            delta_max = p
+    return w, n, delta_max
+
+
+@register_jitable
+def boundaries(k, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
+               junction_state, gap, u_end, sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp,
+               pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, rod_NL, rod_VL,
+               rod_NR, rod_VR, dt, out):
+    """Everything of step ``k`` that is not a plain interior node: the two outer ends, the junctions,
+    loaded/frictional interior nodes and the probes. Uses only the element states at t_k; writes node
+    forces/velocities of each rod's first and last node into rod_NL/rod_VL/rod_NR/rod_VR and the resolved
+    node forces of special nodes into sp_F. ``out`` is the output column for step k."""
+    n_rods = rod_start.size - 1
+    n_el = rod_start[n_rods]
+    # ---- left end of rod 0: element side N^- = N_0 + Z_0 v_0 - Z_0 V, outward w = -V
+    w, nn, dm = end_solve(end_code[0], N[0] + Z[0] * v[0], Z[0], end_value[0, k], end_par[0, 0],
+                          end_par[0, 1], end_state[0, 0], end_state[0, 1], dt)
+    end_state[0, 0] += w * dt
+    end_state[0, 1] = dm
+    rod_NL[0] = nn
+    rod_VL[0] = -w
+    acc[0] += nn * w * dt
+    acc[4] += -nn * dt
+    end_N[0, out] = nn
+    end_V[0, out] = -w
+    # ---- right end of the last rod: N^+ = N - Z v + Z V, outward w = V
+    e = n_el - 1
+    w, nn, dm = end_solve(end_code[1], N[e] - Z[e] * v[e], Z[e], end_value[1, k], end_par[1, 0],
+                          end_par[1, 1], end_state[1, 0], end_state[1, 1], dt)
+    end_state[1, 0] += w * dt
+    end_state[1, 1] = dm
+    rod_NR[n_rods - 1] = nn
+    rod_VR[n_rods - 1] = w
+    acc[1] += nn * w * dt
+    acc[5] += nn * dt
+    end_N[1, out] = nn
+    end_V[1, out] = w
+    # ---- junctions between rod r (element a) and rod r + 1 (element b)
+    for r in range(n_rods - 1):
+        a = rod_start[r + 1] - 1
+        b = a + 1
+        za = Z[a]
+        zb = Z[b]
+        va_free = v[a] - N[a] / za
+        vb_free = v[b] + N[b] / zb
+        code = junction_code[r]
+        if code == CONTACT and junction_state[r] == 0:
+            if gap[r] + 0.5 * (vb_free - va_free) * dt <= 0.0:
+                junction_state[r] = 1
+        touching = code == BONDED or junction_state[r] == 1
+        if touching:
+            vn = (N[b] - N[a] + za * v[a] + zb * v[b]) / (za + zb)
+            nj = N[a] + za * (vn - v[a])
+            if code == CONTACT and nj > 0.0:
+                junction_state[r] = 0
+                touching = False
+        if touching:
+            rod_NR[r] = nj
+            rod_NL[r + 1] = nj
+            rod_VR[r] = vn
+            rod_VL[r + 1] = vn
+            junction_N[r, out] = nj
+        else:
+            rod_NR[r] = 0.0
+            rod_NL[r + 1] = 0.0
+            rod_VR[r] = va_free
+            rod_VL[r + 1] = vb_free
+            junction_N[r, out] = 0.0
+        junction_contact[r, out] = 1.0 if touching else 0.0
+        gap[r] += (rod_VL[r + 1] - rod_VR[r]) * dt
+    # ---- loaded and frictional interior nodes (Coulomb law solved exactly: stick if the driving force fits)
+    for i in range(sp_elem.size):
+        a = sp_elem[i]
+        zs = Z[a] + Z[a + 1]
+        f_load = sp_force[i, k]
+        v0 = (f_load + N[a + 1] - N[a] + Z[a] * v[a] + Z[a + 1] * v[a + 1]) / zs
+        cap = sp_cap[i]
+        f_fric = 0.0
+        vn = v0
+        if cap > 0.0:
+            if abs(v0) * zs <= cap:
+                f_fric = -v0 * zs
+                vn = 0.0
+            else:
+                f_fric = -cap if v0 > 0.0 else cap
+                vn = v0 + f_fric / zs
+        sp_F[i] = f_load + f_fric
+        sp_V[i] = vn
+        acc[2] += f_load * vn * dt
+        acc[3] += f_fric * vn * dt
+        acc[6] += f_load * dt
+        acc[7] += f_fric * dt
+    # ---- probes: node values during step k (force = N^+ of the element left of the node) and the node
+    #      displacement at t_k; then advance the displacement exactly, u(k+1) = u(k) + V dt
+    for p in range(pr_rod.size):
+        r = pr_rod[p]
+        m = pr_local[p]
+        n_r = rod_start[r + 1] - rod_start[r]
+        if m == 0:
+            nn = rod_NL[r]
+            vn = rod_VL[r]
+        elif m == n_r:
+            nn = rod_NR[r]
+            vn = rod_VR[r]
+        else:
+            a = rod_start[r] + m - 1
+            if pr_sp[p] >= 0:
+                vn = sp_V[pr_sp[p]]
+            else:
+                vn = (N[a + 1] - N[a] + Z[a] * v[a] + Z[a + 1] * v[a + 1]) / (Z[a] + Z[a + 1])
+            nn = N[a] + Z[a] * (vn - v[a])
+        pr_N[p, out] = nn
+        pr_V[p, out] = vn
+        pr_u[p, out] = pr_disp[p]
+        pr_disp[p] += vn * dt
+    for r in range(n_rods):
+        u_end[r, 0] += rod_VL[r] * dt
+        u_end[r, 1] += rod_VR[r] * dt
+
+
+def _run_loop(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
+              junction_state, gap, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp, pr_N, pr_V,
+              pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
+    """Advance ``n_steps`` steps in place (compiled path). Step ``k0 + i`` writes output column ``i``.
+
+    Interior node between elements a = j and b = j + 1 (eqs. 3.6-3.9 with F* the node force):
+    V = (F* + N_b - N_a + Z_a v_a + Z_b v_b) / (Z_a + Z_b), N_a^+ = N_a + Z_a (V - v_a), N_b^- = N_a^+ - F*;
+    element update (eqs. 3.14-3.15): N_new = N^- + N^+ - N, v_new = V_left + V_right - v.
+    """
+    n_rods = rod_start.size - 1
+    rod_NL = np.empty(n_rods)
+    rod_VL = np.empty(n_rods)
+    rod_NR = np.empty(n_rods)
+    rod_VR = np.empty(n_rods)
+    sp_F = np.zeros(sp_elem.size)
+    sp_V = np.zeros(sp_elem.size)
+    n_sp = sp_elem.size
+    for i in range(n_steps):
+        boundaries(k0 + i, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
+                   junction_state, gap, u_end, sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp,
+                   pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, rod_NL, rod_VL,
+                   rod_NR, rod_VR, dt, i)
+        ptr = 0
+        for r in range(n_rods):
+            s = rod_start[r]
+            e = rod_start[r + 1]
+            while ptr < n_sp and sp_elem[ptr] < s:
+                ptr += 1
+            n_minus = rod_NL[r]
+            v_left = rod_VL[r]
+            na = N[s]
+            va = v[s]
+            for j in range(s, e - 1):
+                za = Z[j]
+                zb = Z[j + 1]
+                nb = N[j + 1]
+                vb = v[j + 1]
+                f = 0.0
+                if ptr < n_sp and sp_elem[ptr] == j:
+                    f = sp_F[ptr]
+                    ptr += 1
+                vn = (f + nb - na + za * va + zb * vb) / (za + zb)
+                n_plus = na + za * (vn - va)
+                N[j] = n_minus + n_plus - na
+                v[j] = v_left + vn - va
+                n_minus = n_plus - f
+                v_left = vn
+                na = nb
+                va = vb
+            N[e - 1] = n_minus + rod_NR[r] - na
+            v[e - 1] = v_left + rod_VR[r] - va
+
+
+run_numba = njit(cache=True)(_run_loop)
+
+
+def run_numpy(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
+              junction_state, gap, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp, pr_N, pr_V,
+              pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
+    """Readable reference path with the same signature as :func:`run_numba`: per step, the interior nodes
+    are one vectorised evaluation of thesis eqs. 3.6-3.9 and the elements of eqs. 3.10-3.15."""
+    n_rods = rod_start.size - 1
+    n_el = int(rod_start[-1])
+    rod_NL, rod_VL, rod_NR, rod_VR = (np.empty(n_rods) for _ in range(4))
+    sp_F = np.zeros(sp_elem.size)
+    sp_V = np.zeros(sp_elem.size)
+    interior = np.ones(n_el - 1, dtype=bool)          # node between j and j+1 is interior unless a rod ends at j
+    interior[rod_start[1:-1] - 1] = False
+    a = np.flatnonzero(interior)                      # element left of each interior node
+    b = a + 1
+    sp_pos = np.searchsorted(a, sp_elem)
+    first = rod_start[:-1]
+    last = rod_start[1:] - 1
+    for i in range(n_steps):
+        boundaries(k0 + i, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
+                   junction_state, gap, u_end, sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp,
+                   pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, rod_NL, rod_VL,
+                   rod_NR, rod_VR, dt, i)
+        f = np.zeros(a.size)
+        f[sp_pos] = sp_F
+        vn = (f + N[b] - N[a] + Z[a] * v[a] + Z[b] * v[b]) / (Z[a] + Z[b])   # eq. 3.7 / 3.9
+        n_plus = N[a] + Z[a] * (vn - v[a])                                  # eq. 3.5
+        n_minus = n_plus - f                                                # eq. 3.2
+        n_right = np.empty(n_el)   # N^+ of every element
+        v_right = np.empty(n_el)
+        n_left = np.empty(n_el)    # N^- of every element
+        v_left = np.empty(n_el)
+        n_right[a], v_right[a] = n_plus, vn
+        n_left[b], v_left[b] = n_minus, vn
+        n_left[first], v_left[first] = rod_NL, rod_VL
+        n_right[last], v_right[last] = rod_NR, rod_VR
+        N_new = n_left + n_right - N                                        # eqs. 3.10, 3.11, 3.14
+        v_new = v_left + v_right - v                                        # eqs. 3.12, 3.13, 3.15
+        N[:] = N_new
+        v[:] = v_new

@@ -1,0 +1,201 @@
+"""Result objects of :func:`rodimpact.simulate` (frozen dataclasses, time on the last axis)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..lattice.lattice import Lattice
+from ..rods.system import System
+
+
+@dataclass(frozen=True)
+class Probe:
+    """An output request: histories at ``position`` (m from the left end of rod number ``rod``).
+
+    The probe reads the lattice node nearest to ``position``; node values are exact and constant during each
+    step. ``strain`` uses the true E and A at ``position``.
+    """
+
+    name: str
+    rod: int
+    position: float
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name:
+            raise ValueError(f"Probe.name: must be a non-empty string, got {self.name!r}")
+        if not isinstance(self.rod, int) or self.rod < 0:
+            raise ValueError(f"Probe.rod: must be a rod index >= 0, got {self.rod!r}")
+
+
+@dataclass(frozen=True)
+class ProbeHistory:
+    """Histories recorded by a :class:`Probe`, one value per step (step start time)."""
+
+    probe: Probe
+    node_position: float      # position of the node actually read, m from the rod's left end
+    force: np.ndarray         # N, tension positive
+    velocity: np.ndarray      # m/s
+    displacement: np.ndarray  # m, relative to the initial configuration, at the step start
+    strain: np.ndarray        # -, N / (E A) at the probe position
+
+
+@dataclass(frozen=True)
+class FieldSnapshots:
+    """Fields along x at selected times (columns). Element values are uniform in each element at t = k dt."""
+
+    time: np.ndarray          # (m,)
+    element_x: np.ndarray     # (n_elements,) reference centre positions, m
+    node_x: np.ndarray        # (n_nodes,) reference node positions, m (n_j + 1 per rod)
+    element_rod: np.ndarray   # (n_elements,)
+    node_rod: np.ndarray      # (n_nodes,)
+    force: np.ndarray         # (n_elements, m) N
+    velocity: np.ndarray      # (n_elements, m) m/s
+    displacement: np.ndarray  # (n_nodes, m) m
+
+
+@dataclass(frozen=True)
+class EnergyHistory:
+    """Energy bookkeeping sampled every few steps (thesis eq. 3.25 per rod).
+
+    ``work_*`` is the cumulative work done on the rods since t = 0 by each outer end, the prescribed nodal
+    loads and the bearing friction (J; friction work is <= 0). ``impulse_*`` likewise in N s. Without
+    losses, ``total - total[0] - exchanged`` vanishes to rounding.
+    """
+
+    time: np.ndarray
+    kinetic: np.ndarray       # (n_rods, m) J
+    strain: np.ndarray        # (n_rods, m) J
+    momentum: np.ndarray      # (n_rods, m) N s
+    work_left: np.ndarray
+    work_right: np.ndarray
+    work_loads: np.ndarray
+    work_friction: np.ndarray
+    impulse: np.ndarray       # (m,) total external impulse, N s
+
+    @property
+    def total(self) -> np.ndarray:
+        """Total mechanical energy of all rods, J."""
+        return self.kinetic.sum(axis=0) + self.strain.sum(axis=0)
+
+    @property
+    def exchanged(self) -> np.ndarray:
+        """Cumulative work done on the rods by ends, loads and friction, J."""
+        return self.work_left + self.work_right + self.work_loads + self.work_friction
+
+    @property
+    def balance_error(self) -> float:
+        """max |E(t) - E(0) - W(t)| relative to max(E): the energy bookkeeping error."""
+        err = self.total - self.total[0] - self.exchanged
+        return float(np.max(np.abs(err)) / max(np.max(np.abs(self.total)), 1e-300))
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Everything :func:`rodimpact.simulate` computed.
+
+    Node values (contact force, end values, probes) belong to step k and hold on [k dt, (k+1) dt); they are
+    reported with the step start time ``time[k] = k dt``.
+    """
+
+    system: System
+    lattice: Lattice
+    time: np.ndarray
+    junction_force: np.ndarray         # (n_junctions, n_steps) N, tension positive (0 while apart)
+    junction_contact: np.ndarray       # (n_junctions, n_steps) bool
+    end_force: dict[str, np.ndarray]   # "left"/"right" -> (n_steps,) normal force at the outer ends
+    end_velocity: dict[str, np.ndarray]
+    probes: dict[str, ProbeHistory]
+    snapshots: FieldSnapshots | None
+    energy: EnergyHistory
+    final_force: np.ndarray            # element forces at t = n_steps dt
+    final_velocity: np.ndarray         # element velocities at t = n_steps dt
+    diagnostics: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def dt(self) -> float:
+        """Time step, s."""
+        return self.lattice.dt
+
+    @property
+    def contact_force(self) -> np.ndarray:
+        """Force at the junction(s), one value per step, tension positive (compressive impact < 0): shape
+        (n_steps,) for two rods, (n_junctions, n_steps) for more."""
+        if self.junction_force.shape[0] == 0:
+            raise ValueError("contact_force: this system has a single rod and no junction; "
+                             "use end_force or probes")
+        return self.junction_force[0] if self.junction_force.shape[0] == 1 else self.junction_force
+
+    def probe(self, name: str) -> ProbeHistory:
+        """Histories of the probe called ``name``."""
+        if name not in self.probes:
+            raise KeyError(f"probe {name!r} not recorded; recorded probes: {sorted(self.probes)}")
+        return self.probes[name]
+
+    def _transitions(self, junction: int, rising: bool) -> np.ndarray:
+        c = self.junction_contact[junction].astype(int)
+        prev = np.concatenate([[0], c[:-1]])
+        k = np.flatnonzero((c - prev) == (1 if rising else -1))
+        return self.time[k] if k.size else np.empty(0)
+
+    def contact_times(self, junction: int = 0) -> np.ndarray:
+        """Start times of each contact phase at ``junction`` (first impact and every re-contact), s."""
+        return self._transitions(junction, True)
+
+    def separation_times(self, junction: int = 0) -> np.ndarray:
+        """Times at which the rods at ``junction`` separate, s."""
+        return self._transitions(junction, False)
+
+    def contact_duration(self, junction: int = 0) -> float:
+        """Total time the rods at ``junction`` were in contact, s."""
+        return float(self.junction_contact[junction].sum() * self.dt)
+
+    @property
+    def rigid_body_velocity(self) -> np.ndarray:
+        """Mean (centre-of-mass) velocity of each rod at the end of the run, m/s: momentum / lattice mass."""
+        z = self.lattice.impedance
+        rs = self.lattice.rod_start
+        return np.array([np.dot(z[a:b], self.final_velocity[a:b]) / z[a:b].sum() for a, b in zip(rs[:-1], rs[1:])])
+
+    @property
+    def efficiency(self) -> float:
+        """Energy-transfer efficiency: the fraction of rod 0's initial energy that it has given away by the
+        end of the run, (E_0(0) - E_0(end)) / E_0(0)."""
+        e0 = self.energy.kinetic[0] + self.energy.strain[0]
+        if e0[0] <= 0.0:
+            raise ValueError("efficiency: rod 0 starts without energy; compare energy.kinetic/strain instead")
+        return float((e0[0] - e0[-1]) / e0[0])
+
+    def to_xarray(self):
+        """The recorded signals as an :class:`xarray.Dataset` (coordinates: time, energy_time, x)."""
+        import xarray as xr
+
+        data: dict[str, Any] = {
+            "junction_force": (("junction", "time"), self.junction_force, {"units": "N"}),
+            "junction_contact": (("junction", "time"), self.junction_contact.astype(np.int8), {}),
+            "end_force": (("end", "time"), np.vstack([self.end_force["left"], self.end_force["right"]]),
+                          {"units": "N"}),
+            "end_velocity": (("end", "time"), np.vstack([self.end_velocity["left"], self.end_velocity["right"]]),
+                             {"units": "m/s"}),
+            "kinetic_energy": (("rod", "energy_time"), self.energy.kinetic, {"units": "J"}),
+            "strain_energy": (("rod", "energy_time"), self.energy.strain, {"units": "J"}),
+            "exchanged_work": (("energy_time",), self.energy.exchanged, {"units": "J"}),
+        }
+        for name, p in self.probes.items():
+            for q, unit in (("force", "N"), ("velocity", "m/s"), ("displacement", "m"), ("strain", "1")):
+                data[f"probe_{name}_{q}"] = (("time",), getattr(p, q), {"units": unit})
+        coords = {"time": ("time", self.time, {"units": "s"}),
+                  "energy_time": ("energy_time", self.energy.time, {"units": "s"}),
+                  "end": ["left", "right"]}
+        if self.snapshots is not None:
+            s = self.snapshots
+            data["force_field"] = (("element_x", "snapshot_time"), s.force, {"units": "N"})
+            data["velocity_field"] = (("element_x", "snapshot_time"), s.velocity, {"units": "m/s"})
+            data["displacement_field"] = (("node_x", "snapshot_time"), s.displacement, {"units": "m"})
+            coords.update(element_x=("element_x", s.element_x, {"units": "m"}),
+                          node_x=("node_x", s.node_x, {"units": "m"}),
+                          snapshot_time=("snapshot_time", s.time, {"units": "s"}))
+        attrs = {k: str(v) for k, v in self.diagnostics.items()}
+        return xr.Dataset(data, coords=coords, attrs=attrs)

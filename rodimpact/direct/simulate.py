@@ -1,0 +1,368 @@
+"""The direct problem: :func:`simulate` runs the wave propagation method on a system of rods."""
+
+from __future__ import annotations
+
+import math
+import sys
+import time as _time
+import warnings
+from typing import Any, Iterable, Literal, Optional, Sequence
+
+import numpy as np
+
+from .. import __version__
+from .._validate import finite_array, positive
+from ..lattice.lattice import Lattice, build_lattice, default_time_step
+from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
+                               SpringEnd, VelocityEnd)
+from ..rods.loads import Bearings, NodalForce
+from ..rods.rod import Rod
+from ..rods.system import InitialState, System
+from . import _kernels as K
+from .result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
+
+Backend = Literal["numba", "numpy"]
+
+
+def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[float]] = None,
+             duration: Optional[float] = None, dt: Optional[float] = None, *,
+             steps: Optional[int] = None, left: EndCondition | str = "free", right: EndCondition | str = "free",
+             junctions: Optional[Sequence[Any]] = None, loads: Sequence[NodalForce | Bearings] = (),
+             initial: Optional[Sequence[Optional[InitialState]]] = None, probes: Iterable[Probe] = (),
+             snapshot_times: Optional[Sequence[float]] = None, snapshot_every: Optional[int] = None,
+             energy_every: Optional[int] = None, backend: Backend = "numba",
+             progress: bool | None = None) -> SimulationResult:
+    """Simulate the longitudinal impact of rods with the exact wave propagation method (thesis Sec. 3.1).
+
+    Parameters
+    ----------
+    rods:
+        Rods listed left to right (or a ready :class:`~rodimpact.rods.system.System`, in which case
+        ``velocities``, ``left``, ``right``, ``junctions``, ``loads`` and ``initial`` come from it).
+    velocities:
+        Initial velocity of each rod, m/s (positive to the right).
+    duration:
+        Simulated time, s (or give ``steps``).
+    dt:
+        Time step = travel time of every element, s. Default: the ``dt`` of impedance-level rods, else one
+        that gives each segment >= 4 and the longest rod >= 200 elements.
+    left, right:
+        Outer end conditions (objects or "free", "fixed", "nonreflecting"); default free.
+    junctions:
+        One per neighbouring pair; default unilateral :class:`~rodimpact.Contact`.
+    loads:
+        :class:`~rodimpact.NodalForce` / :class:`~rodimpact.Bearings`.
+    initial:
+        Optional per-rod :class:`~rodimpact.InitialState` (non-uniform initial force/velocity).
+    probes:
+        :class:`~rodimpact.Probe` objects: force, velocity, displacement and strain histories.
+    snapshot_times, snapshot_every:
+        Field snapshots N(x), v(x), u(x) at the steps nearest to the given times and/or every k steps.
+    energy_every:
+        Energy sampling stride in steps (default: about 2000 samples per run).
+    backend:
+        "numba" (compiled, default) or "numpy" (readable reference path; slow).
+    progress:
+        Show a progress bar (default: only on a terminal for runs of more than about 10^8 element updates).
+    """
+    system = rods if isinstance(rods, System) else System(
+        rods, velocities if velocities is not None else _missing("velocities"), junctions, left, right,
+        tuple(loads), initial)
+    if dt is None:
+        dt = default_time_step(system)
+    dt = positive("dt", dt, "s")
+    n_steps = _step_count(duration, steps, dt)
+    if backend not in ("numba", "numpy"):
+        raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
+    lattice = build_lattice(system, dt)
+    probe_list = list(probes)
+    snap_steps = _snapshot_steps(snapshot_times, snapshot_every, n_steps, dt)
+    every = _energy_stride(energy_every, n_steps)
+    wall0 = _time.perf_counter()
+    state = _initial_state(system, lattice)
+    arrays = _kernel_arrays(system, lattice, state, probe_list, n_steps)
+    run = K.run_numba if backend == "numba" else K.run_numpy
+
+    N, v = state["N"], state["v"]
+    N0 = N.copy()
+    z = lattice.impedance
+    rs = lattice.rod_start
+    energy_steps = sorted(set(range(0, n_steps + 1, every)) | {n_steps})
+    events = sorted(set(energy_steps) | set(snap_steps))
+    bar = _progress_bar(progress, n_steps, lattice.n_elements)
+    e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
+    snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
+    k = 0
+    for target in events:
+        if target > k:
+            kw = dict(arrays)
+            for key in ("pr_N", "pr_V", "pr_u", "junction_N", "junction_contact", "end_N", "end_V"):
+                kw[key] = arrays[key][:, k:target]
+            run(target - k, k, N, v, z, **kw, dt=dt)
+            if bar is not None:
+                bar.update(target - k)
+            k = target
+        if k in energy_steps:
+            e_rec["t"].append(k * dt)
+            e_rec["kin"].append([0.5 * dt * np.dot(z[a:b], v[a:b] ** 2) for a, b in zip(rs[:-1], rs[1:])])
+            e_rec["pot"].append([0.5 * dt * np.sum(N[a:b] ** 2 / z[a:b]) for a, b in zip(rs[:-1], rs[1:])])
+            e_rec["mom"].append([dt * np.dot(z[a:b], v[a:b]) for a, b in zip(rs[:-1], rs[1:])])
+            e_rec["acc"].append(arrays["acc"].copy())
+        if k in snap_steps:
+            snaps.append((k * dt, N.copy(), v.copy(), _node_displacements(N, N0, z, dt, rs, arrays["u_end"])))
+    if bar is not None:
+        bar.close()
+    wall = _time.perf_counter() - wall0
+
+    time = np.arange(n_steps) * dt
+    acc = np.array(e_rec["acc"])
+    energy = EnergyHistory(
+        time=np.array(e_rec["t"]), kinetic=np.array(e_rec["kin"]).T, strain=np.array(e_rec["pot"]).T,
+        momentum=np.array(e_rec["mom"]).T, work_left=acc[:, 0], work_right=acc[:, 1], work_loads=acc[:, 2],
+        work_friction=acc[:, 3], impulse=acc[:, 4:].sum(axis=1))
+    probe_hist = _probe_histories(system, lattice, probe_list, arrays)
+    snapshots = None
+    if snaps:
+        snapshots = FieldSnapshots(
+            time=np.array([s[0] for s in snaps]), element_x=lattice.element_x, node_x=lattice.node_x,
+            element_rod=lattice.element_rod, node_rod=lattice.node_rod,
+            force=np.stack([s[1] for s in snaps], axis=-1), velocity=np.stack([s[2] for s in snaps], axis=-1),
+            displacement=np.stack([s[3] for s in snaps], axis=-1))
+    warn_list = []
+    for i, r in enumerate(lattice.rods):
+        if not r.exact and abs(r.time_scale - 1.0) > 0.01:
+            msg = (f"rod {i}: its travel time is represented with a {abs(r.time_scale - 1) * 100:.2g} % error "
+                   f"({r.n_elements} elements); use a smaller dt")
+            warn_list.append(msg)
+            warnings.warn(msg, stacklevel=2)
+    diagnostics = {"version": __version__, "backend": backend, "wall_time_s": wall, "steps": n_steps,
+                   "elements": lattice.n_elements, "dt": dt, "energy_balance_error": energy.balance_error,
+                   "lattice_report": lattice.report(), "warnings": warn_list}
+    return SimulationResult(
+        system=system, lattice=lattice, time=time, junction_force=arrays["junction_N"],
+        junction_contact=arrays["junction_contact"].astype(bool),
+        end_force={"left": arrays["end_N"][0], "right": arrays["end_N"][1]},
+        end_velocity={"left": arrays["end_V"][0], "right": arrays["end_V"][1]},
+        probes=probe_hist, snapshots=snapshots, energy=energy, final_force=N.copy(), final_velocity=v.copy(),
+        diagnostics=diagnostics)
+
+
+# ---------------------------------------------------------------------------------------------- helpers
+def _missing(name: str):
+    raise ValueError(f"{name}: required when rods are given as a list (one initial velocity per rod, m/s)")
+
+
+def _step_count(duration: Optional[float], steps: Optional[int], dt: float) -> int:
+    if (duration is None) == (steps is None):
+        raise ValueError("duration: give exactly one of duration= (s) or steps= (number of time steps)")
+    if steps is not None:
+        if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
+            raise ValueError(f"steps: must be an integer >= 1, got {steps!r}")
+        return int(steps)
+    duration = positive("duration", duration, "s")
+    x = duration / dt
+    n = int(round(x)) if abs(x - round(x)) <= 1e-9 * max(x, 1.0) else int(math.ceil(x))
+    if n > 2_000_000_000:
+        raise ValueError(f"duration: {duration:.4g} s needs {n} steps of dt = {dt:.4g} s; that is too many")
+    return max(n, 1)
+
+
+def _snapshot_steps(times, every, n_steps: int, dt: float) -> list[int]:
+    out: set[int] = set()
+    if times is not None:
+        t = finite_array("snapshot_times", np.atleast_1d(times))
+        if np.any(t < 0) or np.any(t > n_steps * dt * (1 + 1e-12)):
+            raise ValueError(f"snapshot_times: must lie in [0, {n_steps * dt:.6g}] s, got {t.min():.6g}..{t.max():.6g}")
+        out |= set(np.round(t / dt).astype(int).tolist())
+    if every is not None:
+        if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
+            raise ValueError(f"snapshot_every: must be an integer number of steps >= 1, got {every!r}")
+        out |= set(range(0, n_steps + 1, int(every)))
+        if len(out) > 100_000:
+            raise ValueError(f"snapshot_every: {every} gives {len(out)} snapshots; use a larger stride")
+    return sorted(out)
+
+
+def _energy_stride(every, n_steps: int) -> int:
+    if every is None:
+        return max(1, n_steps // 2000)
+    if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
+        raise ValueError(f"energy_every: must be an integer number of steps >= 1, got {every!r}")
+    return int(every)
+
+
+def _progress_bar(progress, n_steps: int, n_el: int):
+    if progress is None:
+        progress = sys.stderr.isatty() and n_steps * n_el > 1e8
+    if not progress:
+        return None
+    from tqdm.auto import tqdm
+    return tqdm(total=n_steps, unit="step", desc="simulate")
+
+
+def _field(value, x: np.ndarray, n: int, name: str) -> np.ndarray:
+    if callable(value):
+        out = np.broadcast_to(np.asarray(value(x), dtype=float), x.shape).astype(float)
+    elif np.ndim(value) == 0:
+        out = np.full(n, float(value))
+    else:
+        out = np.asarray(value, dtype=float)
+        if out.shape != (n,):
+            raise ValueError(f"{name}: needs one value per lattice element ({n}), got shape {out.shape}")
+    if not np.all(np.isfinite(out)):
+        raise ValueError(f"{name}: must be finite everywhere")
+    return out
+
+
+def _initial_state(system: System, lat: Lattice) -> dict[str, np.ndarray]:
+    N = np.zeros(lat.n_elements)
+    v = np.zeros(lat.n_elements)
+    offsets = system.rod_offsets()
+    for r in range(system.n_rods):
+        a, b = lat.rod_start[r], lat.rod_start[r + 1]
+        v[a:b] = system.velocities[r]
+        st = system.initial[r]
+        if st is None:
+            continue
+        x_local = lat.element_x[a:b] - offsets[r]
+        if st.force is not None:
+            N[a:b] = _field(st.force, x_local, b - a, f"initial[{r}].force")
+        if st.velocity is not None:
+            v[a:b] = _field(st.velocity, x_local, b - a, f"initial[{r}].velocity")
+    return {"N": N, "v": v}
+
+
+def _end_setup(cond: EndCondition, side: int, N: np.ndarray, v: np.ndarray, z: np.ndarray,
+               n_steps: int, dt: float) -> tuple[int, tuple[float, float], np.ndarray]:
+    """Kernel code, parameters and per-step values of one outer end (side 0 = left, 1 = right)."""
+    e = 0 if side == 0 else z.size - 1
+    sign = -1.0 if side == 0 else 1.0        # outward direction in x
+    values = np.zeros(n_steps)
+    par = (0.0, 0.0)
+    if isinstance(cond, FreeEnd):
+        code = K.FREE
+    elif isinstance(cond, FixedEnd):
+        code = K.FIXED
+    elif isinstance(cond, ForceEnd):
+        code = K.FORCE
+        values = cond.force.step_values(n_steps, dt)
+    elif isinstance(cond, VelocityEnd):
+        code = K.VELOCITY
+        values = sign * cond.velocity.step_values(n_steps, dt)
+    elif isinstance(cond, NonReflectingEnd):
+        code = K.NONREFLECTING
+        zx = z[e] if cond.impedance is None else cond.impedance
+        # incoming characteristic of the continuation, in its initial state (= that of the end element):
+        # left: N - Zx V = const, right: N + Zx V = const; written as N = invariant - Zx w
+        par = (zx, N[e] + sign * zx * v[e])
+    elif isinstance(cond, SpringEnd):
+        code = K.SPRING
+        par = (cond.stiffness, cond.damping)
+    elif isinstance(cond, BitRockEnd):
+        code = K.BITROCK
+        par = (cond.loading_stiffness, cond.unloading_stiffness)
+    else:  # pragma: no cover - System validates
+        raise TypeError(f"unknown end condition {cond!r}")
+    return code, par, values
+
+
+def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe], n_steps: int) -> dict:
+    """All arrays the kernels need, in the layout documented in :mod:`rodimpact.direct._kernels`."""
+    dt = lat.dt
+    N, v, z = state["N"], state["v"], lat.impedance
+    n_rods = lat.n_rods
+    codes, pars, vals = zip(*(_end_setup(c, s, N, v, z, n_steps, dt)
+                              for s, c in enumerate((system.left, system.right))))
+    junction_code = np.array([j.code for j in system.junctions], dtype=np.int64)
+    gap = np.array([getattr(j, "gap", 0.0) for j in system.junctions], dtype=float)
+    # ---- special interior nodes
+    sp: dict[int, list[float]] = {}        # element-left-of-node -> [capacity, index of load rows]
+    load_rows: dict[int, np.ndarray] = {}
+    for i, ld in enumerate(system.loads):
+        n_r = lat.rod_start[ld.rod + 1] - lat.rod_start[ld.rod]
+        if isinstance(ld, NodalForce):
+            m, _ = lat.nearest_node(ld.rod, ld.position)
+            m = min(max(m, 1), n_r - 1)
+            if n_r < 2:
+                raise ValueError(f"loads[{i}]: rod {ld.rod} has a single element and no interior node; use a smaller dt")
+            a = int(lat.rod_start[ld.rod] + m - 1)
+            sp.setdefault(a, [0.0])
+            f = ld.force.step_values(n_steps, dt)
+            load_rows[a] = load_rows.get(a, 0.0) + f
+        else:
+            s = lat.rod_start[ld.rod]
+            x_nodes = np.cumsum(lat.element_length[s:lat.rod_start[ld.rod + 1]])[:-1]   # interior nodes 1..n-1
+            inside = np.zeros(x_nodes.size, dtype=bool)
+            for a0, b0 in ld.spans:
+                inside |= (x_nodes >= a0 - 1e-12) & (x_nodes <= b0 + 1e-12)
+            n_hat = int(inside.sum())
+            if n_hat == 0:
+                raise ValueError(f"loads[{i}].spans: no lattice node of rod {ld.rod} lies in {list(ld.spans)}; "
+                                 f"use a smaller dt (element length here ~{lat.element_length[s]:.3g} m)")
+            mass = float(z[s:lat.rod_start[ld.rod + 1]].sum() * dt)    # thesis eq. 3.21 (lattice mass)
+            total = ld.friction_coefficient * (ld.normal_load if ld.normal_load is not None else mass * ld.gravity)
+            for m in np.flatnonzero(inside):
+                a = int(s + m)
+                sp.setdefault(a, [0.0])[0] += total / n_hat
+    sp_elem = np.array(sorted(sp), dtype=np.int64)
+    sp_cap = np.array([sp[a][0] for a in sp_elem], dtype=float)
+    sp_force = np.zeros((sp_elem.size, n_steps))
+    for i, a in enumerate(sp_elem):
+        if a in load_rows:
+            sp_force[i] = load_rows[a]
+    # ---- probes
+    pr_rod, pr_local, pr_sp = [], [], []
+    names = set()
+    for i, p in enumerate(probes):
+        if not isinstance(p, Probe):
+            raise TypeError(f"probes[{i}]: must be a Probe(name, rod, position), got {type(p).__name__}")
+        if p.name in names:
+            raise ValueError(f"probes[{i}].name: {p.name!r} is used twice")
+        names.add(p.name)
+        if p.rod >= n_rods:
+            raise ValueError(f"probes[{i}].rod: rod index {p.rod} does not exist (0..{n_rods - 1})")
+        length = system.rods[p.rod].length
+        if not (-1e-12 <= p.position <= length * (1 + 1e-12)):
+            raise ValueError(f"probes[{i}].position: must lie within rod {p.rod}, 0 <= x <= {length:.6g} m, "
+                             f"got {p.position:.6g} m")
+        m, _ = lat.nearest_node(p.rod, p.position)
+        pr_rod.append(p.rod)
+        pr_local.append(m)
+        a = int(lat.rod_start[p.rod] + m - 1)
+        idx = np.flatnonzero(sp_elem == a)
+        n_r = lat.rod_start[p.rod + 1] - lat.rod_start[p.rod]
+        pr_sp.append(int(idx[0]) if idx.size and 0 < m < n_r else -1)
+    n_p, n_j = len(probes), n_rods - 1
+    return dict(
+        rod_start=lat.rod_start.astype(np.int64), end_code=np.array(codes, dtype=np.int64),
+        end_par=np.array(pars, dtype=float), end_state=np.zeros((2, 2)), end_value=np.vstack(vals),
+        junction_code=junction_code, junction_state=np.zeros(n_j, dtype=np.int64), gap=gap,
+        u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap, sp_force=sp_force,
+        pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),
+        pr_sp=np.array(pr_sp, dtype=np.int64), pr_N=np.zeros((n_p, n_steps)), pr_V=np.zeros((n_p, n_steps)),
+        pr_u=np.zeros((n_p, n_steps)), pr_disp=np.zeros(n_p), junction_N=np.zeros((n_j, n_steps)),
+        junction_contact=np.zeros((n_j, n_steps)), end_N=np.zeros((2, n_steps)), end_V=np.zeros((2, n_steps)),
+        acc=np.zeros(8))
+
+
+def _node_displacements(N, N0, z, dt, rod_start, u_end) -> np.ndarray:
+    """Node displacements from the left-end displacement of each rod plus the element elongations
+    (N - N0) dt / Z (exact on the lattice: elements are uniform at t = k dt)."""
+    out = []
+    for r in range(rod_start.size - 1):
+        a, b = rod_start[r], rod_start[r + 1]
+        out.append(u_end[r, 0] + np.concatenate([[0.0], np.cumsum((N[a:b] - N0[a:b]) * dt / z[a:b])]))
+    return np.concatenate(out)
+
+
+def _probe_histories(system: System, lat: Lattice, probes: list[Probe], arrays: dict) -> dict[str, ProbeHistory]:
+    out = {}
+    for i, p in enumerate(probes):
+        rod = system.rods[p.rod]
+        seg = int(np.clip(np.searchsorted(rod.segment_bounds, p.position, side="right") - 1, 0,
+                          len(rod.segments) - 1))
+        ea = rod.segment_material(seg).youngs_modulus * float(rod.area(min(p.position, rod.length)))
+        _, x_node = lat.nearest_node(p.rod, p.position)
+        force = arrays["pr_N"][i]
+        out[p.name] = ProbeHistory(p, x_node, force, arrays["pr_V"][i], arrays["pr_u"][i], force / ea)
+    return out

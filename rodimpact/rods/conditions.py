@@ -1,0 +1,171 @@
+"""End conditions at the two outer ends of a system, and junctions between neighbouring rods.
+
+Sign conventions (architecture.md): the normal force N is positive in tension; x grows to the right.
+At an end, the *outward* velocity w is the end's velocity pointing out of the rod (to the left at the left
+end, to the right at the right end) and the *outward displacement* delta its time integral; the devices
+below are described in these terms so the same law applies at either end.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Optional
+
+from .._validate import non_negative, positive
+from .history import History, HistoryLike, as_history
+
+
+class EndCondition:
+    """Base class of the end conditions. ``code`` identifies the law in the kernels."""
+
+    code: int = -1
+
+
+@dataclass(frozen=True)
+class FreeEnd(EndCondition):
+    """Stress-free end: N = 0 (thesis eq. 2.42)."""
+
+    code = 0
+
+
+@dataclass(frozen=True)
+class FixedEnd(EndCondition):
+    """Fixed end: u = 0, v = 0 (thesis eq. 2.41)."""
+
+    code = 1
+
+
+@dataclass(frozen=True, eq=False)
+class ForceEnd(EndCondition):
+    """Prescribed normal force N(t) at the end face (tension positive; push on the end -> negative), N.
+
+    ``force`` is a number, a callable f(t) or samples (t, N); see :class:`~rodimpact.rods.history.History`.
+    """
+
+    force: HistoryLike
+    interpolation: str = "linear"
+    code = 2
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "force", as_history(self.force, "ForceEnd.force", self.interpolation))
+
+
+@dataclass(frozen=True, eq=False)
+class VelocityEnd(EndCondition):
+    """Prescribed end velocity v(t) in m/s (positive to the right, as x)."""
+
+    velocity: HistoryLike
+    interpolation: str = "linear"
+    code = 3
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "velocity", as_history(self.velocity, "VelocityEnd.velocity", self.interpolation))
+
+
+@dataclass(frozen=True)
+class NonReflectingEnd(EndCondition):
+    """Impedance-matched semi-infinite continuation: outgoing waves leave, nothing comes in.
+
+    The continuation has impedance ``impedance`` (N s/m; default: that of the end element, which makes the
+    end perfectly absorbing) and is in the initial state of the end element, so a rod moving uniformly
+    keeps moving. This differs from the thesis's eq. (3.20), N^- = N, a zero-gradient condition that
+    re-injects the element's own inward-travelling part; see docs/method.md.
+    """
+
+    impedance: Optional[float] = None
+    code = 4
+
+    def __post_init__(self) -> None:
+        if self.impedance is not None:
+            object.__setattr__(self, "impedance", positive("NonReflectingEnd.impedance", self.impedance, "N s/m"))
+
+
+@dataclass(frozen=True)
+class SpringEnd(EndCondition):
+    """Linear spring (stiffness N/m) with optional parallel dashpot (damping N s/m) to the ground.
+
+    Outward motion compresses the spring: N = -(k delta + c w). The spring force is taken at the step's
+    midpoint displacement delta + w dt/2 (implicit midpoint), which makes the energy bookkeeping exact:
+    the spring's energy change equals the work done on it.
+    """
+
+    stiffness: float
+    damping: float = 0.0
+    code = 5
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stiffness", non_negative("SpringEnd.stiffness", self.stiffness, "N/m"))
+        object.__setattr__(self, "damping", non_negative("SpringEnd.damping", self.damping, "N s/m"))
+
+
+@dataclass(frozen=True)
+class BitRockEnd(EndCondition):
+    """Bilinear bit-rock interaction (percussive drilling, thesis Fig. 4.9): compression only.
+
+    Loading along F = k1 delta (``loading_stiffness``, N/m) while the penetration delta exceeds its previous
+    maximum; unloading and reloading along the line of slope k2 (``unloading_stiffness``, default k1) through
+    the maximum point; the force F >= 0 pushes back on the bit (N = -F) and never pulls (no tension).
+    """
+
+    loading_stiffness: float
+    unloading_stiffness: Optional[float] = None
+    code = 6
+
+    def __post_init__(self) -> None:
+        k1 = positive("BitRockEnd.loading_stiffness", self.loading_stiffness, "N/m")
+        k2 = k1 if self.unloading_stiffness is None else positive(
+            "BitRockEnd.unloading_stiffness", self.unloading_stiffness, "N/m")
+        object.__setattr__(self, "loading_stiffness", k1)
+        object.__setattr__(self, "unloading_stiffness", k2)
+
+
+END_NAMES: dict[str, type] = {"free": FreeEnd, "fixed": FixedEnd, "nonreflecting": NonReflectingEnd,
+                              "non-reflecting": NonReflectingEnd}
+
+
+def as_end_condition(value: Any, where: str) -> EndCondition:
+    """Accept an :class:`EndCondition` or one of the names ``free``, ``fixed``, ``nonreflecting``."""
+    if isinstance(value, EndCondition):
+        return value
+    if isinstance(value, str) and value.strip().lower() in END_NAMES:
+        return END_NAMES[value.strip().lower()]()
+    raise ValueError(f"{where}: must be an end condition object (FreeEnd, FixedEnd, ForceEnd, VelocityEnd, "
+                     f"NonReflectingEnd, SpringEnd, BitRockEnd) or one of the names {sorted(END_NAMES)}, "
+                     f"got {value!r}")
+
+
+class Junction:
+    """Base class of the junctions between neighbouring rods."""
+
+    code: int = -1
+
+
+@dataclass(frozen=True)
+class Contact(Junction):
+    """Unilateral contact: transmits compression only; the rods separate when the contact force would turn
+    tensile and re-contact when the gap (tracked from the end displacements) closes.
+
+    ``gap`` is the initial gap in m (default 0: touching at t = 0).
+    """
+
+    gap: float = 0.0
+    code = 1
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "gap", non_negative("Contact.gap", self.gap, "m"))
+
+
+@dataclass(frozen=True)
+class Bonded(Junction):
+    """Bonded (welded, screwed) joint: continuity of displacement and force at all times."""
+
+    code = 0
+
+
+def as_junction(value: Any, where: str) -> Junction:
+    """Accept a :class:`Junction` or the names ``contact`` / ``bonded``."""
+    if isinstance(value, Junction):
+        return value
+    if isinstance(value, str) and value.strip().lower() in ("contact", "bonded"):
+        return Contact() if value.strip().lower() == "contact" else Bonded()
+    raise ValueError(f"{where}: must be Contact(gap=...), Bonded() or one of 'contact', 'bonded', got {value!r}")

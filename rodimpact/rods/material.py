@@ -1,0 +1,62 @@
+"""Linear elastic materials (SI units)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .._validate import positive
+
+
+@dataclass(frozen=True)
+class Material:
+    """A homogeneous linear elastic material.
+
+    Parameters
+    ----------
+    youngs_modulus:
+        Young's modulus E in Pa.
+    density:
+        Mass density rho in kg/m^3.
+    name:
+        Optional label used in reports.
+    """
+
+    youngs_modulus: float
+    density: float
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "youngs_modulus", positive("youngs_modulus", self.youngs_modulus, "Pa"))
+        object.__setattr__(self, "density", positive("density", self.density, "kg/m^3"))
+
+    @property
+    def wave_speed(self) -> float:
+        """Bar wave speed c = sqrt(E / rho) in m/s (thesis eq. 2.9)."""
+        return math.sqrt(self.youngs_modulus / self.density)
+
+    def impedance(self, area: float) -> float:
+        """Characteristic impedance Z = A rho c in N s/m for a cross-section area in m^2 (thesis eq. 2.8)."""
+        return positive("area", area, "m^2") * self.density * self.wave_speed
+
+    def scaled(self, youngs_factor: float = 1.0, density_factor: float = 1.0, name: str = "") -> "Material":
+        """A copy with E and rho multiplied by the given factors (thesis setup 3: 1.5 E0, 1.2 rho0)."""
+        return Material(self.youngs_modulus * youngs_factor, self.density * density_factor, name or self.name)
+
+    @classmethod
+    def preset(cls, name: str) -> "Material":
+        """A named material from :data:`MATERIALS` (case-insensitive)."""
+        key = name.strip().lower()
+        if key not in MATERIALS:
+            raise ValueError(f"material: unknown preset {name!r}; valid presets are {sorted(MATERIALS)}")
+        return MATERIALS[key]
+
+
+#: Steel as used throughout the thesis (Tabs. 3.2, 3.3, 5.2): E = 210 GPa, rho = 7840 kg/m^3.
+STEEL = Material(210e9, 7840.0, "steel")
+#: Aluminium 7075-T6 (mini-Kolsky bars of the HopPyBar data set): E = 71.7 GPa, rho = 2810 kg/m^3.
+ALUMINIUM_7075 = Material(71.7e9, 2810.0, "aluminium-7075-t6")
+#: Titanium Ti-6Al-4V (LANL Kolsky bars): E = 113.8 GPa, rho = 4430 kg/m^3 (typical handbook values).
+TITANIUM_TI6AL4V = Material(113.8e9, 4430.0, "ti-6al-4v")
+
+MATERIALS: dict[str, Material] = {m.name: m for m in (STEEL, ALUMINIUM_7075, TITANIUM_TI6AL4V)}

@@ -1,0 +1,172 @@
+"""A rod: ordered segments from left to right, each with a shape and a material."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Optional, Sequence
+
+import numpy as np
+
+from .._validate import finite, finite_array, positive, positive_array
+from .material import STEEL, Material
+from .segments import Cylinder, Segment
+
+
+@dataclass(frozen=True)
+class ImpedanceProfile:
+    """The exact element-level description of a rod built with :meth:`Rod.from_impedance`.
+
+    ``impedance[j]`` (N s/m) is the impedance of element j (left to right); every element has travel time
+    ``dt`` (s) and wave speed ``wave_speed`` (m/s).
+    """
+
+    impedance: np.ndarray
+    dt: float
+    wave_speed: float
+
+
+@dataclass(frozen=True, eq=False)
+class Rod:
+    """A rod made of ``segments`` listed left to right.
+
+    Parameters
+    ----------
+    segments:
+        Sequence of :class:`~rodimpact.rods.segments.Segment`.
+    material:
+        Material of every segment that does not carry its own (default: thesis steel).
+    name:
+        Optional label for reports and plots.
+
+    Positions ``x`` passed to the profile methods are measured from the rod's left end (m).
+    """
+
+    segments: tuple[Segment, ...]
+    material: Material = STEEL
+    name: Optional[str] = None
+    native: Optional[ImpedanceProfile] = field(default=None, repr=False)
+
+    def __post_init__(self) -> None:
+        segs = tuple(self.segments) if not isinstance(self.segments, Segment) else (self.segments,)
+        if not segs:
+            raise ValueError("Rod.segments: needs at least one segment")
+        for i, s in enumerate(segs):
+            if not isinstance(s, Segment):
+                raise TypeError(f"Rod.segments[{i}]: must be a Segment (Cylinder, Cone, ...), got {type(s).__name__}")
+        if not isinstance(self.material, Material):
+            raise TypeError(f"Rod.material: must be a Material, got {type(self.material).__name__}")
+        object.__setattr__(self, "segments", segs)
+        ends = np.concatenate([[0.0], np.cumsum([s.length for s in segs])])
+        object.__setattr__(self, "_ends", ends)
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def from_impedance(cls, impedances: Sequence[float], dt: float, wave_speed: Optional[float] = None,
+                       *, density: Optional[float] = None, name: Optional[str] = None) -> "Rod":
+        """An impedance-level rod: element j (listed left to right) has impedance ``impedances[j]`` (N s/m)
+        and travel time ``dt`` (s).
+
+        The wave speed (default: that of :data:`STEEL`, 5175.5 m/s) only sets element lengths ``c*dt`` for
+        positions; the density (default steel) only sets the equivalent cross-section area A = Z/(rho c).
+        Dynamics, energies and momenta depend on Z and dt alone.
+        """
+        z = positive_array("impedances", impedances)
+        dt = positive("dt", dt, "s")
+        c = STEEL.wave_speed if wave_speed is None else positive("wave_speed", wave_speed, "m/s")
+        rho = STEEL.density if density is None else positive("density", density, "kg/m^3")
+        mat = Material(rho * c * c, rho, "impedance-level")
+        # merge runs of equal impedance into one cylinder each
+        cuts = np.flatnonzero(np.diff(z) != 0) + 1
+        starts = np.concatenate([[0], cuts])
+        stops = np.concatenate([cuts, [z.size]])
+        segs = tuple(Cylinder((b - a) * c * dt, math.sqrt(4.0 * z[a] / (rho * c) / math.pi), material=mat)
+                     for a, b in zip(starts, stops))
+        return cls(segs, mat, name, ImpedanceProfile(z.copy(), dt, c))
+
+    # ------------------------------------------------------------------ geometry
+    @property
+    def length(self) -> float:
+        """Total length in m."""
+        return float(self._ends[-1])
+
+    @property
+    def segment_bounds(self) -> np.ndarray:
+        """Positions of the segment ends from the left end, shape (n_segments + 1,), m."""
+        return self._ends.copy()
+
+    def segment_material(self, i: int) -> Material:
+        """Material of segment ``i`` (its own or the rod's)."""
+        return self.segments[i].material or self.material
+
+    @property
+    def mass(self) -> float:
+        """Total mass in kg (Gauss-Legendre quadrature of rho A over each segment)."""
+        total = 0.0
+        g, w = np.polynomial.legendre.leggauss(16)
+        for i, seg in enumerate(self.segments):
+            s = 0.5 * seg.length * (g + 1.0)
+            total += self.segment_material(i).density * 0.5 * seg.length * float(np.dot(w, seg.area(s)))
+        return total
+
+    def _locate(self, x) -> tuple[np.ndarray, np.ndarray]:
+        xa = np.atleast_1d(np.asarray(x, dtype=float))
+        if not np.all(np.isfinite(xa)) or xa.min() < -1e-12 * self.length or xa.max() > self.length * (1 + 1e-12):
+            raise ValueError(f"x: positions must lie within the rod, 0 <= x <= {self.length:.6g} m, "
+                             f"got range [{xa.min():.6g}, {xa.max():.6g}]")
+        idx = np.clip(np.searchsorted(self._ends, xa, side="right") - 1, 0, len(self.segments) - 1)
+        return xa, idx
+
+    def _per_segment(self, x, fn) -> np.ndarray | float:
+        xa, idx = self._locate(x)
+        out = np.empty_like(xa)
+        for i in np.unique(idx):
+            m = idx == i
+            out[m] = fn(i, xa[m] - self._ends[i])
+        return out if np.ndim(x) else float(out[0])
+
+    def area(self, x) -> np.ndarray | float:
+        """Cross-section area A(x) in m^2. At a segment boundary the right segment's value is returned."""
+        return self._per_segment(x, lambda i, s: self.segments[i].area(s))
+
+    def wave_speed(self, x) -> np.ndarray | float:
+        """Bar wave speed c(x) = sqrt(E/rho) in m/s."""
+        return self._per_segment(x, lambda i, s: np.full(s.shape, self.segment_material(i).wave_speed))
+
+    def impedance(self, x) -> np.ndarray | float:
+        """Characteristic impedance Z(x) = A rho c in N s/m (thesis eq. 2.8)."""
+        def z(i, s):
+            m = self.segment_material(i)
+            return self.segments[i].area(s) * m.density * m.wave_speed
+        return self._per_segment(x, z)
+
+    @property
+    def segment_travel_times(self) -> np.ndarray:
+        """Travel time of a wavefront through each segment, s."""
+        return np.array([s.length / self.segment_material(i).wave_speed for i, s in enumerate(self.segments)])
+
+    @property
+    def total_travel_time(self) -> float:
+        """Travel time theta(L) of a wavefront from the left to the right end, s."""
+        return float(self.segment_travel_times.sum())
+
+    def travel_time(self, x) -> np.ndarray | float:
+        """Travel time theta(x) = int_0^x dx'/c(x') from the left end, s (thesis eq. 2.10)."""
+        before = np.concatenate([[0.0], np.cumsum(self.segment_travel_times)])
+        return self._per_segment(x, lambda i, s: before[i] + s / self.segment_material(i).wave_speed)
+
+    def __repr__(self) -> str:
+        label = f"{self.name!r}, " if self.name else ""
+        return f"Rod({label}{len(self.segments)} segment(s), length={self.length:.6g} m)"
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Rod):
+            return NotImplemented
+        same_native = (self.native is None and other.native is None) or (
+            self.native is not None and other.native is not None
+            and np.array_equal(self.native.impedance, other.native.impedance)
+            and self.native.dt == other.native.dt and self.native.wave_speed == other.native.wave_speed)
+        return (self.segments == other.segments and self.material == other.material
+                and self.name == other.name and same_native)
+
+    __hash__ = None  # type: ignore[assignment]

@@ -1,0 +1,235 @@
+"""Cross-section shapes of rod segments.
+
+A segment is a piece of rod of given length whose cross-section area is a function of the local
+coordinate ``s`` in ``[0, length]`` (m, measured from the segment's left end). A segment may carry its
+own :class:`~rodimpact.rods.material.Material`; ``material=None`` means "the rod's material".
+
+The four analytic families of thesis Tab. 2.1 (quadratic, exponential, cosh^2, cos^2) are provided, plus the
+shapes engineers draw: cylinders, tubes, cones (linear diameter), linear-area tapers, tabulated profiles and
+arbitrary area functions.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+import numpy as np
+
+from .._validate import finite, finite_array, positive
+from .material import Material
+
+ArrayLike = np.ndarray | float
+
+
+def _check_area(name: str, area: np.ndarray, where: str) -> None:
+    if not np.all(np.isfinite(area)) or np.any(area <= 0):
+        bad = np.flatnonzero(~np.isfinite(area) | (area <= 0))[0]
+        raise ValueError(f"{name}: the cross-section area must be finite and > 0 everywhere; {where} gives "
+                         f"{area[bad]!r} m^2 at sample {bad}")
+
+
+@dataclass(frozen=True)
+class Segment:
+    """Base class: a rod piece of ``length`` (m) with area function :meth:`area` and optional material."""
+
+    length: float
+    material: Optional[Material] = field(default=None, kw_only=True)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "length", positive(f"{type(self).__name__}.length", self.length, "m"))
+        if self.material is not None and not isinstance(self.material, Material):
+            raise TypeError(f"{type(self).__name__}.material: must be a Material or None, "
+                            f"got {type(self.material).__name__}")
+        s = np.linspace(0.0, self.length, 65)
+        _check_area(type(self).__name__, np.asarray(self.area(s), dtype=float), "the profile")
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        """Cross-section area in m^2 at local positions ``s`` (m)."""
+        raise NotImplementedError
+
+    def equivalent_diameter(self, s: ArrayLike) -> np.ndarray:
+        """Equivalent solid-circle diameter sqrt(4 A / pi) in m (for plots of arbitrary shapes)."""
+        return np.sqrt(4.0 * self.area(s) / math.pi)
+
+
+@dataclass(frozen=True)
+class Cylinder(Segment):
+    """Solid circular cylinder of constant ``diameter`` (m)."""
+
+    diameter: float
+
+    def __post_init__(self) -> None:
+        positive("Cylinder.diameter", self.diameter, "m")
+        super().__post_init__()
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        return np.full(np.shape(s), 0.25 * math.pi * self.diameter**2)
+
+
+@dataclass(frozen=True)
+class Tube(Segment):
+    """Hollow circular tube with constant ``outer_diameter`` and ``inner_diameter`` (bore), m."""
+
+    outer_diameter: float
+    inner_diameter: float
+
+    def __post_init__(self) -> None:
+        d_out = positive("Tube.outer_diameter", self.outer_diameter, "m")
+        d_in = finite("Tube.inner_diameter", self.inner_diameter, "m")
+        if not 0.0 <= d_in < d_out:
+            raise ValueError(f"Tube.inner_diameter: must satisfy 0 <= inner < outer = {d_out} m, got {d_in} m")
+        super().__post_init__()
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        return np.full(np.shape(s), 0.25 * math.pi * (self.outer_diameter**2 - self.inner_diameter**2))
+
+
+@dataclass(frozen=True)
+class Cone(Segment):
+    """Frustum: the diameter changes linearly from ``diameter_start`` to ``diameter_end`` (m)."""
+
+    diameter_start: float
+    diameter_end: float
+
+    def __post_init__(self) -> None:
+        positive("Cone.diameter_start", self.diameter_start, "m")
+        positive("Cone.diameter_end", self.diameter_end, "m")
+        super().__post_init__()
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        d = self.diameter_start + (self.diameter_end - self.diameter_start) * np.asarray(s) / self.length
+        return 0.25 * math.pi * d**2
+
+
+@dataclass(frozen=True)
+class LinearAreaTaper(Segment):
+    """The area changes linearly from ``area_start`` to ``area_end`` (m^2) (thesis setup 3, x1..x2)."""
+
+    area_start: float
+    area_end: float
+
+    def __post_init__(self) -> None:
+        positive("LinearAreaTaper.area_start", self.area_start, "m^2")
+        positive("LinearAreaTaper.area_end", self.area_end, "m^2")
+        super().__post_init__()
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        return self.area_start + (self.area_end - self.area_start) * np.asarray(s, dtype=float) / self.length
+
+
+@dataclass(frozen=True)
+class _AnalyticHorn(Segment):
+    """Common parameters of the thesis Tab. 2.1 families: ``area_start`` A0 (m^2) and ``xi`` (1/m)."""
+
+    area_start: float
+    xi: float
+
+    def __post_init__(self) -> None:
+        positive(f"{type(self).__name__}.area_start", self.area_start, "m^2")
+        finite(f"{type(self).__name__}.xi", self.xi, "1/m")
+        super().__post_init__()
+
+
+@dataclass(frozen=True)
+class QuadraticHorn(_AnalyticHorn):
+    """A(s) = A0 (1 + xi s)^2 (thesis Tab. 2.1, b = 0: non-dispersive)."""
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        return self.area_start * (1.0 + self.xi * np.asarray(s, dtype=float)) ** 2
+
+
+@dataclass(frozen=True)
+class ExponentialHorn(_AnalyticHorn):
+    """A(s) = A0 exp(xi s) (thesis Tab. 2.1, eq. 3.28; setup 1 / Fig. 3.11 with xi = 1/2 per m)."""
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        return self.area_start * np.exp(self.xi * np.asarray(s, dtype=float))
+
+
+@dataclass(frozen=True)
+class CoshHorn(_AnalyticHorn):
+    """A(s) = A0 cosh^2(xi s) (thesis Tab. 2.1)."""
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        return self.area_start * np.cosh(self.xi * np.asarray(s, dtype=float)) ** 2
+
+
+@dataclass(frozen=True)
+class CosHorn(_AnalyticHorn):
+    """A(s) = A0 cos^2(xi s) (thesis Tab. 2.1); requires |xi| length < pi/2 so the area stays positive."""
+
+    def __post_init__(self) -> None:
+        if abs(finite("CosHorn.xi", self.xi, "1/m")) * positive("CosHorn.length", self.length, "m") >= math.pi / 2:
+            raise ValueError(f"CosHorn.xi: |xi| * length must be < pi/2 so that the area stays > 0, "
+                             f"got {abs(self.xi) * self.length:.4g}")
+        super().__post_init__()
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        return self.area_start * np.cos(self.xi * np.asarray(s, dtype=float)) ** 2
+
+
+class TabulatedProfile(Segment):
+    """A profile given by points: positions ``x`` (m, strictly increasing) and either ``diameter`` (m,
+    interpolated linearly, i.e. conical pieces) or ``area`` (m^2, interpolated linearly).
+
+    The segment's length is ``x[-1] - x[0]``; local s = x - x[0].
+    """
+
+    def __init__(self, x, diameter=None, area=None, *, material: Optional[Material] = None) -> None:
+        xs = finite_array("TabulatedProfile.x", x, min_size=2)
+        if np.any(np.diff(xs) <= 0):
+            i = int(np.flatnonzero(np.diff(xs) <= 0)[0])
+            raise ValueError(f"TabulatedProfile.x: must be strictly increasing; x[{i + 1}] = {xs[i + 1]} <= "
+                             f"x[{i}] = {xs[i]}")
+        if (diameter is None) == (area is None):
+            raise ValueError("TabulatedProfile: give exactly one of diameter= or area=")
+        name = "diameter" if diameter is not None else "area"
+        vals = finite_array(f"TabulatedProfile.{name}", diameter if diameter is not None else area, min_size=2)
+        if vals.shape != xs.shape:
+            raise ValueError(f"TabulatedProfile.{name}: needs one value per x ({xs.size}), got {vals.size}")
+        if np.any(vals <= 0):
+            i = int(np.flatnonzero(vals <= 0)[0])
+            raise ValueError(f"TabulatedProfile.{name}: every value must be > 0, entry {i} is {vals[i]}")
+        object.__setattr__(self, "x", xs)
+        object.__setattr__(self, "values", vals)
+        object.__setattr__(self, "kind", name)
+        object.__setattr__(self, "length", float(xs[-1] - xs[0]))
+        object.__setattr__(self, "material", material)
+        Segment.__post_init__(self)
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        v = np.interp(np.asarray(s, dtype=float) + self.x[0], self.x, self.values)
+        return 0.25 * math.pi * v**2 if self.kind == "diameter" else v
+
+    def __repr__(self) -> str:
+        return f"TabulatedProfile({self.x.size} points, {self.kind}, length={self.length:.6g} m)"
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, TabulatedProfile) and self.kind == other.kind and self.material == other.material
+                and np.array_equal(self.x, other.x) and np.array_equal(self.values, other.values))
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+class AreaFunction(Segment):
+    """Arbitrary area ``area(s)`` (m^2) for local s in [0, length]; must be vectorised over numpy arrays
+    (scalars are accepted and broadcast). Thesis eq. 3.24 is an example."""
+
+    def __init__(self, length: float, area: Callable[[np.ndarray], np.ndarray], *,
+                 material: Optional[Material] = None, name: str = "") -> None:
+        if not callable(area):
+            raise TypeError(f"AreaFunction.area: must be a callable area(s) in m^2, got {type(area).__name__}")
+        object.__setattr__(self, "_func", area)
+        object.__setattr__(self, "name", name)
+        object.__setattr__(self, "length", length)
+        object.__setattr__(self, "material", material)
+        Segment.__post_init__(self)
+
+    def area(self, s: ArrayLike) -> np.ndarray:
+        s = np.asarray(s, dtype=float)
+        return np.broadcast_to(np.asarray(self._func(s), dtype=float), s.shape).copy()
+
+    def __repr__(self) -> str:
+        return f"AreaFunction(length={self.length:.6g} m{', ' + self.name if self.name else ''})"

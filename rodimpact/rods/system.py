@@ -1,0 +1,124 @@
+"""A system of rods listed left to right, with junctions, end conditions, loads and initial state."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable, Optional, Sequence
+
+import numpy as np
+
+from .._validate import finite
+from .conditions import Contact, EndCondition, Junction, as_end_condition, as_junction
+from .loads import Bearings, NodalForce
+from .rod import Rod
+
+#: Initial field of a rod: a number, a callable of x (m from the rod's left end) or per-element values.
+FieldLike = float | Callable[[np.ndarray], np.ndarray] | Sequence[float] | np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class InitialState:
+    """Optional non-uniform initial state of one rod: ``force`` N(x) in N and ``velocity`` v(x) in m/s.
+
+    Each is a number, a callable of the position x (m from the rod's left end, evaluated at element centres)
+    or one value per lattice element. ``velocity`` overrides the rod's uniform initial velocity.
+    """
+
+    force: Optional[FieldLike] = None
+    velocity: Optional[FieldLike] = None
+
+
+@dataclass(frozen=True, eq=False)
+class System:
+    """Rods listed left to right, the junctions between neighbours and the conditions at the outer ends.
+
+    Parameters
+    ----------
+    rods:
+        The rods, left to right.
+    velocities:
+        Initial rigid-body velocity of each rod, m/s (positive to the right). A striker on the left moves with
+        positive velocity.
+    junctions:
+        One per neighbouring pair: :class:`Contact` (default, unilateral) or :class:`Bonded`.
+    left, right:
+        Conditions at the outer left end of the first rod and the outer right end of the last rod
+        (default free).
+    loads:
+        :class:`NodalForce` and :class:`Bearings` objects.
+    initial:
+        Optional per-rod :class:`InitialState` (``None`` entries for rods at rest/uniform velocity).
+    """
+
+    rods: Sequence[Rod]
+    velocities: Sequence[float]
+    junctions: Optional[Sequence[Junction | str]] = None
+    left: EndCondition | str = "free"
+    right: EndCondition | str = "free"
+    loads: Sequence[NodalForce | Bearings] = field(default_factory=tuple)
+    initial: Optional[Sequence[Optional[InitialState]]] = None
+
+    def __post_init__(self) -> None:
+        rods = [self.rods] if isinstance(self.rods, Rod) else list(self.rods)
+        if not rods:
+            raise ValueError("rods: give at least one Rod")
+        for i, r in enumerate(rods):
+            if not isinstance(r, Rod):
+                raise TypeError(f"rods[{i}]: must be a Rod, got {type(r).__name__}")
+        vel = np.atleast_1d(np.asarray(self.velocities, dtype=object))
+        if vel.size != len(rods):
+            raise ValueError(f"velocities: need one initial velocity per rod ({len(rods)}), got {vel.size}")
+        vel = tuple(finite(f"velocities[{i}]", v, "m/s") for i, v in enumerate(vel))
+        n_j = len(rods) - 1
+        juncs = [Contact()] * n_j if self.junctions is None else list(self.junctions)
+        if len(juncs) != n_j:
+            raise ValueError(f"junctions: need one per neighbouring pair ({n_j}), got {len(juncs)}")
+        juncs = tuple(as_junction(j, f"junctions[{i}]") for i, j in enumerate(juncs))
+        loads = tuple(self.loads)
+        for i, ld in enumerate(loads):
+            if not isinstance(ld, (NodalForce, Bearings)):
+                raise TypeError(f"loads[{i}]: must be NodalForce or Bearings, got {type(ld).__name__}")
+            if ld.rod >= len(rods):
+                raise ValueError(f"loads[{i}].rod: rod index {ld.rod} does not exist (0..{len(rods) - 1})")
+            if isinstance(ld, NodalForce) and not 0.0 < ld.position < rods[ld.rod].length:
+                raise ValueError(f"loads[{i}].position: must lie inside rod {ld.rod}, 0 < x < "
+                                 f"{rods[ld.rod].length:.6g} m, got {ld.position:.6g} m (end faces take ForceEnd)")
+            if isinstance(ld, Bearings):
+                for a, b in ld.spans:
+                    if a < 0.0 or b > rods[ld.rod].length:
+                        raise ValueError(f"loads[{i}].spans: span ({a}, {b}) m lies outside rod {ld.rod} "
+                                         f"(0 .. {rods[ld.rod].length:.6g} m)")
+        bearing_rods = [ld.rod for ld in loads if isinstance(ld, Bearings)]
+        if len(bearing_rods) != len(set(bearing_rods)):
+            raise ValueError("loads: give all bearings of one rod in a single Bearings(spans=[...]) so that the "
+                             "friction force mu*m*g is shared once (thesis eq. 3.23)")
+        initial = [None] * len(rods) if self.initial is None else list(self.initial)
+        if len(initial) != len(rods):
+            raise ValueError(f"initial: need one entry (InitialState or None) per rod ({len(rods)}), got {len(initial)}")
+        for i, st in enumerate(initial):
+            if st is not None and not isinstance(st, InitialState):
+                raise TypeError(f"initial[{i}]: must be InitialState or None, got {type(st).__name__}")
+        object.__setattr__(self, "rods", tuple(rods))
+        object.__setattr__(self, "velocities", vel)
+        object.__setattr__(self, "junctions", juncs)
+        object.__setattr__(self, "left", as_end_condition(self.left, "left"))
+        object.__setattr__(self, "right", as_end_condition(self.right, "right"))
+        object.__setattr__(self, "loads", loads)
+        object.__setattr__(self, "initial", tuple(initial))
+
+    @property
+    def n_rods(self) -> int:
+        """Number of rods."""
+        return len(self.rods)
+
+    def rod_offsets(self) -> np.ndarray:
+        """Global x of each rod's left end (m): with junctions, rod 0 ends at x = 0 (the first contact face),
+        the others follow left to right separated by their initial gaps; a single rod starts at x = 0."""
+        lengths = np.array([r.length for r in self.rods])
+        gaps = np.array([j.gap if isinstance(j, Contact) else 0.0 for j in self.junctions])
+        starts = np.zeros(self.n_rods)
+        if self.n_rods > 1:
+            starts[0] = -lengths[0]
+            for i in range(1, self.n_rods):
+                starts[i] = starts[i - 1] + lengths[i - 1] + gaps[i - 1]
+        return starts
