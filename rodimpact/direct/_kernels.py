@@ -126,7 +126,10 @@ def boundaries(k, N, v, Z, rod_start, end_code, end_par, end_state, end_value, j
         if touching:
             vn = (N[b] - N[a] + za * v[a] + zb * v[b]) / (za + zb)
             nj = N[a] + za * (vn - v[a])
-            if code == CONTACT and nj > 0.0:
+            # unilateral: only a compressive force keeps the rods together; a force that is zero to
+            # rounding (e.g. equal impedances after the pulse has passed) counts as separation
+            scale = abs(N[a]) + abs(N[b]) + za * abs(v[a]) + zb * abs(v[b])
+            if code == CONTACT and nj >= -1e-13 * scale:
                 junction_state[r] = 0
                 touching = False
         if touching:
@@ -199,7 +202,9 @@ def _run_loop(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end
     """Advance ``n_steps`` steps in place (compiled path). Step ``k0 + i`` writes output column ``i``.
 
     Interior node between elements a = j and b = j + 1 (eqs. 3.6-3.9 with F* the node force):
-    V = (F* + N_b - N_a + Z_a v_a + Z_b v_b) / (Z_a + Z_b), N_a^+ = N_a + Z_a (V - v_a), N_b^- = N_a^+ - F*;
+    V = (F* + N_b - N_a + Z_a v_a + Z_b v_b) / (Z_a + Z_b), evaluated as V = v_a + d with
+    d = (F* + N_b - N_a + Z_b (v_b - v_a)) / (Z_a + Z_b) so that uniform motion stays exact in floating point;
+    N_a^+ = N_a + Z_a (V - v_a), N_b^- = N_a^+ - F*;
     element update (eqs. 3.14-3.15): N_new = N^- + N^+ - N, v_new = V_left + V_right - v.
     """
     n_rods = rod_start.size - 1
@@ -234,10 +239,11 @@ def _run_loop(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end
                 if ptr < n_sp and sp_elem[ptr] == j:
                     f = sp_F[ptr]
                     ptr += 1
-                vn = (f + nb - na + za * va + zb * vb) / (za + zb)
-                n_plus = na + za * (vn - va)
+                d = (f + nb - na + zb * (vb - va)) / (za + zb)   # V - v_a, exact 0 in uniform motion
+                vn = va + d
+                n_plus = na + za * d
                 N[j] = n_minus + n_plus - na
-                v[j] = v_left + vn - va
+                v[j] = v_left + d
                 n_minus = n_plus - f
                 v_left = vn
                 na = nb
@@ -273,8 +279,10 @@ def run_numpy(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end
                    rod_NR, rod_VR, dt, i)
         f = np.zeros(a.size)
         f[sp_pos] = sp_F
-        vn = (f + N[b] - N[a] + Z[a] * v[a] + Z[b] * v[b]) / (Z[a] + Z[b])   # eq. 3.7 / 3.9
-        n_plus = N[a] + Z[a] * (vn - v[a])                                  # eq. 3.5
+        # eq. 3.7 / 3.9 written as V = v_a + d, which keeps uniform motion exact in floating point
+        d = (f + N[b] - N[a] + Z[b] * (v[b] - v[a])) / (Z[a] + Z[b])
+        vn = v[a] + d
+        n_plus = N[a] + Z[a] * d                                            # eq. 3.5
         n_minus = n_plus - f                                                # eq. 3.2
         n_right = np.empty(n_el)   # N^+ of every element
         v_right = np.empty(n_el)

@@ -68,7 +68,7 @@ class History:
             y = np.full(t.shape, float(src))
         if not np.all(np.isfinite(y)):
             i = int(np.flatnonzero(~np.isfinite(y))[0])
-            raise ValueError(f"{self.quantity}: evaluates to {y[i]!r} at t = {t[i]:.6g} s; it must be finite")
+            raise ValueError(f"{self.quantity}: evaluates to {float(y[i])} at t = {t[i]:.6g} s; it must be finite")
         return y
 
     def step_values(self, n_steps: int, dt: float, first_step: int = 0) -> np.ndarray:
