@@ -8,7 +8,8 @@ with ``register_jitable`` so it runs both as Python and inside compiled code):
 
 * :func:`run_numpy` -- the readable reference: the bulk of the interior nodes is one vectorised numpy
   expression per step (eqs. 3.6-3.15 literally);
-* :func:`run_numba` -- the compiled path (``numba.njit(cache=True)``): one fused in-place sweep per rod.
+* :func:`run_numba` -- the compiled path (``numba.njit(cache=True)``): the same lattice in travelling-wave
+  variables, one fused in-place sweep per rod. Two formulations that agree to rounding are a real check.
 
 Array layout (all rods concatenated left to right; ``rod_start`` has n_rods + 1 entries):
 
@@ -196,16 +197,18 @@ def boundaries(k, N, v, Z, rod_start, end_code, end_par, end_state, end_value, j
         u_end[r, 1] += rod_VR[r] * dt
 
 
-def _run_loop(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
-              junction_state, gap, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp, pr_N, pr_V,
-              pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
+def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value,
+               junction_code, junction_state, gap, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp,
+               pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
     """Advance ``n_steps`` steps in place (compiled path). Step ``k0 + i`` writes output column ``i``.
 
-    Interior node between elements a = j and b = j + 1 (eqs. 3.6-3.9 with F* the node force):
-    V = (F* + N_b - N_a + Z_a v_a + Z_b v_b) / (Z_a + Z_b), evaluated as V = v_a + d with
-    d = (F* + N_b - N_a + Z_b (v_b - v_a)) / (Z_a + Z_b) so that uniform motion stays exact in floating point;
-    N_a^+ = N_a + Z_a (V - v_a), N_b^- = N_a^+ - F*;
-    element update (eqs. 3.14-3.15): N_new = N^- + N^+ - N, v_new = V_left + V_right - v.
+    The same lattice as :func:`run_numpy`, written in travelling-wave variables: element j carries a
+    right-going force wave f_j and a left-going g_j, N = f + g, v = (g - f) / Z (thesis Sec. 2.3.2). At a
+    plain interior node with reflection factor R = (Z_b - Z_a)/(Z_b + Z_a) (eq. 2.40) the outgoing waves are
+    g_a' = g_b + R (f_a - g_b) and f_b' = f_a + R (f_a - g_b) (transmission 1 +- R, eq. 2.39), which is eqs.
+    3.6-3.15 without the division and streams at memory speed. Loaded nodes, ends and junctions are solved
+    by :func:`boundaries` on (N, v), refreshed each step at the ``touch`` elements only; the outgoing waves
+    there follow from the node force: g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b.
     """
     n_rods = rod_start.size - 1
     rod_NL = np.empty(n_rods)
@@ -215,7 +218,12 @@ def _run_loop(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end
     sp_F = np.zeros(sp_elem.size)
     sp_V = np.zeros(sp_elem.size)
     n_sp = sp_elem.size
+    f = 0.5 * (N - Z * v)
+    g = 0.5 * (N + Z * v)
     for i in range(n_steps):
+        for t in touch:
+            N[t] = f[t] + g[t]
+            v[t] = (g[t] - f[t]) / Z[t]
         boundaries(k0 + i, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
                    junction_state, gap, u_end, sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp,
                    pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, rod_NL, rod_VL,
@@ -224,42 +232,46 @@ def _run_loop(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end
         for r in range(n_rods):
             s = rod_start[r]
             e = rod_start[r + 1]
-            while ptr < n_sp and sp_elem[ptr] < s:
-                ptr += 1
-            n_minus = rod_NL[r]
-            v_left = rod_VL[r]
-            na = N[s]
-            va = v[s]
-            for j in range(s, e - 1):
-                za = Z[j]
-                zb = Z[j + 1]
-                nb = N[j + 1]
-                vb = v[j + 1]
-                f = 0.0
-                if ptr < n_sp and sp_elem[ptr] == j:
-                    f = sp_F[ptr]
+            f_first = rod_NL[r] - g[s]
+            g_last = rod_NR[r] - f[e - 1]
+            fa = f[s]
+            j = s
+            while j < e - 1:
+                stop = e - 1
+                if ptr < n_sp and sp_elem[ptr] < e - 1:
+                    stop = sp_elem[ptr]
+                for jj in range(j, stop):
+                    gb = g[jj + 1]
+                    fb = f[jj + 1]
+                    sc = R[jj] * (fa - gb)
+                    g[jj] = gb + sc
+                    f[jj + 1] = fa + sc
+                    fa = fb
+                if stop < e - 1:
+                    gb = g[stop + 1]
+                    fb = f[stop + 1]
+                    n_plus = N[stop] + Z[stop] * (sp_V[ptr] - v[stop])
+                    g[stop] = n_plus - fa
+                    f[stop + 1] = n_plus - sp_F[ptr] - gb
+                    fa = fb
                     ptr += 1
-                d = (f + nb - na + zb * (vb - va)) / (za + zb)   # V - v_a, exact 0 in uniform motion
-                vn = va + d
-                n_plus = na + za * d
-                N[j] = n_minus + n_plus - na
-                v[j] = v_left + d
-                n_minus = n_plus - f
-                v_left = vn
-                na = nb
-                va = vb
-            N[e - 1] = n_minus + rod_NR[r] - na
-            v[e - 1] = v_left + rod_VR[r] - va
+                j = stop + 1
+            f[s] = f_first
+            g[e - 1] = g_last
+    for j in range(N.size):
+        N[j] = f[j] + g[j]
+        v[j] = (g[j] - f[j]) / Z[j]
 
 
-run_numba = njit(cache=True)(_run_loop)
+run_numba = njit(cache=True, error_model="numpy")(_run_waves)
 
 
-def run_numpy(n_steps, k0, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
+def run_numpy(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value, junction_code,
               junction_state, gap, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp, pr_N, pr_V,
               pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
     """Readable reference path with the same signature as :func:`run_numba`: per step, the interior nodes
-    are one vectorised evaluation of thesis eqs. 3.6-3.9 and the elements of eqs. 3.10-3.15."""
+    are one vectorised evaluation of thesis eqs. 3.6-3.9 and the elements of eqs. 3.10-3.15 in the thesis's
+    own variables (N, v); ``R`` and ``touch`` (used by the wave-variable path) are not needed here."""
     n_rods = rod_start.size - 1
     n_el = int(rod_start[-1])
     rod_NL, rod_VL, rod_NR, rod_VR = (np.empty(n_rods) for _ in range(4))

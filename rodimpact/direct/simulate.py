@@ -85,6 +85,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
 
     N, v = state["N"], state["v"]
     N0 = N.copy()
+    reflection, touch = _wave_arrays(lattice, arrays)
     z = lattice.impedance
     rs = lattice.rod_start
     energy_steps = sorted(set(range(0, n_steps + 1, every)) | {n_steps})
@@ -98,7 +99,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
             kw = dict(arrays)
             for key in ("pr_N", "pr_V", "pr_u", "junction_N", "junction_contact", "end_N", "end_V"):
                 kw[key] = arrays[key][:, k:target]
-            run(target - k, k, N, v, z, **kw, dt=dt)
+            run(target - k, k, N, v, z, reflection, touch, **kw, dt=dt)
             if bar is not None:
                 bar.update(target - k)
             k = target
@@ -343,6 +344,20 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
         pr_u=np.zeros((n_p, n_steps)), pr_disp=np.zeros(n_p), junction_N=np.zeros((n_j, n_steps)),
         junction_contact=np.zeros((n_j, n_steps)), end_N=np.zeros((2, n_steps)), end_V=np.zeros((2, n_steps)),
         acc=np.zeros(8))
+
+
+def _wave_arrays(lat: Lattice, arrays: dict) -> tuple[np.ndarray, np.ndarray]:
+    """Reflection factor R_j = (Z_{j+1} - Z_j)/(Z_{j+1} + Z_j) of every node between elements j and j+1
+    (thesis eq. 2.40) and the elements whose (N, v) the boundary solver reads each step."""
+    z = lat.impedance
+    reflection = (z[1:] - z[:-1]) / (z[1:] + z[:-1])
+    rs = lat.rod_start
+    touch = set(rs[:-1].tolist()) | set((rs[1:] - 1).tolist())
+    touch |= set(arrays["sp_elem"].tolist()) | set((arrays["sp_elem"] + 1).tolist())
+    for r, m in zip(arrays["pr_rod"], arrays["pr_local"]):
+        a = rs[r] + m - 1
+        touch |= {int(a), int(a + 1)} & set(range(rs[r], rs[r + 1]))
+    return reflection, np.array(sorted(touch), dtype=np.int64)
 
 
 def _node_displacements(N, N0, z, dt, rod_start, u_end) -> np.ndarray:

@@ -1,0 +1,25 @@
+"""Write a benchmark table into its own marked section of docs/performance.md (other sections untouched)."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+PERF = Path(__file__).resolve().parents[1] / "docs" / "performance.md"
+HEADER = "# Performance\n\nMeasured by the scripts in `benchmarks/` (re-run them to refresh a section).\n"
+
+
+def write_section(name: str, body: str) -> None:
+    """Replace (or append) the text between ``<!-- name:start -->`` and ``<!-- name:end -->``."""
+    start, end = f"<!-- {name}:start -->", f"<!-- {name}:end -->"
+    text = PERF.read_text() if PERF.exists() else HEADER
+    block = f"{start}\n{body.rstrip()}\n{end}"
+    if start in text and end in text:
+        text = text[: text.index(start)] + block + text[text.index(end) + len(end):]
+    else:
+        text = text.rstrip() + "\n\n" + block + "\n"
+    fd, tmp = tempfile.mkstemp(dir=PERF.parent, suffix=".tmp")
+    with os.fdopen(fd, "w") as fh:
+        fh.write(text)
+    os.replace(tmp, PERF)
