@@ -26,7 +26,8 @@ Backend = Literal["numba", "numpy"]
 
 def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[float]] = None,
              duration: Optional[float] = None, dt: Optional[float] = None, *,
-             steps: Optional[int] = None, left: EndCondition | str = "free", right: EndCondition | str = "free",
+             steps: Optional[int] = None, elements: Optional[int | tuple[int, int]] = None,
+             resolution: Optional[float] = None, left: EndCondition | str = "free", right: EndCondition | str = "free",
              junctions: Optional[Sequence[Any]] = None, loads: Sequence[NodalForce | Bearings] = (),
              initial: Optional[Sequence[Optional[InitialState]]] = None, probes: Iterable[Probe] = (),
              snapshot_times: Optional[Sequence[float]] = None, snapshot_every: Optional[int] = None,
@@ -46,6 +47,10 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     dt:
         Time step = travel time of every element, s. Default: the ``dt`` of impedance-level rods, else one
         that gives each segment >= 4 and the longest rod >= 200 elements.
+    elements:
+        Instead of ``dt``: the number of elements of rod 0, or ``(rod_index, n)``; dt = travel time / n.
+    resolution:
+        Instead of ``dt``: the largest element length in m; dt = resolution / (largest wave speed).
     left, right:
         Outer end conditions (objects or "free", "fixed", "nonreflecting"); default free.
     junctions:
@@ -68,9 +73,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     system = rods if isinstance(rods, System) else System(
         rods, velocities if velocities is not None else _missing("velocities"), junctions, left, right,
         tuple(loads), initial)
-    if dt is None:
-        dt = default_time_step(system)
-    dt = positive("dt", dt, "s")
+    dt = _time_step(system, dt, elements, resolution)
     n_steps = _step_count(duration, steps, dt)
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
@@ -152,6 +155,27 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
 # ---------------------------------------------------------------------------------------------- helpers
 def _missing(name: str):
     raise ValueError(f"{name}: required when rods are given as a list (one initial velocity per rod, m/s)")
+
+
+def _time_step(system: System, dt, elements, resolution) -> float:
+    """dt from exactly one of dt / elements / resolution (or the default)."""
+    given = [name for name, val in (("dt", dt), ("elements", elements), ("resolution", resolution)) if val is not None]
+    if len(given) > 1:
+        raise ValueError(f"{given[1]}: give only one of dt=, elements= or resolution= (got {', '.join(given)})")
+    if dt is not None:
+        return positive("dt", dt, "s")
+    if elements is not None:
+        rod, n = (0, elements) if not isinstance(elements, tuple) else elements
+        if not isinstance(rod, int) or not 0 <= rod < system.n_rods:
+            raise ValueError(f"elements: rod index must be 0..{system.n_rods - 1}, got {rod!r}")
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ValueError(f"elements: the number of elements must be an integer >= 1, got {n!r}")
+        return system.rods[rod].total_travel_time / int(n)
+    if resolution is not None:
+        res = positive("resolution", resolution, "m")
+        c_max = max(float(np.max(r.wave_speed(r.segment_bounds[:-1]))) for r in system.rods)
+        return res / c_max
+    return default_time_step(system)
 
 
 def _step_count(duration: Optional[float], steps: Optional[int], dt: float) -> int:

@@ -68,3 +68,16 @@ def test_continuous_taper_converges_first_order():
         order = -np.polyfit(np.log(n_list), np.log(errs[:, col]), 1)[0]
         assert 0.9 < order < 1.1, (col, order, errs[:, col])
     assert errs[-1, 0] < 3e-4 and errs[-1, 1] < 3e-4
+
+
+def test_time_step_from_elements_or_resolution():
+    rod = ri.Rod([ri.Cylinder(0.5, 0.05)])
+    striker = ri.Rod([ri.Cylinder(0.2, 0.04)])
+    res = ri.simulate([striker, rod], velocities=[1.0, 0.0], steps=5, elements=(1, 100))
+    assert res.dt == pytest.approx(0.5 / C / 100, rel=1e-14)
+    assert res.lattice.rods[1].n_elements == 100 and res.lattice.rods[0].n_elements == 40
+    res = ri.simulate([striker, rod], velocities=[1.0, 0.0], steps=5, resolution=2e-3)
+    assert res.dt == pytest.approx(2e-3 / C, rel=1e-14)
+    assert np.max(res.lattice.element_length) <= 2e-3 * (1 + 1e-12)
+    with pytest.raises(ValueError, match="give only one of"):
+        ri.simulate([rod], velocities=[1.0], steps=5, dt=1e-6, resolution=1e-3)
