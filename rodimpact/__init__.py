@@ -19,6 +19,7 @@ from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
 from .direct.result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
 from .direct.simulate import simulate
+from . import reference, signals
 
 __all__ = [
     "__version__",
@@ -30,4 +31,5 @@ __all__ = [
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
     "simulate", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory",
+    "reference", "signals",
 ]
