@@ -19,7 +19,10 @@ from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
 from .direct.result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
 from .direct.simulate import simulate
-from . import reference, signals
+from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
+                      LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
+                      impedance_to_shape, synthesize, transform_force)
+from . import inverse, reference, signals
 
 __all__ = [
     "__version__",
@@ -31,5 +34,8 @@ __all__ = [
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
     "simulate", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory",
-    "reference", "signals",
+    "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
+    "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
+    "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
+    "inverse", "reference", "signals",
 ]
