@@ -30,7 +30,7 @@ class Probe:
             raise ValueError(f"Probe.rod: must be a rod index >= 0, got {self.rod!r}")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ProbeHistory:
     """Histories recorded by a :class:`Probe`, one value per step (step start time)."""
 
@@ -41,8 +41,12 @@ class ProbeHistory:
     displacement: np.ndarray  # m, relative to the initial configuration, at the step start
     strain: np.ndarray        # -, N / (E A) at the probe position
 
+    def __repr__(self) -> str:
+        return (f"ProbeHistory({self.probe.name!r}: rod {self.probe.rod} at {self.node_position:.6g} m, "
+                f"{self.force.size} steps, peak force {self.force.min():.6g} N)")
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, repr=False)
 class FieldSnapshots:
     """Fields along x at selected times (columns). Element values are uniform in each element at t = k dt."""
 
@@ -55,8 +59,11 @@ class FieldSnapshots:
     velocity: np.ndarray      # (n_elements, m) m/s
     displacement: np.ndarray  # (n_nodes, m) m
 
+    def __repr__(self) -> str:
+        return f"FieldSnapshots({self.time.size} times, {self.element_x.size} elements)"
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, repr=False)
 class EnergyHistory:
     """Energy bookkeeping sampled every few steps (thesis eq. 3.25 per rod).
 
@@ -74,6 +81,10 @@ class EnergyHistory:
     work_loads: np.ndarray
     work_friction: np.ndarray
     impulse: np.ndarray       # (m,) total external impulse, N s
+
+    def __repr__(self) -> str:
+        return (f"EnergyHistory({self.time.size} samples, total {self.total[0]:.6g} J -> {self.total[-1]:.6g} J, "
+                f"balance error {self.balance_error:.2g})")
 
     @property
     def total(self) -> np.ndarray:
@@ -113,6 +124,18 @@ class SimulationResult:
     final_force: np.ndarray            # element forces at t = n_steps dt
     final_velocity: np.ndarray         # element velocities at t = n_steps dt
     diagnostics: dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        lines = [f"SimulationResult({self.system.n_rods} rod(s), {self.lattice.n_elements} elements, "
+                 f"{self.time.size} steps of dt = {self.dt:.4g} s)"]
+        for j in range(self.junction_force.shape[0]):
+            lines.append(f"  junction {j}: peak force {self.junction_force[j].min():.6g} N, contact "
+                         f"{self.contact_duration(j):.6g} s, separations at {np.round(self.separation_times(j), 12)} s")
+        lines.append(f"  rigid-body velocities at the end: {np.round(self.rigid_body_velocity, 6)} m/s; "
+                     f"energy balance error {self.energy.balance_error:.2g}")
+        if self.probes:
+            lines.append(f"  probes: {', '.join(self.probes)}")
+        return "\n".join(lines)
 
     @property
     def dt(self) -> float:

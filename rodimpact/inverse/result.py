@@ -65,6 +65,10 @@ class VerificationReport:
     max_deviation_all_steps: float
     simulation: SimulationResult = field(repr=False)
 
+    def __repr__(self) -> str:
+        return (f"VerificationReport({self.compared}: {self.time.size} samples, max deviation "
+                f"{self.max_deviation:.3g} (all steps {self.max_deviation_all_steps:.3g}) relative to max |target|)")
+
 
 @dataclass(frozen=True)
 class SynthesisResult:
@@ -175,6 +179,13 @@ class SynthesisResult:
         return None if self.transformation is None else self.transformation.location
 
     # ------------------------------------------------------------------ reports
+    def __repr__(self) -> str:
+        status = "feasible" if self.feasible else f"stopped: {self.failure.reason} at element {self.failure.element}"
+        z = self.impedance
+        rng = f", Z {z.min():.4g}..{z.max():.4g} N s/m" if z.size else ""
+        return (f"SynthesisResult({self.n_feasible}/{self.n_requested} elements, {status}{rng}, "
+                f"dt = {self.dt:.4g} s)")
+
     def table(self, elements: Optional[Any] = None) -> list[dict[str, float]]:
         """Rows like thesis tables 4.3/4.4: q, theta (s), s (m), Z_q, K_q, Delta N_q, |K_q N_0|, margin;
         ``elements`` selects q values (default: all), the failing element is appended with Z = nan."""
