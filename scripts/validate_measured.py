@@ -577,6 +577,11 @@ Its group delay is {us(MeasuringChain().group_delay(1e3)[0])} at low frequency: 
 arrives that much later, which is why simulated signals are passed through the same chain before they are
 compared with measurements.
 """
+    # keep the test-rig section, which scripts/testrig_study.py maintains between its markers
+    start, end = "<!-- testrig:start -->", "<!-- testrig:end -->"
+    old = out.read_text(encoding="utf-8") if out.exists() else ""
+    if start in old and end in old:
+        text = text.rstrip() + "\n\n" + old[old.index(start): old.index(end) + len(end)] + "\n"
     out.write_text(text, encoding="utf-8")
 
 

@@ -49,8 +49,38 @@ from .pulses import (
     striker_velocity_from_strain,
 )
 from .recording import Recording
+from .testrig import (
+    GAUGE_ANGLES,
+    GAUGE_POSITIONS,
+    IMPACT_VELOCITIES,
+    RigSetup,
+    RigSignals,
+    WavePathEvent,
+    build_rig,
+    piston_1,
+    piston_2,
+    piston_from_face,
+    rig_rod,
+    rig_time_step,
+    simulate_rig,
+    wave_paths,
+)
 
 __all__ = [
+    "GAUGE_ANGLES",
+    "GAUGE_POSITIONS",
+    "IMPACT_VELOCITIES",
+    "RigSetup",
+    "RigSignals",
+    "WavePathEvent",
+    "build_rig",
+    "piston_1",
+    "piston_2",
+    "piston_from_face",
+    "rig_rod",
+    "rig_time_step",
+    "simulate_rig",
+    "wave_paths",
     "Bridge",
     "GaugedBar",
     "MeasuringChain",
