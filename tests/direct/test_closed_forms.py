@@ -118,3 +118,19 @@ def test_recontact_hand_calculation():
     t = res.time
     loaded = ((t >= ta - 1e-12) & (t < ta + t1 - 1e-12)) | (t >= ta + 2 * t2 - t1 - 1e-12)
     np.testing.assert_allclose(res.contact_force, np.where(loaded, -z * v0, 0.0), atol=1e-12 * z * v0)
+
+
+def test_thesis_setup2_full_staircase_and_separation_time():
+    """Thesis first example (Tab. 3.1): the whole contact-force staircase and the separation time against
+    the independent exact wave-train superposition of the reference layer (no shared code with the lattice)."""
+    from rodimpact import reference as rr
+
+    z0, z1, v = 51.0e3, 28.7e3, 5.0
+    striker = ri.Rod.from_impedance([z0] * 50 + [z1] * 50, dt=DT)
+    res = ri.simulate([striker, rect_bar(z0, 400)], velocities=[v, 0.0], duration=600e-6, right="nonreflecting")
+    exact = rr.solve_wave_trains([rr.UniformPiece(z0, 50 * DT), rr.UniformPiece(z1, 50 * DT)],
+                                 [rr.UniformPiece(z0, 2.0)], v, 600e-6)
+    mid = res.time + 0.5 * DT
+    np.testing.assert_allclose(res.contact_force, exact.contact_force(mid), rtol=0, atol=1e-12 * z0 * v)
+    np.testing.assert_allclose(res.separation_times(), exact.separations, rtol=1e-12)
+    assert exact.recontacts.size == 1          # the first contact only: no re-contact in this example
