@@ -3,8 +3,9 @@
 Symbols as in the thesis: Z = impedance (N s/m), N = normal force (N, tension positive), v = particle
 velocity (m/s); N^+ / N^- = force at the right / left end of an element during a step, V = node velocity.
 
-Pure functions on arrays: no objects, no I/O. Two paths share the boundary code (:func:`boundaries`, written
-with ``register_jitable`` so it runs both as Python and inside compiled code):
+Pure functions on arrays: no objects, no I/O. Two paths share the boundary code (:func:`boundaries`, compiled
+with ``inline="always"`` so that it is inlined into the compiled step loop; the numpy path runs its Python
+source ``boundaries.py_func``):
 
 * :func:`run_numpy` -- the readable reference: the bulk of the interior nodes is one vectorised numpy
   expression per step (eqs. 3.6-3.15 literally);
@@ -28,13 +29,12 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
-from numba.extending import register_jitable
 
 FREE, FIXED, FORCE, VELOCITY, NONREFLECTING, SPRING, BITROCK = 0, 1, 2, 3, 4, 5, 6
 BONDED, CONTACT = 0, 1
 
 
-@register_jitable
+@njit(inline="always", error_model="numpy", cache=True)
 def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
     """Solve one outer end for the outward velocity w and the end force N.
 
@@ -77,15 +77,19 @@ def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
     return w, n, delta_max
 
 
-@register_jitable
-def boundaries(k, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
-               junction_state, gap, u_end, sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp,
-               pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, rod_NL, rod_VL,
-               rod_NR, rod_VR, dt, out):
+@njit(inline="always", error_model="numpy", cache=True)
+def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes):
     """Everything of step ``k`` that is not a plain interior node: the two outer ends, the junctions,
     loaded/frictional interior nodes and the probes. Uses only the element states at t_k; writes node
     forces/velocities of each rod's first and last node into rod_NL/rod_VL/rod_NR/rod_VR and the resolved
-    node forces of special nodes into sp_F. ``out`` is the output column for step k."""
+    node forces of special nodes into sp_F. ``out`` is the output column for step k. The arrays come grouped
+    in tuples (see :func:`_run_waves`) so that the compiler can inline this function into the step loop."""
+    end_code, end_par, end_state, end_value = ends
+    junction_code, junction_state, gap, u_end = junctions
+    sp_elem, sp_cap, sp_force, sp_F, sp_V = specials
+    pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp = probes
+    junction_N, junction_contact, end_N, end_V = outputs
+    rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes
     n_rods = rod_start.size - 1
     n_el = rod_start[n_rods]
     # ---- left end of rod 0: element side N^- = N_0 + Z_0 v_0 - Z_0 V, outward w = -V
@@ -218,16 +222,19 @@ def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end
     sp_F = np.zeros(sp_elem.size)
     sp_V = np.zeros(sp_elem.size)
     n_sp = sp_elem.size
+    ends = (end_code, end_par, end_state, end_value)
+    junctions = (junction_code, junction_state, gap, u_end)
+    specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
+    probes = (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp)
+    outputs = (junction_N, junction_contact, end_N, end_V)
+    rod_nodes = (rod_NL, rod_VL, rod_NR, rod_VR)
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
     for i in range(n_steps):
         for t in touch:
             N[t] = f[t] + g[t]
             v[t] = (g[t] - f[t]) / Z[t]
-        boundaries(k0 + i, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
-                   junction_state, gap, u_end, sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp,
-                   pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, rod_NL, rod_VL,
-                   rod_NR, rod_VR, dt, i)
+        boundaries(k0 + i, i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         ptr = 0
         for r in range(n_rods):
             s = rod_start[r]
@@ -284,11 +291,14 @@ def run_numpy(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_
     sp_pos = np.searchsorted(a, sp_elem)
     first = rod_start[:-1]
     last = rod_start[1:] - 1
+    ends = (end_code, end_par, end_state, end_value)
+    junctions = (junction_code, junction_state, gap, u_end)
+    specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
+    probes = (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp)
+    outputs = (junction_N, junction_contact, end_N, end_V)
+    rod_nodes = (rod_NL, rod_VL, rod_NR, rod_VR)
     for i in range(n_steps):
-        boundaries(k0 + i, N, v, Z, rod_start, end_code, end_par, end_state, end_value, junction_code,
-                   junction_state, gap, u_end, sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp,
-                   pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, rod_NL, rod_VL,
-                   rod_NR, rod_VR, dt, i)
+        boundaries.py_func(k0 + i, i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         f = np.zeros(a.size)
         f[sp_pos] = sp_F
         # eq. 3.7 / 3.9 written as V = v_a + d, which keeps uniform motion exact in floating point
