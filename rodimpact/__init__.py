@@ -22,7 +22,9 @@ from .direct.simulate import simulate
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
                       impedance_to_shape, synthesize, transform_force)
-from . import inverse, reference, signals
+from .io.model import Model, dump_model, load_model, loads_model, save_model
+from .io.results import load, save, summarize
+from . import inverse, io, plotting, reference, signals
 
 __all__ = [
     "__version__",
@@ -37,5 +39,6 @@ __all__ = [
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
-    "inverse", "reference", "signals",
+    "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
+    "inverse", "io", "plotting", "reference", "signals",
 ]

@@ -1,0 +1,266 @@
+"""The ``rodimpact`` command line: thin wrappers around the Python API.
+
+Commands: ``simulate MODEL.toml``, ``init [simulate|synthesize]``, ``examples [list|run|show|copy]``,
+``synthesize SPEC.toml`` (when the inverse problem is available) and ``--version``; see docs/cli.md.
+
+Exit codes: 0 success, 2 bad input (model file, arguments, existing output; the message says what and where),
+1 internal error (a bug: please report it with the traceback shown by ``RODIMPACT_DEBUG=1``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import traceback
+from pathlib import Path
+from typing import Any, Callable, Optional, Sequence
+
+from . import __version__
+
+EXIT_OK, EXIT_INTERNAL, EXIT_INPUT = 0, 1, 2
+
+
+class InputError(Exception):
+    """Bad input: reported as ``rodimpact: error: ...`` with exit code 2."""
+
+
+# ============================================================================================ helpers
+def _err(msg: str) -> None:
+    print(f"rodimpact: error: {msg}", file=sys.stderr)
+
+
+def _input_phase(fn: Callable[[], Any]) -> Any:
+    """Run ``fn``; ValueError/TypeError (bad model, bad settings) become :class:`InputError`."""
+    try:
+        return fn()
+    except (ValueError, TypeError) as exc:
+        raise InputError(str(exc)) from exc
+
+
+def _progress(args: argparse.Namespace) -> Optional[bool]:
+    """Progress bar only on a terminal (the solver shows it for long runs) and never with --quiet/--json."""
+    if args.quiet or args.json or not sys.stderr.isatty():
+        return False
+    return None
+
+
+def _report(summary: dict, text: str, args: argparse.Namespace, extra: str = "") -> None:
+    if args.json:
+        print(json.dumps(summary, indent=2, default=str))
+    elif not args.quiet:
+        print(text)
+        if extra:
+            print(extra)
+
+
+def _check_out(path: Path, force: bool) -> None:
+    from .io.results import OutputExistsError, check_output_folder
+
+    try:
+        check_output_folder(path, force)
+    except OutputExistsError as exc:
+        raise InputError(str(exc)) from None
+
+
+# ============================================================================================ simulate
+def cmd_simulate(args: argparse.Namespace) -> int:
+    from .io.model import load_model
+    from .io.results import format_summary, save, summarize
+
+    model_path = Path(args.model)
+    out = Path(args.output) if args.output else Path("results") / model_path.stem
+    _check_out(out, args.force)
+    model = _input_phase(lambda: load_model(model_path))
+    result = _input_phase(lambda: model.simulate(progress=_progress(args)))
+    save(result, out, model=model, overwrite=args.force, plots=() if args.no_plots else model.output.plots,
+         csv=model.output.csv, fields=model.output.fields,
+         snapshot_times=list(model.output.snapshot_times) or None)
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    notes = "".join(f"note: {n}\n" for n in summary.get("notes", []))
+    _report(summary, format_summary(summarize(result), model.title or model_path.name),
+            args, f"{notes}results written to {out}")
+    return EXIT_OK
+
+
+# ============================================================================================ init
+def cmd_init(args: argparse.Namespace) -> int:
+    from .io.results import write_text_atomic
+
+    kind = args.kind
+    templates = _templates()
+    if kind not in templates:
+        raise InputError(f"init: no template {kind!r}; available: {', '.join(templates)}")
+    text, default = templates[kind]
+    path = Path(args.output or default)
+    if path.exists() and not args.force:
+        raise InputError(f"{path}: exists; choose another file with -o or use --force to replace it")
+    write_text_atomic(path, text)
+    if not args.quiet:
+        cmd = "simulate" if kind == "simulate" else "synthesize"
+        print(f"wrote {path}; edit it, then run:  rodimpact {cmd} {path}")
+    return EXIT_OK
+
+
+def _templates() -> dict[str, tuple[str, str]]:
+    from .io.templates import TEMPLATES
+
+    out = dict(TEMPLATES)
+    syn = _synthesis_module()
+    if syn is not None:
+        out["synthesize"] = (syn.TEMPLATE, "synthesis.toml")
+    return out
+
+
+def _synthesis_module():
+    """The synthesis-spec module when the inverse problem is installed, else ``None``."""
+    try:
+        from .io import synthesis_spec
+    except ImportError:
+        return None
+    return synthesis_spec if synthesis_spec.available() else None
+
+
+# ============================================================================================ examples
+def cmd_examples(args: argparse.Namespace) -> int:
+    from .examples import EXAMPLES, example, model_text, run_example
+
+    action = args.action or "list"
+    if action == "list":
+        if args.json:
+            print(json.dumps([{"name": e.name, "title": e.title, "models": list(e.models)}
+                              for e in EXAMPLES.values()], indent=2))
+            return EXIT_OK
+        width = max(len(n) for n in EXAMPLES)
+        for e in EXAMPLES.values():
+            print(f"{e.name:<{width}}  {e.title}")
+        print("\nrun one with:  rodimpact examples run NAME -o OUTDIR")
+        return EXIT_OK
+    if not args.name:
+        raise InputError(f"examples {action}: give an example name ({', '.join(EXAMPLES)})")
+    ex = _input_phase(lambda: example(args.name))
+    if action == "show":
+        for f in ex.models:
+            if len(ex.models) > 1:
+                print(f"# ===== {f}")
+            print(model_text(f))
+        return EXIT_OK
+    if action == "copy":
+        from .io.results import write_text_atomic
+
+        folder = Path(args.output or ".")
+        targets = [folder / f for f in ex.models] if args.output is None or folder.is_dir() or len(ex.models) > 1 \
+            else [folder]
+        for t in targets:
+            if t.exists() and not args.force:
+                raise InputError(f"{t}: exists; use --force to replace it")
+        for f, t in zip(ex.models, targets):
+            write_text_atomic(t, model_text(f))
+            if not args.quiet:
+                print(f"wrote {t}")
+        return EXIT_OK
+    # run
+    from .io.results import format_summary, summarize
+
+    out = Path(args.output) if args.output else Path("results") / ex.name
+    _check_out(out, args.force)
+    runs = run_example(ex.name, out, overwrite=args.force, plots=not args.no_plots, progress=_progress(args))
+    summaries = {Path(f).stem: summarize(r) for f, r, _ in runs}
+    text = "\n\n".join(format_summary(s, f"{ex.title}" + (f" -- {k}" if len(runs) > 1 else ""))
+                       for k, s in summaries.items())
+    _report(summaries if len(runs) > 1 else next(iter(summaries.values())), text, args,
+            f"results written to {out}")
+    return EXIT_OK
+
+
+# ============================================================================================ synthesize
+def cmd_synthesize(args: argparse.Namespace) -> int:
+    syn = _synthesis_module()
+    if syn is None:
+        raise InputError("synthesize: the inverse problem (rodimpact.inverse) is not available in this installation")
+    spec_path = Path(args.spec)
+    out = Path(args.output) if args.output else Path("results") / spec_path.stem
+    _check_out(out, args.force)
+    spec = _input_phase(lambda: syn.load_spec(spec_path))
+    result = _input_phase(lambda: syn.run(spec))
+    summary = syn.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
+    _report(summary, syn.format_summary(summary, spec), args, f"results written to {out}")
+    return EXIT_OK
+
+
+# ============================================================================================ parser
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser (also used by docs/cli.md)."""
+    p = argparse.ArgumentParser(
+        prog="rodimpact", description="Longitudinal impact of non-uniform elastic rods: simulate impacts from "
+                                      "model files, run the thesis examples, synthesize strikers.",
+        epilog="Exit codes: 0 ok, 2 bad input, 1 internal error. Model keys: docs/model-reference.md.")
+    p.add_argument("--version", action="version", version=f"rodimpact {__version__}")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+
+    def output_flags(sp: argparse.ArgumentParser, what: str) -> None:
+        sp.add_argument("-o", "--output", metavar="OUTDIR", help=f"output folder (default: results/{what})")
+        sp.add_argument("--force", action="store_true", help="replace an existing, non-empty output folder")
+        sp.add_argument("--quiet", action="store_true", help="print nothing but errors")
+        sp.add_argument("--json", action="store_true", help="print the summary as JSON on stdout")
+        sp.add_argument("--no-plots", action="store_true", help="write no plots (faster)")
+
+    s = sub.add_parser("simulate", help="run a model file and write results, plots and a summary",
+                       description="Run MODEL.toml and write results, plots and summary.json to OUTDIR.")
+    s.add_argument("model", metavar="MODEL.toml", help="model file (rodimpact init simulate writes a template)")
+    output_flags(s, "MODEL-NAME")
+    s.set_defaults(func=cmd_simulate)
+
+    i = sub.add_parser("init", help="write a commented template that runs as it is",
+                       description="Write a fully commented template model (simulate) or synthesis spec "
+                                   "(synthesize) that runs as it is.")
+    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default) or synthesize")
+    i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml)")
+    i.add_argument("--force", action="store_true", help="replace an existing file")
+    i.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    i.set_defaults(func=cmd_init)
+
+    e = sub.add_parser("examples", help="list, run, show or copy the built-in thesis examples",
+                       description="Built-in examples from the thesis. 'list' (default) names them; "
+                                   "'run NAME' writes results and plots; 'show NAME' prints the model file; "
+                                   "'copy NAME' copies it for editing.")
+    e.add_argument("action", nargs="?", choices=("list", "run", "show", "copy"), help="what to do (default list)")
+    e.add_argument("name", nargs="?", help="example name (see 'rodimpact examples list')")
+    output_flags(e, "NAME")
+    e.set_defaults(func=cmd_examples)
+
+    y = sub.add_parser("synthesize", help="find the striker impedance that produces a prescribed force",
+                       description="Solve the inverse problem described by SPEC.toml (rodimpact init synthesize "
+                                   "writes a template) and write the striker profile, report and plots.")
+    y.add_argument("spec", metavar="SPEC.toml", help="synthesis specification")
+    output_flags(y, "SPEC-NAME")
+    y.set_defaults(func=cmd_synthesize)
+    return p
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Entry point of the ``rodimpact`` command; returns the exit code."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if getattr(args, "func", None) is None:
+        parser.print_help()
+        return EXIT_INPUT
+    try:
+        return args.func(args)
+    except InputError as exc:
+        _err(str(exc))
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        _err("interrupted; no partial results were written")
+        return 130
+    except Exception as exc:  # a bug: say so, keep the traceback available
+        if os.environ.get("RODIMPACT_DEBUG"):
+            traceback.print_exc()
+        _err(f"internal error: {type(exc).__name__}: {exc}\n(this is a bug in rodimpact; set RODIMPACT_DEBUG=1 "
+             f"to see the traceback and please report it)")
+        return EXIT_INTERNAL
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())

@@ -1,0 +1,52 @@
+"""File input/output: measurement-file readers, model files (TOML) and simulation results on disk.
+
+Names are imported lazily (PEP 562) so that ``import rodimpact.io.model`` -- and with it the command line --
+does not pay for the readers' scipy.signal import, and the readers do not pay for pint and xarray.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+_NAMES = {
+    # measurement-file readers
+    "hoppybar_bar": "recordings",
+    "read_csv_recording": "recordings",
+    "read_hoppybar_input": "recordings",
+    "read_lanl_raw": "recordings",
+    "read_tdms": "recordings",
+    "read_tektronix_csv": "recordings",
+    # model files
+    "Model": "model",
+    "OutputSpec": "model",
+    "load_model": "model",
+    "loads_model": "model",
+    "dump_model": "model",
+    "save_model": "model",
+    "model_from_result": "model",
+    "ModelError": "quantities",
+    "ModelWriteError": "model",
+    "SafeExpression": "expressions",
+    "expression_area": "expressions",
+    # results on disk
+    "save": "results",
+    "load": "results",
+    "summarize": "results",
+    "format_summary": "results",
+    "OutputExistsError": "results",
+}
+
+__all__ = list(_NAMES)
+
+
+def __getattr__(name: str) -> Any:
+    if name in _NAMES:
+        value = getattr(importlib.import_module(f"{__name__}.{_NAMES[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(list(globals()) + __all__)

@@ -1,0 +1,741 @@
+"""Model files: TOML descriptions of a simulation -> :class:`Model` (rodimpact objects) -> TOML.
+
+A model file describes everything :func:`rodimpact.simulate` accepts: materials, rods (segments of any shape,
+tabulated profiles from CSV files, area expressions, impedance-level rods), junctions, end conditions, nodal
+loads and bearings, initial velocities and states, probes, discretisation and output requests. The keys are
+listed in ``docs/model-reference.md`` (generated from :mod:`rodimpact.io.schema`).
+
+Quantities are numbers in SI units or strings with units (``"50 mm"``); everything is converted to SI here.
+Errors are :class:`~rodimpact.io.quantities.ModelError` (a ``ValueError``) whose message starts with the key
+path: ``rods[1].segments[2].diameter: must be > 0, got -5 mm``.
+
+:func:`dump_model` writes a :class:`Model` back as a self-contained TOML file in bare SI numbers (unit comments
+at the end of each line); floats are written with their shortest round-trip representation, so loading the
+written file gives identical objects.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+import numpy as np
+
+from .. import __version__
+from ..direct.result import Probe, SimulationResult
+from ..rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd,
+                               NonReflectingEnd, SpringEnd, VelocityEnd)
+from ..rods.history import History
+from ..rods.loads import Bearings, NodalForce
+from ..rods.material import MATERIALS, STEEL, Material
+from ..rods.rod import Rod
+from ..rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, ExponentialHorn, LinearAreaTaper,
+                             QuadraticHorn, Segment, TabulatedProfile, Tube)
+from ..rods.system import InitialState, System
+from . import _toml
+from .expressions import SafeExpression, expression_area
+from .quantities import DIMENSIONS, ModelError, parse_quantity
+from .schema import MODEL, PLOT_NAMES, validate_table
+
+DEFAULT_PLOTS: tuple[str, ...] = ("forces", "profile", "snapshots", "xt", "energy")
+
+
+@dataclass(frozen=True)
+class OutputSpec:
+    """Output requests of a model file (``[output]``).
+
+    ``snapshot_times`` (s) are recorded as they are; in addition ``snapshot_every`` steps, or, if that is not
+    given, about ``snapshot_count`` evenly spaced snapshots (``None``: none) for x-t diagrams and animations.
+    """
+
+    snapshot_times: tuple[float, ...] = ()
+    snapshot_every: Optional[int] = None
+    snapshot_count: Optional[int] = 200
+    plots: tuple[str, ...] = DEFAULT_PLOTS
+    csv: bool = True
+    fields: bool = True
+
+    def __post_init__(self) -> None:
+        for p in self.plots:
+            if p not in PLOT_NAMES:
+                raise ValueError(f"output.plots: unknown plot {p!r}; valid: {', '.join(PLOT_NAMES)}")
+
+
+@dataclass(frozen=True, eq=False)
+class Model:
+    """A complete simulation description: the :class:`~rodimpact.System` plus run and output settings.
+
+    Exactly one of ``duration`` (s) and ``steps`` is given; ``dt`` (s) may be ``None`` (the solver's default).
+    ``parameters`` are the named constants used by expressions (SI values).
+    """
+
+    system: System
+    duration: Optional[float] = None
+    steps: Optional[int] = None
+    dt: Optional[float] = None
+    probes: tuple[Probe, ...] = ()
+    output: OutputSpec = field(default_factory=OutputSpec)
+    backend: str = "numba"
+    energy_every: Optional[int] = None
+    title: str = ""
+    description: str = ""
+    parameters: dict[str, float] = field(default_factory=dict)
+    source: Optional[Path] = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.system, System):
+            raise TypeError(f"Model.system: must be a System, got {type(self.system).__name__}")
+        if (self.duration is None) == (self.steps is None):
+            raise ValueError("simulation: give exactly one of duration (s) or steps")
+        object.__setattr__(self, "probes", tuple(self.probes))
+
+    @property
+    def time_step(self) -> float:
+        """The time step the run will use, s (``dt`` or the solver's default for this system)."""
+        from ..lattice.lattice import default_time_step
+
+        return self.dt if self.dt is not None else default_time_step(self.system)
+
+    @property
+    def n_steps(self) -> int:
+        """Number of time steps of the run."""
+        if self.steps is not None:
+            return self.steps
+        x = self.duration / self.time_step
+        return max(1, int(round(x)) if abs(x - round(x)) <= 1e-9 * max(x, 1.0) else int(math.ceil(x)))
+
+    def snapshot_every(self) -> Optional[int]:
+        """The snapshot stride in steps implied by ``output`` (``None``: only ``snapshot_times``)."""
+        if self.output.snapshot_every is not None:
+            return self.output.snapshot_every
+        if self.output.snapshot_count:
+            return max(1, self.n_steps // self.output.snapshot_count)
+        return None
+
+    def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None) -> SimulationResult:
+        """Run :func:`rodimpact.simulate` with this model's settings."""
+        from ..direct.simulate import simulate
+
+        return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
+                        snapshot_times=list(self.output.snapshot_times) or None,
+                        snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
+                        backend=backend or self.backend, progress=progress)
+
+
+# ============================================================================================ reading
+def load_model(path: str | Path) -> Model:
+    """Read a model file; relative file names inside it are resolved against its folder."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ModelError(f"{p}: no such model file") from None
+    except IsADirectoryError:
+        raise ModelError(f"{p}: is a folder, not a model file") from None
+    except UnicodeDecodeError as exc:
+        raise ModelError(f"{p}: not a text file ({exc.reason})") from None
+    model = loads_model(text, base_dir=p.parent, name=str(p))
+    object.__setattr__(model, "source", p)
+    return model
+
+
+def loads_model(text: str, base_dir: str | Path | None = None, name: str = "model") -> Model:
+    """Read a model from TOML text (``base_dir``: folder for relative file names, default the current one)."""
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    return model_from_dict(raw, base_dir=Path(base_dir) if base_dir is not None else Path("."))
+
+
+def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
+    """Build a :class:`Model` from parsed TOML data (validated against :data:`rodimpact.io.schema.MODEL`)."""
+    d = validate_table(MODEL, raw, "")
+    params = d["parameters"] or {}
+    materials = _materials(d["materials"] or {})
+    rods, velocities, initial = [], [], []
+    sim = d["simulation"]
+    for i, r in enumerate(d["rods"]):
+        rod, st = _rod(r, f"rods[{i}]", materials, params, sim["dt"], base_dir)
+        rods.append(rod)
+        velocities.append(r["velocity"])
+        initial.append(st)
+    names = {}
+    for i, rod in enumerate(rods):
+        if rod.name is not None:
+            if rod.name in names:
+                raise ModelError(f"rods[{i}].name: {rod.name!r} is already the name of rods[{names[rod.name]}]")
+            names[rod.name] = i
+    n = len(rods)
+    junctions = None
+    if d["junctions"] is not None:
+        if len(d["junctions"]) != n - 1:
+            raise ModelError(f"junctions: need one per neighbouring pair of rods ({n - 1}), got "
+                             f"{len(d['junctions'])}")
+        junctions = [Contact(j["gap"]) if j["type"] == "contact" else Bonded() for j in d["junctions"]]
+    ends = d["ends"] or {"left": {"type": "free"}, "right": {"type": "free"}}
+    left = _end(ends["left"] if isinstance(ends["left"], dict) else {"type": ends["left"]}, "ends.left",
+                params, base_dir)
+    right = _end(ends["right"] if isinstance(ends["right"], dict) else {"type": ends["right"]}, "ends.right",
+                 params, base_dir)
+    loads = []
+    for i, ld in enumerate(d["loads"] or []):
+        path = f"loads[{i}]"
+        k = _rod_index(ld["rod"], names, n, f"{path}.rod")
+        if ld["type"] == "force":
+            if not 0.0 < ld["position"] < rods[k].length:
+                raise ModelError(f"{path}.position: must lie inside rod {k}, 0 < x < {rods[k].length:.6g} m, got "
+                                 f"{ld['position']:.6g} m (end faces take [ends] force conditions)")
+            loads.append(_wrap(path, lambda: NodalForce(k, ld["position"], _history(
+                ld["force"], f"{path}.force", params, base_dir, "force"), ld["interpolation"])))
+        else:
+            for j, (a, b) in enumerate(ld["spans"]):
+                if b > rods[k].length * (1 + 1e-12):
+                    raise ModelError(f"{path}.spans[{j}]: the span ends at {b:.6g} m, beyond the end of rod {k} "
+                                     f"({rods[k].length:.6g} m)")
+            loads.append(_wrap(path, lambda: Bearings(k, ld["spans"], ld["friction_coefficient"], ld["gravity"],
+                                                      ld["normal_load"])))
+    probes = []
+    seen: dict[str, int] = {}
+    for i, p in enumerate(d["probes"] or []):
+        path = f"probes[{i}]"
+        if p["name"] in seen:
+            raise ModelError(f"{path}.name: {p['name']!r} is already used by probes[{seen[p['name']]}]")
+        seen[p["name"]] = i
+        k = _rod_index(p["rod"], names, n, f"{path}.rod")
+        if p["position"] > rods[k].length * (1 + 1e-12):
+            raise ModelError(f"{path}.position: must lie within rod {k}, 0 <= x <= {rods[k].length:.6g} m, "
+                             f"got {p['position']:.6g} m")
+        probes.append(Probe(p["name"], k, p["position"]))
+    if (sim["duration"] is None) == (sim["steps"] is None):
+        raise ModelError("simulation: give exactly one of duration (e.g. \"1 ms\") or steps")
+    out = d["output"] or {f.name: f.default for f in MODEL.field("output").table.fields}
+    if sim["duration"] is not None and out["snapshot_times"]:
+        for i, t in enumerate(out["snapshot_times"]):
+            if t > sim["duration"] * (1 + 1e-12):
+                raise ModelError(f"output.snapshot_times[{i}]: {t:.6g} s lies after the end of the run "
+                                 f"(simulation.duration = {sim['duration']:.6g} s)")
+    output = OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"], out["snapshot_count"],
+                        tuple(out["plots"]), out["csv"], out["fields"])
+    system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
+                                           initial if any(s is not None for s in initial) else None))
+    return Model(system, sim["duration"], sim["steps"], sim["dt"], tuple(probes), output, sim["backend"],
+                 sim["energy_every"], d["title"] or "", d["description"] or "", dict(params))
+
+
+def _wrap(path: str, build):
+    """Call ``build()``; re-raise errors of the core classes with the key path in front."""
+    try:
+        return build()
+    except ModelError:
+        raise
+    except (ValueError, TypeError) as exc:
+        msg = str(exc)
+        raise ModelError(msg if path == "model" else f"{path}: {msg}") from None
+
+
+def _materials(table: dict[str, dict]) -> dict[str, Material]:
+    known: dict[str, Material] = dict(MATERIALS)
+    for name, m in table.items():
+        path = f"materials.{name}"
+        if name in MATERIALS:
+            raise ModelError(f"{path}: {name!r} is a preset name; choose another name")
+        if m["base"] is not None:
+            if m["base"] not in known:
+                raise ModelError(f"{path}.base: unknown material {m['base']!r}; known: {', '.join(known)}")
+            base = known[m["base"]]
+            e = m["youngs_modulus"] if m["youngs_modulus"] is not None else base.youngs_modulus
+            rho = m["density"] if m["density"] is not None else base.density
+        else:
+            for key in ("youngs_modulus", "density"):
+                if m[key] is None:
+                    raise ModelError(f"{path}.{key}: missing; give youngs_modulus and density, or a base material")
+            e, rho = m["youngs_modulus"], m["density"]
+        known[name] = _wrap(path, lambda: Material(e * m["youngs_factor"], rho * m["density_factor"], name))
+    return known
+
+
+def _material(name: Optional[str], known: dict[str, Material], path: str) -> Optional[Material]:
+    if name is None:
+        return None
+    key = name if name in known else name.strip().lower()
+    if key not in known:
+        raise ModelError(f"{path}: unknown material {name!r}; known: {', '.join(known)} "
+                         f"(define others in [materials.NAME])")
+    return known[key]
+
+
+def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, float], sim_dt: Optional[float],
+         base_dir: Path) -> tuple[Rod, Optional[InitialState]]:
+    has_seg, has_el = r["segments"] is not None, r["elements"] is not None
+    if has_seg == has_el:
+        raise ModelError(f"{path}: give either [[{path.split('[')[0]}.segments]] (geometry) or "
+                         f"[{path.split('[')[0]}.elements] (impedance level), {'not both' if has_seg else 'none given'}")
+    if has_seg:
+        if not r["segments"]:
+            raise ModelError(f"{path}.segments: needs at least one segment")
+        mat = _material(r["material"], materials, f"{path}.material") or STEEL
+        segs = [_segment(s, f"{path}.segments[{j}]", materials, params, base_dir) for j, s in enumerate(r["segments"])]
+        rod = _wrap(path, lambda: Rod(segs, mat, r["name"]))
+    else:
+        if r["material"] is not None:
+            raise ModelError(f"{path}.material: an impedance-level rod has no material; give "
+                             f"{path}.elements.wave_speed and density if they matter")
+        rod = _elements(r["elements"], f"{path}.elements", r["name"], sim_dt, base_dir)
+    st = None
+    if r["initial"] is not None and (r["initial"]["force"] is not None or r["initial"]["velocity"] is not None):
+        ini = r["initial"]
+        st = InitialState(force=_field_value(ini["force"], f"{path}.initial.force", params),
+                          velocity=_field_value(ini["velocity"], f"{path}.initial.velocity", params))
+    return rod, st
+
+
+_SHAPE_CLASSES = {"exponential-horn": ExponentialHorn, "quadratic-horn": QuadraticHorn, "cosh-horn": CoshHorn,
+                  "cos-horn": CosHorn}
+
+
+def _segment(s: dict, path: str, materials: dict[str, Material], params: dict[str, float],
+             base_dir: Path) -> Segment:
+    mat = _material(s["material"], materials, f"{path}.material")
+    shape = s["shape"]
+    if shape == "cylinder":
+        return _wrap(path, lambda: Cylinder(s["length"], s["diameter"], material=mat))
+    if shape == "tube":
+        if not s["inner_diameter"] < s["outer_diameter"]:
+            raise ModelError(f"{path}.inner_diameter: must be smaller than outer_diameter "
+                             f"({s['outer_diameter'] * 1e3:.6g} mm), got {s['inner_diameter'] * 1e3:.6g} mm")
+        return _wrap(path, lambda: Tube(s["length"], s["outer_diameter"], s["inner_diameter"], material=mat))
+    if shape == "cone":
+        return _wrap(path, lambda: Cone(s["length"], s["diameter_start"], s["diameter_end"], material=mat))
+    if shape == "linear-area":
+        return _wrap(path, lambda: LinearAreaTaper(s["length"], s["area_start"], s["area_end"], material=mat))
+    if shape in _SHAPE_CLASSES:
+        cls = _SHAPE_CLASSES[shape]
+        return _wrap(path, lambda: cls(s["length"], s["area_start"], s["xi"], material=mat))
+    if shape == "expression":
+        func = expression_area(s["area"], s["length"], params, path=f"{path}.area")
+        return _wrap(path, lambda: AreaFunction(s["length"], func, material=mat, name=s["area"]))
+    # table
+    inline = s["x"] is not None
+    if s["file"] is not None and (inline or s["diameter"] is not None or s["area"] is not None):
+        raise ModelError(f"{path}: give either file or the inline lists x and diameter/area, not both")
+    if s["file"] is not None:
+        cols = read_csv_columns(base_dir / s["file"], f"{path}.file",
+                                {"x": "length", "diameter": "length", "area": "area"})
+        if "x" not in cols or ("diameter" in cols) == ("area" in cols):
+            raise ModelError(f"{path}.file: needs a column x and exactly one of diameter, area; found "
+                             f"{', '.join(cols) or 'none'}")
+        x, kind = cols["x"], "diameter" if "diameter" in cols else "area"
+        values = cols[kind]
+    else:
+        if not inline or (s["diameter"] is None) == (s["area"] is None):
+            raise ModelError(f"{path}: a table needs x and exactly one of diameter or area (or a file)")
+        kind = "diameter" if s["diameter"] is not None else "area"
+        x, values = s["x"], s[kind]
+        if len(values) != len(x):
+            raise ModelError(f"{path}.{kind}: needs one value per x ({len(x)}), got {len(values)}")
+    return _wrap(path, lambda: TabulatedProfile(x, **{kind: values}, material=mat))
+
+
+def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], base_dir: Path) -> Rod:
+    c = e["wave_speed"] if e["wave_speed"] is not None else STEEL.wave_speed
+    if e["dt"] is not None and e["element_length"] is not None:
+        raise ModelError(f"{path}: give dt or element_length, not both")
+    dt = e["dt"] if e["dt"] is not None else e["element_length"] / c if e["element_length"] is not None else sim_dt
+    if dt is None:
+        raise ModelError(f"{path}.dt: missing; give the element travel time dt or element_length here, or "
+                         f"simulation.dt")
+    given = [k for k in ("impedance", "runs", "file") if e[k] is not None]
+    if len(given) != 1:
+        raise ModelError(f"{path}: give exactly one of impedance, runs or file, got "
+                         f"{', '.join(given) if given else 'none'}")
+    if e["impedance"] is not None:
+        z = np.array(e["impedance"], dtype=float)
+    elif e["file"] is not None:
+        cols = read_csv_columns(base_dir / e["file"], f"{path}.file", {"impedance": "impedance"}, needed=("impedance",))
+        z = np.asarray(cols["impedance"])
+    else:
+        parts = []
+        for i, run in enumerate(e["runs"]):
+            rp = f"{path}.runs[{i}]"
+            count = _run_count(run, rp, c * dt)
+            if run["impedance"] is not None:
+                if run["impedance_start"] is not None or run["impedance_end"] is not None:
+                    raise ModelError(f"{rp}: give impedance, or impedance_start and impedance_end, not both")
+                parts.append(np.full(count, run["impedance"]))
+            else:
+                if run["impedance_start"] is None or run["impedance_end"] is None:
+                    raise ModelError(f"{rp}: give impedance, or impedance_start and impedance_end")
+                parts.append(np.linspace(run["impedance_start"], run["impedance_end"], count))
+        z = np.concatenate(parts) if parts else np.empty(0)
+    if z.size == 0:
+        raise ModelError(f"{path}: needs at least one element")
+    return _wrap(path, lambda: Rod.from_impedance(z, dt, c, density=e["density"], name=name))
+
+
+def _run_count(run: dict, path: str, element_length: float) -> int:
+    if (run["count"] is None) == (run["length"] is None):
+        raise ModelError(f"{path}: give exactly one of count or length")
+    if run["count"] is not None:
+        return run["count"]
+    x = run["length"] / element_length
+    k = int(round(x))
+    if k < 1 or abs(x - k) > 1e-6 * max(x, 1.0):
+        raise ModelError(f"{path}.length: {run['length']:.6g} m is {x:.6g} elements of length c*dt = "
+                         f"{element_length:.6g} m; it must be a whole number (or give count)")
+    return k
+
+
+def _history(h: dict, path: str, params: dict[str, float], base_dir: Path, dimension: str) -> Any:
+    if h["kind"] == "constant":
+        return h["value"]
+    if h["kind"] == "samples":
+        return (np.array(h["time"]), np.array(h["value"]))
+    if h["kind"] == "file":
+        cols = read_csv_columns(base_dir / h["file"], f"{path}.file", None, positional=("time", dimension))
+        return (cols["time"], cols[dimension])
+    expr = SafeExpression(h["source"], ("t",), params, path=f"{path}.expression")
+    expr(np.linspace(0.0, 1e-3, 5))        # surface evaluation errors now, with the key path
+    return expr
+
+
+def _field_value(v: Optional[dict], path: str, params: dict[str, float]) -> Any:
+    if v is None:
+        return None
+    if v["kind"] == "constant":
+        return v["value"]
+    if v["kind"] == "values":
+        return np.array(v["values"])
+    expr = SafeExpression(v["source"], ("x",), params, path=f"{path}.expression")
+    expr(np.linspace(0.0, 1.0, 5))
+    return expr
+
+
+def _end(e: dict, path: str, params: dict[str, float], base_dir: Path) -> EndCondition:
+    kind = e["type"]
+    if kind == "free":
+        return FreeEnd()
+    if kind == "fixed":
+        return FixedEnd()
+    if kind == "nonreflecting":
+        return NonReflectingEnd(e["impedance"])
+    if kind == "force":
+        return _wrap(path, lambda: ForceEnd(_history(e["force"], f"{path}.force", params, base_dir, "force"),
+                                            e["interpolation"]))
+    if kind == "velocity":
+        return _wrap(path, lambda: VelocityEnd(_history(e["velocity"], f"{path}.velocity", params, base_dir,
+                                                        "velocity"), e["interpolation"]))
+    if kind == "spring":
+        return SpringEnd(e["stiffness"], e["damping"])
+    return _wrap(path, lambda: BitRockEnd(e["loading_stiffness"], e["unloading_stiffness"]))
+
+
+def _rod_index(ref: int | str, names: dict[str, int], n: int, path: str) -> int:
+    if isinstance(ref, int):
+        if ref >= n:
+            raise ModelError(f"{path}: rod index {ref} does not exist (the model has rods 0..{n - 1})")
+        return ref
+    if ref not in names:
+        raise ModelError(f"{path}: no rod is named {ref!r}; named rods: {', '.join(map(repr, names)) or 'none'}")
+    return names[ref]
+
+
+_HEADER = re.compile(r"^\s*([^\[\(]+?)\s*(?:[\[\(]\s*(.*?)\s*[\]\)])?\s*$")
+
+
+def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, needed: Sequence[str] = (),
+                     positional: Sequence[str] = ()) -> dict[str, np.ndarray]:
+    """Read numeric columns from a CSV file whose header names them, optionally with a unit in brackets
+    (``x [mm]``, ``impedance (kN s/m)``); values are converted to SI.
+
+    ``dims`` maps the recognised column names to dimensions (other columns are ignored); with ``positional``
+    the columns are taken in order instead and named accordingly (``("time", "force")``).
+    """
+    try:
+        text = Path(path).read_text(encoding="utf-8-sig")
+    except FileNotFoundError:
+        raise ModelError(f"{key}: no such file {str(path)!r}") from None
+    rows = [r for r in csv.reader(text.splitlines()) if r and any(c.strip() for c in r)]
+    rows = [r for r in rows if not r[0].lstrip().startswith("#")]
+    if len(rows) < 2:
+        raise ModelError(f"{key}: {path} needs a header line and at least one row of numbers")
+    header = rows[0]
+    cols: dict[str, tuple[int, str]] = {}
+    for i, h in enumerate(header):
+        m = _HEADER.match(h)
+        name, unit = (m.group(1).strip().lower(), (m.group(2) or "").strip()) if m else (h.strip().lower(), "")
+        if positional:
+            if i < len(positional):
+                cols[positional[i]] = (i, unit)
+        elif dims is not None and name in dims:
+            cols[name] = (i, unit)
+    for n in list(needed) + list(positional):
+        if n not in cols:
+            raise ModelError(f"{key}: {path} has no column {n!r} (header: {', '.join(header)})")
+    out = {}
+    for name, (i, unit) in cols.items():
+        dim = dims[name] if dims is not None else name if name in DIMENSIONS else "time"
+        scale = 1.0 if not unit else parse_quantity(f"1 {unit}", dim, f"{key} (column {header[i]!r})")
+        vals = []
+        for line_no, r in enumerate(rows[1:], start=2):
+            try:
+                vals.append(float(r[i]) * scale)
+            except (IndexError, ValueError):
+                raise ModelError(f"{key}: {path}, data row {line_no - 1}, column {header[i]!r}: expected a number, "
+                                 f"got {r[i] if i < len(r) else 'nothing'!r}") from None
+        arr = np.array(vals)
+        if not np.all(np.isfinite(arr)):
+            raise ModelError(f"{key}: {path}, column {header[i]!r} contains a non-finite value")
+        out[name] = arr
+    return out
+
+
+# ============================================================================================ writing
+class ModelWriteError(TypeError):
+    """A model that cannot be written as a file (e.g. it holds a Python callable)."""
+
+
+def dump_model(model: Model) -> str:
+    """The model as TOML text (bare SI numbers with unit comments); :func:`loads_model` reads it back into
+    equal objects."""
+    doc = model_to_dict(model)
+    head = (f"# rodimpact model file written by rodimpact {__version__}.\n"
+            "# Numbers are in SI units (m, s, kg, N, Pa, N s/m); see docs/model-reference.md.\n")
+    return head + "\n" + _toml.dumps(doc)
+
+
+def save_model(model: Model, path: str | Path, *, overwrite: bool = False) -> Path:
+    """Write :func:`dump_model` to ``path`` (refuses to replace an existing file unless ``overwrite``)."""
+    from .results import write_text_atomic
+
+    p = Path(path)
+    if p.exists() and not overwrite:
+        raise FileExistsError(f"{p}: exists; pass overwrite=True to replace it")
+    write_text_atomic(p, dump_model(model))
+    return p
+
+
+def _c(v: Any, dimension: str) -> Any:
+    unit = DIMENSIONS[dimension].si
+    return _toml.Commented(float(v), unit) if unit != "-" else float(v)
+
+
+class _Writer:
+    def __init__(self, model: Model) -> None:
+        self.model = model
+        self.params: dict[str, float] = dict(model.parameters)
+        self.materials: dict[str, Material] = {}
+        rods = model.system.rods
+        names = [r.name for r in rods]
+        self.rod_ref = [n if n is not None and names.count(n) == 1 else i for i, n in enumerate(names)]
+
+    def material(self, m: Material, path: str) -> str:
+        if m.name in MATERIALS and MATERIALS[m.name] == m:
+            return m.name
+        base = m.name or "material"
+        name, k = base, 1
+        while name in MATERIALS or (name in self.materials and self.materials[name] != m):
+            k += 1
+            name = f"{base}-{k}"
+        self.materials[name] = m
+        return name
+
+    def expression(self, f: SafeExpression, path: str) -> str:
+        for k in f.used_parameters:
+            v = f.parameters[k]
+            if k in self.params and self.params[k] != v:
+                raise ModelWriteError(f"{path}: parameter {k!r} has two different values ({self.params[k]!r} "
+                                      f"and {v!r}) in different expressions")
+            self.params[k] = v
+        return f.source
+
+    def history(self, h: Optional[History], path: str) -> Any:
+        src = h.source
+        if isinstance(src, SafeExpression):
+            return _toml.Inline(expression=self.expression(src, path))
+        if callable(src):
+            raise ModelWriteError(f"{path}: a Python callable cannot be written to a model file; use "
+                                  f"samples (t, values) or rodimpact.io.SafeExpression")
+        if isinstance(src, tuple):
+            return _toml.Inline(time=[float(x) for x in src[0]], value=[float(x) for x in src[1]])
+        return float(src)
+
+    def field_value(self, v: Any, path: str) -> Any:
+        if isinstance(v, SafeExpression):
+            return _toml.Inline(expression=self.expression(v, path))
+        if callable(v):
+            raise ModelWriteError(f"{path}: a Python callable cannot be written to a model file; use "
+                                  f"rodimpact.io.SafeExpression(source, ('x',))")
+        if np.ndim(v) == 0:
+            return float(v)
+        return [float(x) for x in np.asarray(v, dtype=float)]
+
+    def segment(self, s: Segment, path: str) -> dict:
+        if isinstance(s, Cylinder):
+            d = {"shape": "cylinder", "length": _c(s.length, "length"), "diameter": _c(s.diameter, "length")}
+        elif isinstance(s, Tube):
+            d = {"shape": "tube", "length": _c(s.length, "length"), "outer_diameter": _c(s.outer_diameter, "length"),
+                 "inner_diameter": _c(s.inner_diameter, "length")}
+        elif isinstance(s, Cone):
+            d = {"shape": "cone", "length": _c(s.length, "length"), "diameter_start": _c(s.diameter_start, "length"),
+                 "diameter_end": _c(s.diameter_end, "length")}
+        elif isinstance(s, LinearAreaTaper):
+            d = {"shape": "linear-area", "length": _c(s.length, "length"), "area_start": _c(s.area_start, "area"),
+                 "area_end": _c(s.area_end, "area")}
+        elif isinstance(s, (ExponentialHorn, QuadraticHorn, CoshHorn, CosHorn)):
+            shape = {ExponentialHorn: "exponential-horn", QuadraticHorn: "quadratic-horn", CoshHorn: "cosh-horn",
+                     CosHorn: "cos-horn"}[type(s)]
+            d = {"shape": shape, "length": _c(s.length, "length"), "area_start": _c(s.area_start, "area"),
+                 "xi": _c(s.xi, "wavenumber")}
+        elif isinstance(s, TabulatedProfile):
+            d = {"shape": "table", "x": [float(v) for v in s.x], s.kind: [float(v) for v in s.values]}
+        elif isinstance(s, AreaFunction):
+            func = getattr(s, "_func", None)
+            if not isinstance(func, SafeExpression) or set(func.bound) != {"L"}:
+                raise ModelWriteError(f"{path}: an AreaFunction holding a Python callable cannot be written to a "
+                                      f"model file; build it with rodimpact.io.expression_area(...) or use a "
+                                      f"TabulatedProfile")
+            d = {"shape": "expression", "length": _c(s.length, "length"), "area": self.expression(func, path)}
+        else:
+            raise ModelWriteError(f"{path}: cannot write a {type(s).__name__} segment")
+        if s.material is not None:
+            d["material"] = self.material(s.material, f"{path}.material")
+        return d
+
+    def rod(self, i: int, rod: Rod, velocity: float, st: Optional[InitialState]) -> dict:
+        path = f"rods[{i}]"
+        d: dict[str, Any] = {}
+        if rod.name is not None:
+            d["name"] = rod.name
+        if rod.native is None:
+            d["material"] = self.material(rod.material, f"{path}.material")
+        d["velocity"] = _c(velocity, "velocity")
+        if st is not None:
+            ini = {}
+            if st.force is not None:
+                ini["force"] = self.field_value(st.force, f"{path}.initial.force")
+            if st.velocity is not None:
+                ini["velocity"] = self.field_value(st.velocity, f"{path}.initial.velocity")
+            if ini:
+                d["initial"] = _toml.Inline(ini)
+        if rod.native is not None:
+            nat = rod.native
+            z = nat.impedance
+            cuts = np.flatnonzero(np.diff(z) != 0) + 1
+            starts, stops = np.concatenate([[0], cuts]), np.concatenate([cuts, [z.size]])
+            runs = [_toml.Inline(impedance=float(z[a]), count=int(b - a)) for a, b in zip(starts, stops)]
+            d["elements"] = {"dt": _c(nat.dt, "time"), "wave_speed": _c(nat.wave_speed, "velocity"),
+                             "density": _c(rod.material.density, "density"), "runs": runs}
+        else:
+            d["segments"] = [self.segment(s, f"{path}.segments[{j}]") for j, s in enumerate(rod.segments)]
+        return d
+
+    def end(self, e: EndCondition, path: str) -> Any:
+        if isinstance(e, FreeEnd):
+            return "free"
+        if isinstance(e, FixedEnd):
+            return "fixed"
+        if isinstance(e, NonReflectingEnd):
+            return "nonreflecting" if e.impedance is None else _toml.Inline(type="nonreflecting",
+                                                                            impedance=float(e.impedance))
+        if isinstance(e, ForceEnd):
+            d = _toml.Inline(type="force", force=self.history(e.force, f"{path}.force"))
+        elif isinstance(e, VelocityEnd):
+            d = _toml.Inline(type="velocity", velocity=self.history(e.velocity, f"{path}.velocity"))
+        elif isinstance(e, SpringEnd):
+            return _toml.Inline(type="spring", stiffness=float(e.stiffness), damping=float(e.damping))
+        elif isinstance(e, BitRockEnd):
+            return _toml.Inline(type="bit-rock", loading_stiffness=float(e.loading_stiffness),
+                                unloading_stiffness=float(e.unloading_stiffness))
+        else:
+            raise ModelWriteError(f"{path}: cannot write a {type(e).__name__}")
+        h = e.force if isinstance(e, ForceEnd) else e.velocity
+        if h.interpolation != "linear":
+            d["interpolation"] = h.interpolation
+        return d
+
+    def load(self, ld: Any, path: str) -> dict:
+        if isinstance(ld, NodalForce):
+            d = {"type": "force", "rod": self.rod_ref[ld.rod], "position": _c(ld.position, "length"),
+                 "force": self.history(ld.force, f"{path}.force")}
+            if ld.force.interpolation != "linear":
+                d["interpolation"] = ld.force.interpolation
+            return d
+        d = {"type": "bearings", "rod": self.rod_ref[ld.rod], "spans": [[float(a), float(b)] for a, b in ld.spans],
+             "friction_coefficient": float(ld.friction_coefficient), "gravity": _c(ld.gravity, "acceleration")}
+        if ld.normal_load is not None:
+            d["normal_load"] = _c(ld.normal_load, "force")
+        return d
+
+    def document(self) -> dict:
+        m, s = self.model, self.model.system
+        doc: dict[str, Any] = {}
+        if m.title:
+            doc["title"] = m.title
+        if m.description:
+            doc["description"] = m.description
+        rods = [self.rod(i, r, s.velocities[i], s.initial[i]) for i, r in enumerate(s.rods)]
+        ends = {"left": self.end(s.left, "ends.left"), "right": self.end(s.right, "ends.right")}
+        loads = [self.load(ld, f"loads[{i}]") for i, ld in enumerate(s.loads)]
+        if self.params:
+            doc["parameters"] = dict(self.params)
+        if self.materials:
+            doc["materials"] = {k: {"youngs_modulus": _c(v.youngs_modulus, "pressure"),
+                                    "density": _c(v.density, "density")} for k, v in self.materials.items()}
+        doc["rods"] = rods
+        if any(not (isinstance(j, Contact) and j.gap == 0.0) for j in s.junctions):
+            doc["junctions"] = [{"type": "contact", "gap": _c(j.gap, "length")} if isinstance(j, Contact)
+                                else {"type": "bonded"} for j in s.junctions]
+        doc["ends"] = ends
+        if loads:
+            doc["loads"] = loads
+        if m.probes:
+            doc["probes"] = [{"name": p.name, "rod": self.rod_ref[p.rod], "position": _c(p.position, "length")}
+                             for p in m.probes]
+        sim: dict[str, Any] = {}
+        if m.duration is not None:
+            sim["duration"] = _c(m.duration, "time")
+        else:
+            sim["steps"] = int(m.steps)
+        if m.dt is not None:
+            sim["dt"] = _c(m.dt, "time")
+        sim["backend"] = m.backend
+        if m.energy_every is not None:
+            sim["energy_every"] = int(m.energy_every)
+        doc["simulation"] = sim
+        o = m.output
+        out: dict[str, Any] = {}
+        if o.snapshot_times:
+            out["snapshot_times"] = [float(t) for t in o.snapshot_times]
+        if o.snapshot_every is not None:
+            out["snapshot_every"] = int(o.snapshot_every)
+        if o.snapshot_count is not None:
+            out["snapshot_count"] = int(o.snapshot_count)
+        out["plots"] = list(o.plots)
+        out["csv"] = bool(o.csv)
+        out["fields"] = bool(o.fields)
+        doc["output"] = out
+        return doc
+
+
+def model_to_dict(model: Model) -> dict:
+    """The model as nested dicts ready for TOML (SI numbers)."""
+    return _Writer(model).document()
+
+
+def model_from_result(result: SimulationResult, **settings: Any) -> Model:
+    """A :class:`Model` that reproduces ``result``: its system, time step, step count and probes, with
+    snapshot settings read from the recorded snapshots; ``settings`` override :class:`Model` fields."""
+    snaps = result.snapshots
+    output = OutputSpec(snapshot_times=tuple(float(t) for t in snaps.time) if snaps is not None else (),
+                        snapshot_count=None)
+    kw: dict[str, Any] = dict(system=result.system, steps=int(result.time.size), dt=float(result.dt),
+                              probes=tuple(p.probe for p in result.probes.values()), output=output,
+                              backend=str(result.diagnostics.get("backend", "numba")))
+    kw.update(settings)
+    return Model(**kw)

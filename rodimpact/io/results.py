@@ -1,0 +1,506 @@
+"""Simulation results on disk: :func:`save` writes a folder, :func:`load` reads it back into an identical
+:class:`~rodimpact.SimulationResult`; :func:`summarize` gives the key numbers.
+
+Folder layout (all files are written into a temporary folder next to the target and moved into place at the
+end, so an interrupted run never leaves half-written results; an existing non-empty folder is only replaced
+with ``overwrite=True``):
+
+``model.toml``
+    The model as a self-contained file in SI numbers (written by :func:`rodimpact.io.model.dump_model`);
+    ``rodimpact simulate OUTDIR/model.toml`` repeats the run. Missing when the system holds Python callables.
+``summary.json``
+    :func:`summarize` plus the list of files.
+``signals.csv``
+    One row per time step (step start time): contact force(s), contact flag(s), outer-end force and velocity,
+    probe force, velocity, displacement and strain. Units in the headers (``contact_force [N]``).
+``energy.csv``
+    Energy samples: kinetic and strain energy and momentum per rod, total energy, work done by the ends,
+    loads and friction, external impulse.
+``result.nc``
+    NetCDF with everything above plus the lattice, the field snapshots N(x), v(x), u(x) and the final state
+    (xarray; engine h5netcdf when h5py is installed, else netCDF4, else scipy's NetCDF3 writer). This is what
+    :func:`load` reads; the CSV files are for people and spreadsheets.
+``plots/``
+    PNG figures (and ``force.gif`` when the animation is requested and pillow is installed).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import math
+import os
+import shutil
+import tempfile
+import warnings
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+import numpy as np
+
+from .. import __version__
+from ..direct.result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
+from ..lattice.discretize import RodDiscretization
+from ..lattice.lattice import Lattice
+
+FORMAT_VERSION = 1
+RESULT_FILE = "result.nc"
+
+
+class OutputExistsError(FileExistsError):
+    """The output folder exists and is not empty, and overwriting was not requested."""
+
+
+# ============================================================================================ atomic writes
+def write_text_atomic(path: str | Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in the same folder and an atomic rename."""
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, p)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def check_output_folder(outdir: str | Path, overwrite: bool) -> Path:
+    """Raise :class:`OutputExistsError` if ``outdir`` holds anything and ``overwrite`` is false."""
+    out = Path(outdir)
+    if out.exists():
+        if not out.is_dir():
+            raise OutputExistsError(f"{out}: exists and is not a folder; choose another output folder")
+        if any(out.iterdir()) and not overwrite:
+            raise OutputExistsError(f"{out}: exists and is not empty; choose another output folder or use "
+                                    f"--force (overwrite=True) to replace it")
+    return out
+
+
+class AtomicFolder:
+    """Context manager: yields a temporary folder; on success it replaces ``target`` in one rename."""
+
+    def __init__(self, target: str | Path, overwrite: bool = False) -> None:
+        self.target = check_output_folder(target, overwrite)
+        self.tmp: Optional[Path] = None
+
+    def __enter__(self) -> Path:
+        parent = self.target.resolve().parent
+        parent.mkdir(parents=True, exist_ok=True)
+        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.target.name}.tmp-", dir=parent))
+        return self.tmp
+
+    def __exit__(self, exc_type, exc, tb) -> bool:
+        assert self.tmp is not None
+        if exc_type is not None:
+            shutil.rmtree(self.tmp, ignore_errors=True)
+            return False
+        target = self.target.resolve()
+        os.chmod(self.tmp, 0o755)
+        if target.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
+            os.rmdir(old)
+            os.replace(target, old)
+            try:
+                os.replace(self.tmp, target)
+            except BaseException:
+                os.replace(old, target)
+                raise
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            os.replace(self.tmp, target)
+        return False
+
+
+# ============================================================================================ summary
+def _rod_label(result: SimulationResult, i: int) -> str:
+    sys_ = result.system
+    name = sys_.rods[i].name if sys_ is not None else None
+    return name if name else f"rod {i}"
+
+
+def contact_phases(force: np.ndarray, contact: np.ndarray, rel_tol: float = 1e-9) -> list[tuple[int, int]]:
+    """Contact phases as step ranges [start, stop) that transmit force.
+
+    A phase in which the faces touch but the force never exceeds ``rel_tol`` times the largest contact force of
+    the run (e.g. two rods at rest against each other after the pulse has passed, where rounding decides the
+    contact flag) is no impact and is left out.
+    """
+    c = np.asarray(contact).astype(int)
+    edges = np.diff(np.concatenate([[0], c, [0]]))
+    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    peak = float(np.max(np.abs(force))) if force.size else 0.0
+    return [(int(a), int(b)) for a, b in zip(starts, stops)
+            if peak > 0.0 and float(np.max(np.abs(force[a:b]))) > rel_tol * peak]
+
+
+def summarize(result: SimulationResult) -> dict[str, Any]:
+    """Key numbers of a run, JSON-ready (SI units, keys say the unit).
+
+    Per junction: the peak compressive contact force and its time, the first contact phase (start, duration),
+    every separation and re-contact time, the total time in contact (phases that carry no force beyond
+    rounding are not counted, see :func:`contact_phases`). Per rod: initial and final energy and
+    rigid-body (centre-of-mass) velocity -- the rebound velocity once the rods have separated. Energy transfer:
+    the fraction of rod 0's initial energy it gave away. Energy balance error: max |E - E0 - W| / max E.
+    """
+    t = result.time
+    dt = result.dt
+    out: dict[str, Any] = {"rodimpact_version": __version__, "steps": int(t.size), "dt_s": dt,
+                           "duration_s": float(t.size * dt), "elements": int(result.lattice.n_elements)}
+    junctions = []
+    for j in range(result.junction_force.shape[0]):
+        f = result.junction_force[j]
+        phases = contact_phases(f, result.junction_contact[j])
+        k = int(np.argmin(f))
+        first = phases[0] if phases else None
+        junctions.append({
+            "index": j, "between": [_rod_label(result, j), _rod_label(result, j + 1)],
+            "peak_compressive_force_N": float(f[k]) if f[k] < 0 else 0.0,
+            "peak_time_s": float(t[k]) if f[k] < 0 else None,
+            "first_contact_s": float(first[0] * dt) if first else None,
+            "contact_duration_s": float((first[1] - first[0]) * dt) if first else None,
+            "total_contact_time_s": float(sum(b - a for a, b in phases) * dt),
+            "separation_times_s": [float(b * dt) for a, b in phases if b < t.size],
+            "recontact_times_s": [float(a * dt) for a, b in phases[1:]],
+            "in_contact_at_end": bool(phases and phases[-1][1] == t.size),
+        })
+    out["junctions"] = junctions
+    e = result.energy
+    rods = []
+    vel = result.rigid_body_velocity
+    for i in range(result.lattice.n_rods):
+        e_i = e.kinetic[i] + e.strain[i]
+        v0 = result.system.velocities[i] if result.system is not None else None
+        rods.append({"name": _rod_label(result, i), "initial_velocity_m_s": v0,
+                     "final_rigid_body_velocity_m_s": float(vel[i]), "initial_energy_J": float(e_i[0]),
+                     "final_energy_J": float(e_i[-1])})
+    out["rods"] = rods
+    e0 = e.kinetic[0] + e.strain[0]
+    out["energy_transfer"] = float((e0[0] - e0[-1]) / e0[0]) if e0[0] > 0 else None
+    out["total_energy_J"] = {"initial": float(e.total[0]), "final": float(e.total[-1])}
+    out["work_done_on_rods_J"] = {"ends": float(e.work_left[-1] + e.work_right[-1]),
+                                  "loads": float(e.work_loads[-1]), "friction": float(e.work_friction[-1])}
+    out["energy_balance_error"] = float(e.balance_error)
+    probes = []
+    for name, p in result.probes.items():
+        kmin, kmax = int(np.argmin(p.force)), int(np.argmax(p.force))
+        probes.append({"name": name, "rod": p.probe.rod, "position_m": p.probe.position,
+                       "min_force_N": float(p.force[kmin]), "time_of_min_s": float(t[kmin]),
+                       "max_force_N": float(p.force[kmax]), "time_of_max_s": float(t[kmax])})
+    out["probes"] = probes
+    d = result.diagnostics
+    out["wall_time_s"] = float(d["wall_time_s"]) if "wall_time_s" in d else None
+    out["warnings"] = list(d.get("warnings", []))
+    return out
+
+
+def format_summary(summary: dict[str, Any], title: str = "") -> str:
+    """A short human-readable text of :func:`summarize` (kN, ms, m/s, J)."""
+    lines = [title] if title else []
+    lines.append(f"{summary['steps']} steps of dt = {summary['dt_s'] * 1e6:.4g} us "
+                 f"({summary['duration_s'] * 1e3:.4g} ms), {summary['elements']} elements"
+                 + (f", {summary['wall_time_s']:.2f} s" if summary.get("wall_time_s") is not None else ""))
+    for j in summary["junctions"]:
+        a, b = j["between"]
+        lines.append(f"contact {a} | {b}:")
+        if j["first_contact_s"] is None:
+            lines.append("  no contact")
+            continue
+        lines.append(f"  peak contact force    {j['peak_compressive_force_N'] / 1e3:.4g} kN at "
+                     f"{(j['peak_time_s'] or 0.0) * 1e3:.4g} ms")
+        dur = j["contact_duration_s"]
+        note = " (still in contact at the end)" if not j["separation_times_s"] else ""
+        lines.append(f"  contact duration      {dur * 1e3:.4g} ms from {j['first_contact_s'] * 1e3:.4g} ms{note}")
+        if j["separation_times_s"]:
+            lines.append("  separation at         " + ", ".join(f"{x * 1e3:.4g}" for x in j["separation_times_s"])
+                         + " ms")
+        lines.append("  re-contact at         " + (", ".join(f"{x * 1e3:.4g}" for x in j["recontact_times_s"])
+                                                   + " ms" if j["recontact_times_s"] else "none"))
+    et = summary["energy_transfer"]
+    if et is not None and summary["junctions"]:
+        first = summary["rods"][0]["name"]
+        lines.append(f"energy transfer         {et * 100:.2f} % of {first}'s initial energy given away" if et >= 0
+                     else f"energy transfer         {first} gained {-et * 100:.2f} % of its initial energy")
+    for r in summary["rods"]:
+        v0 = r["initial_velocity_m_s"]
+        lines.append(f"{r['name']}: velocity {'' if v0 is None else f'{v0:.4g} -> '}"
+                     f"{r['final_rigid_body_velocity_m_s']:.4g} m/s (rigid-body), energy "
+                     f"{r['initial_energy_J']:.4g} -> {r['final_energy_J']:.4g} J")
+    w = summary["work_done_on_rods_J"]
+    if any(abs(x) > 0.0 for x in w.values()):
+        lines.append("work done on the rods    " + ", ".join(f"{k} {x:.4g} J" for k, x in w.items() if x != 0.0)
+                     + " (negative: energy leaves the rods)")
+    for p in summary["probes"]:
+        lines.append(f"probe {p['name']}: force {p['min_force_N'] / 1e3:.4g} .. {p['max_force_N'] / 1e3:.4g} kN")
+    lines.append(f"energy balance error    {summary['energy_balance_error']:.2e}")
+    for w in summary["warnings"]:
+        lines.append(f"warning: {w}")
+    return "\n".join(lines)
+
+
+# ============================================================================================ CSV
+def _csv_text(header: list[str], columns: list[np.ndarray]) -> str:
+    import csv
+    import io
+
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerow(header)
+    if columns:
+        rows = np.column_stack([np.asarray(c, dtype=float) for c in columns]).tolist()
+        buf.write("\n".join(",".join(map(repr, r)) for r in rows))
+        buf.write("\n")
+    return buf.getvalue()
+
+
+def signal_columns(result: SimulationResult) -> tuple[list[str], list[np.ndarray]]:
+    """Header names (with units) and columns of ``signals.csv``."""
+    header, cols = ["time [s]"], [result.time]
+    n_j = result.junction_force.shape[0]
+    for j in range(n_j):
+        sfx = "" if n_j == 1 else f"_{j}"
+        header += [f"contact_force{sfx} [N]", f"in_contact{sfx} [-]"]
+        cols += [result.junction_force[j], result.junction_contact[j].astype(float)]
+    for side in ("left", "right"):
+        header += [f"{side}_end_force [N]", f"{side}_end_velocity [m/s]"]
+        cols += [result.end_force[side], result.end_velocity[side]]
+    for name, p in result.probes.items():
+        for q, unit in (("force", "N"), ("velocity", "m/s"), ("displacement", "m"), ("strain", "-")):
+            header.append(f"{name}.{q} [{unit}]")
+            cols.append(getattr(p, q))
+    return header, cols
+
+
+def energy_columns(result: SimulationResult) -> tuple[list[str], list[np.ndarray]]:
+    """Header names (with units) and columns of ``energy.csv``."""
+    e = result.energy
+    header, cols = ["time [s]"], [e.time]
+    for i in range(e.kinetic.shape[0]):
+        label = _rod_label(result, i)
+        header += [f"{label}.kinetic_energy [J]", f"{label}.strain_energy [J]", f"{label}.momentum [N s]"]
+        cols += [e.kinetic[i], e.strain[i], e.momentum[i]]
+    header += ["total_energy [J]", "work_left_end [J]", "work_right_end [J]", "work_loads [J]",
+               "work_friction [J]", "external_impulse [N s]"]
+    cols += [e.total, e.work_left, e.work_right, e.work_loads, e.work_friction, e.impulse]
+    return header, cols
+
+
+# ============================================================================================ NetCDF
+def _engine() -> str:
+    """The xarray engine for writing: h5netcdf if h5py is installed, else netCDF4, else scipy (NetCDF3)."""
+    if importlib.util.find_spec("h5netcdf") and importlib.util.find_spec("h5py"):
+        return "h5netcdf"
+    if importlib.util.find_spec("netCDF4"):
+        return "netcdf4"
+    return "scipy"
+
+
+def _read_engine(path: Path) -> str:
+    """An installed engine that reads ``path`` (NetCDF3 files start with b"CDF", NetCDF4 with the HDF5 mark)."""
+    with open(path, "rb") as fh:
+        magic = fh.read(4)
+    if magic.startswith(b"CDF"):
+        return "scipy"
+    if importlib.util.find_spec("h5netcdf") and importlib.util.find_spec("h5py"):
+        return "h5netcdf"
+    if importlib.util.find_spec("netCDF4"):
+        return "netcdf4"
+    raise RuntimeError(f"{path}: a NetCDF4 file; reading it needs h5py (pip install h5py) or netCDF4")
+
+
+def to_dataset(result: SimulationResult, fields: bool = True):
+    """Everything in ``result`` (except the system) as an :class:`xarray.Dataset` for ``result.nc``.
+
+    Written so that every NetCDF flavour can hold it: integers as int32/int8, names in JSON attributes, and no
+    variables along empty dimensions (a single rod has no junction; they are re-created empty on loading).
+    """
+    import xarray as xr
+
+    lat = result.lattice
+    data: dict[str, Any] = {}
+    n_j = result.junction_force.shape[0]
+    if n_j:
+        data["junction_force"] = (("junction", "time"), result.junction_force, {"units": "N"})
+        data["junction_contact"] = (("junction", "time"), result.junction_contact.astype(np.int8), {})
+    data["end_force"] = (("end", "time"), np.vstack([result.end_force["left"], result.end_force["right"]]),
+                         {"units": "N", "ends": "left, right"})
+    data["end_velocity"] = (("end", "time"),
+                            np.vstack([result.end_velocity["left"], result.end_velocity["right"]]), {"units": "m/s"})
+    probes = list(result.probes.values())
+    if probes:
+        for q, unit in (("force", "N"), ("velocity", "m/s"), ("displacement", "m"), ("strain", "1")):
+            data[f"probe_{q}"] = (("probe", "time"), np.vstack([getattr(p, q) for p in probes]), {"units": unit})
+        data["probe_rod"] = (("probe",), np.array([p.probe.rod for p in probes], dtype=np.int32), {})
+        data["probe_position"] = (("probe",), np.array([p.probe.position for p in probes]), {"units": "m"})
+        data["probe_node_position"] = (("probe",), np.array([p.node_position for p in probes]), {"units": "m"})
+    e = result.energy
+    data["kinetic_energy"] = (("rod", "energy_time"), e.kinetic, {"units": "J"})
+    data["strain_energy"] = (("rod", "energy_time"), e.strain, {"units": "J"})
+    data["momentum"] = (("rod", "energy_time"), e.momentum, {"units": "N s"})
+    for name in ("work_left", "work_right", "work_loads", "work_friction"):
+        data[name] = (("energy_time",), getattr(e, name), {"units": "J"})
+    data["impulse"] = (("energy_time",), e.impulse, {"units": "N s"})
+    data["energy_time"] = (("energy_time",), e.time, {"units": "s"})
+    data["impedance"] = (("element",), lat.impedance, {"units": "N s/m"})
+    data["element_length"] = (("element",), lat.element_length, {"units": "m"})
+    data["element_x"] = (("element",), lat.element_x, {"units": "m"})
+    data["node_x"] = (("node",), lat.node_x, {"units": "m"})
+    data["rod_start"] = (("rod_bound",), lat.rod_start.astype(np.int32), {})
+    for name in ("time_scale", "true_length", "true_mass", "lattice_mass", "true_travel_time",
+                 "max_boundary_offset"):
+        data[f"rod_{name}"] = (("rod",), np.array([getattr(r, name) for r in lat.rods], dtype=float), {})
+    data["rod_exact"] = (("rod",), np.array([r.exact for r in lat.rods], dtype=np.int8), {})
+    data["final_force"] = (("element",), result.final_force, {"units": "N"})
+    data["final_velocity"] = (("element",), result.final_velocity, {"units": "m/s"})
+    s = result.snapshots
+    if s is not None and fields:
+        data["snapshot_time"] = (("snapshot",), s.time, {"units": "s"})
+        data["force_field"] = (("element", "snapshot"), s.force, {"units": "N"})
+        data["velocity_field"] = (("element", "snapshot"), s.velocity, {"units": "m/s"})
+        data["displacement_field"] = (("node", "snapshot"), s.displacement, {"units": "m"})
+    data["time"] = (("time",), result.time, {"units": "s"})
+    attrs = {"title": "rodimpact simulation result", "rodimpact_version": __version__,
+             "format_version": FORMAT_VERSION, "dt": float(result.dt),
+             "probe_names": json.dumps([p.probe.name for p in probes]),
+             "rod_methods": json.dumps([r.method for r in lat.rods]),
+             "diagnostics": json.dumps(result.diagnostics, default=_json_default),
+             "conventions": "SI units; normal force positive in tension; node values per step at the step start "
+                            "time k*dt"}
+    return xr.Dataset(data, attrs=attrs)
+
+
+def _json_default(o: Any) -> Any:
+    if isinstance(o, (np.floating, np.integer)):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if isinstance(o, (tuple, set)):
+        return list(o)
+    return str(o)
+
+
+def _to_json(obj: Any) -> str:
+    def clean(o: Any) -> Any:
+        if isinstance(o, float) and not math.isfinite(o):
+            return None
+        if isinstance(o, dict):
+            return {k: clean(v) for k, v in o.items()}
+        if isinstance(o, list):
+            return [clean(v) for v in o]
+        return o
+    return json.dumps(clean(json.loads(json.dumps(obj, default=_json_default))), indent=2) + "\n"
+
+
+# ============================================================================================ save / load
+def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, overwrite: bool = False,
+         plots: Sequence[str] = (), csv: bool = True, fields: bool = True,
+         snapshot_times: Optional[Sequence[float]] = None, engine: Optional[str] = None) -> Path:
+    """Write ``result`` to the folder ``outdir`` (layout in this module's docstring) and return its path.
+
+    ``model`` (a :class:`~rodimpact.io.model.Model`) is written as ``model.toml``; by default one is built
+    from the result (:func:`~rodimpact.io.model.model_from_result`). ``plots`` names the figures to write
+    (see :func:`rodimpact.plotting.save_plots`). Refuses to replace a non-empty folder unless ``overwrite``.
+    ``engine``: the xarray NetCDF engine (default: h5netcdf with h5py, else netcdf4, else scipy).
+    """
+    from .model import ModelWriteError, dump_model, model_from_result
+
+    files: list[str] = []
+    notes: list[str] = []
+    with AtomicFolder(outdir, overwrite) as tmp:
+        if model is None and result.system is not None:
+            model = model_from_result(result)
+        if model is not None:
+            try:
+                (tmp / "model.toml").write_text(dump_model(model), encoding="utf-8")
+                files.append("model.toml")
+            except ModelWriteError as exc:
+                notes.append(f"model.toml not written: {exc}")
+        ds = to_dataset(result, fields=fields)
+        ds.to_netcdf(tmp / RESULT_FILE, engine=engine or _engine())
+        files.append(RESULT_FILE)
+        if csv:
+            for name, (h, c) in (("signals.csv", signal_columns(result)), ("energy.csv", energy_columns(result))):
+                (tmp / name).write_text(_csv_text(h, c), encoding="utf-8")
+                files.append(name)
+        if plots:
+            from ..plotting import save_plots
+
+            written, plot_notes = save_plots(result, tmp / "plots", plots, snapshot_times=snapshot_times)
+            files += [f"plots/{p.name}" for p in written]
+            notes += plot_notes
+        summary = summarize(result)
+        if model is not None and getattr(model, "title", ""):
+            summary["title"] = model.title
+        summary["files"] = files + ["summary.json"]
+        summary["notes"] = notes
+        (tmp / "summary.json").write_text(_to_json(summary), encoding="utf-8")
+    return Path(outdir)
+
+
+def load(outdir: str | Path) -> SimulationResult:
+    """Read a folder written by :func:`save` back into a :class:`~rodimpact.SimulationResult` with identical
+    arrays. The system is rebuilt from ``model.toml`` (``None`` when the folder has none)."""
+    import xarray as xr
+
+    from .model import load_model
+
+    folder = Path(outdir)
+    nc = folder / RESULT_FILE
+    if not nc.is_file():
+        raise FileNotFoundError(f"{folder}: no {RESULT_FILE} here; is this a folder written by rodimpact "
+                                f"simulate / rodimpact.save?")
+    ds = xr.load_dataset(nc, engine=_read_engine(nc), decode_times=False, decode_timedelta=False, mask_and_scale=False)
+    if int(ds.attrs.get("format_version", 0)) > FORMAT_VERSION:
+        raise ValueError(f"{nc}: written by a newer rodimpact (format {ds.attrs['format_version']}); upgrade")
+    v = {k: ds[k].values for k in ds.variables}
+    dt = float(ds.attrs["dt"])
+    time = v["time"]
+    n_steps = time.size
+    rod_start = v["rod_start"].astype(np.int64)
+    n_rods = rod_start.size - 1
+    methods = json.loads(ds.attrs["rod_methods"])
+    discs = []
+    for r in range(n_rods):
+        a, b = rod_start[r], rod_start[r + 1]
+        discs.append(RodDiscretization(
+            impedance=v["impedance"][a:b].copy(), length=v["element_length"][a:b].copy(), n_elements=int(b - a),
+            time_scale=float(v["rod_time_scale"][r]), true_length=float(v["rod_true_length"][r]),
+            true_mass=float(v["rod_true_mass"][r]), lattice_mass=float(v["rod_lattice_mass"][r]),
+            true_travel_time=float(v["rod_true_travel_time"][r]), exact=bool(v["rod_exact"][r]),
+            max_boundary_offset=float(v["rod_max_boundary_offset"][r]), method=methods[r]))
+    lattice = Lattice(dt, v["impedance"], v["element_length"], rod_start, v["node_x"], v["element_x"], tuple(discs))
+    system = None
+    if (folder / "model.toml").is_file():
+        system = load_model(folder / "model.toml").system
+    n_j = n_rods - 1
+    jf = v["junction_force"] if "junction_force" in v else np.zeros((0, n_steps))
+    jc = (v["junction_contact"] if "junction_contact" in v else np.zeros((0, n_steps))).astype(bool)
+    if jf.shape[0] != n_j:
+        raise ValueError(f"{nc}: {jf.shape[0]} junction rows for {n_rods} rods; the file is damaged")
+    probes: dict[str, ProbeHistory] = {}
+    for i, name in enumerate(json.loads(ds.attrs["probe_names"])):
+        p = Probe(name, int(v["probe_rod"][i]), float(v["probe_position"][i]))
+        probes[name] = ProbeHistory(p, float(v["probe_node_position"][i]), v["probe_force"][i].copy(),
+                                    v["probe_velocity"][i].copy(), v["probe_displacement"][i].copy(),
+                                    v["probe_strain"][i].copy())
+    snapshots = None
+    if "snapshot_time" in v:
+        snapshots = FieldSnapshots(time=v["snapshot_time"], element_x=lattice.element_x, node_x=lattice.node_x,
+                                   element_rod=lattice.element_rod, node_rod=lattice.node_rod,
+                                   force=v["force_field"], velocity=v["velocity_field"],
+                                   displacement=v["displacement_field"])
+    energy = EnergyHistory(time=v["energy_time"], kinetic=v["kinetic_energy"], strain=v["strain_energy"],
+                           momentum=v["momentum"], work_left=v["work_left"], work_right=v["work_right"],
+                           work_loads=v["work_loads"], work_friction=v["work_friction"], impulse=v["impulse"])
+    diagnostics = json.loads(ds.attrs["diagnostics"])
+    if system is not None and system.n_rods != n_rods:
+        warnings.warn(f"{folder}/model.toml has {system.n_rods} rods but the result has {n_rods}; ignoring the "
+                      f"model", stacklevel=2)
+        system = None
+    return SimulationResult(
+        system=system, lattice=lattice, time=time, junction_force=jf, junction_contact=jc,
+        end_force={"left": v["end_force"][0].copy(), "right": v["end_force"][1].copy()},
+        end_velocity={"left": v["end_velocity"][0].copy(), "right": v["end_velocity"][1].copy()},
+        probes=probes, snapshots=snapshots, energy=energy, final_force=v["final_force"],
+        final_velocity=v["final_velocity"], diagnostics=diagnostics)

@@ -1,0 +1,440 @@
+"""Synthesis specifications: TOML files for ``rodimpact synthesize`` (the inverse problem, thesis chapter 4).
+
+A spec names the struck system (``[[struck]]`` rods listed from the impact face outwards, written like the
+``[[rods]]`` of a model file), its far end, the striker's velocity and material, and the prescribed force
+(``[target]``: a thesis target, an expression of ``t``, samples, a CSV file or window values; optionally at a
+``position`` inside the struck system). :func:`run` calls :func:`rodimpact.synthesize`, checks the result with
+the direct solver and derives the striker's shape; :func:`save` writes everything to a folder.
+
+Keys are listed in ``docs/cli.md`` (generated from :data:`SPEC` by :func:`spec_reference_markdown`).
+"""
+
+from __future__ import annotations
+
+import json
+import tomllib
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Optional
+
+import numpy as np
+
+from ..rods.conditions import Bonded, Contact
+from ..rods.loads import Bearings, NodalForce
+from ..rods.material import STEEL
+from .expressions import SafeExpression
+from .model import _end, _history, _material, _materials, _rod, _rod_index, read_csv_columns
+from .quantities import ModelError
+from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
+                     validate_table)
+
+
+def available() -> bool:
+    """True when the inverse problem (:mod:`rodimpact.inverse`) is installed."""
+    import importlib
+
+    try:
+        return hasattr(importlib.import_module("rodimpact.inverse"), "synthesize")
+    except ImportError:
+        return False
+
+
+# ============================================================================================ schema
+_COMMON = (
+    Field("rule", "string", "How a continuous target becomes the window values X_j on [2(j-1)dt, 2j dt): "
+                            "`midpoint` (F at the window centre, default), `start` (the thesis's convention), "
+                            "`mean` (window average).", default="midpoint", choices=("midpoint", "start", "mean")),
+    _q("position", "length", "Prescribe the force at this distance from the impact face inside the struck system "
+                             "(thesis Sec. 4.1.2); time then counts from the wavefront's arrival. Default: at the "
+                             "impact face.", sign="non_negative", required=False),
+    Field("quantity", "string", "With `position`: the normal `force` there or the `incident` force wave.",
+          default="force", choices=("force", "incident")),
+)
+TARGET_TYPES = {
+    "exponential-decay": Table("exponential-decay", "N(t) = -peak exp(-t / time_constant) (thesis eq. 4.24).", (
+        _q("peak", "force", "Magnitude at t = 0."), _q("time_constant", "time", "Time constant.")) + _COMMON),
+    "linear-ramp": Table("linear-ramp", "N(t) = -peak (1 + 2 t / time_constant) (thesis eq. 4.28).", (
+        _q("peak", "force", "Magnitude at t = 0."), _q("time_constant", "time", "Time constant.")) + _COMMON),
+    "exponential-growth": Table("exponential-growth", "N(t) = -initial exp(rate t) (thesis eq. 4.29, percussive "
+                                                      "drilling).", (
+        _q("initial", "force", "Magnitude at t = 0 (N^ of Tab. 4.5)."),
+        _q("rate", "rate", "Growth rate C (Tab. 4.5: 5.88 1/ms).", sign=None)) + _COMMON),
+    "expression": Table("expression", "An expression of `t` in SI units (N, tension positive).", (
+        Field("force", "expression", "Force N(t).", required=True, variables=("t",)),
+        _q("duration", "time", "Time span the target covers (sets the number of elements if "
+                               "`striker.elements` is not given).", required=False)) + _COMMON),
+    "samples": Table("samples", "Samples interpolated linearly.", (
+        Field("time", "quantities", "Sample times.", dimension="time", sign="non_negative"),
+        Field("force", "quantities", "Forces (tension positive).", dimension="force", sign=None)) + _COMMON),
+    "file": Table("file", "Samples from a CSV file with two columns, time and force (units in the header, e.g. "
+                          "`time [ms]`, `force [kN]`; default SI).", (
+        Field("file", "string", "CSV file, relative to the spec.", required=True),) + _COMMON),
+    "windows": Table("windows", "The window values X_1..X_n directly.", (
+        Field("values", "quantities", "Window values.", dimension="force", sign=None),) + _COMMON),
+}
+
+STRIKER = Table("striker", "The striker to be found.", (
+    _q("velocity", "velocity", "Initial velocity v_in towards the struck system (> 0)."),
+    Field("material", "string", "Material for lengths and the shape (preset or `[materials]`); default `steel`."),
+    Field("elements", "integer", "Number n of striker elements (= force windows); default: as many as the target "
+                                 "covers.", minimum=1),
+    _q("bore", "length", "Central bore of the shape (0: solid).", sign="non_negative", required=False, default=0.0),
+    _q("max_diameter_ratio", "dimensionless", "Outer-diameter ratio above which the shape is reported as "
+                                              "impractical.", required=False, default=10.0),
+), '[striker]\nvelocity = "6 m/s"\nelements = 100')
+
+SYNTHESIS = Table("synthesis", "Numerical settings.", (
+    _q("dt", "time", "Travel time of one element (windows are 2 dt long); default: that of impedance-level "
+                     "struck rods.", required=False),
+    Field("backend", "string", "`numba` or `numpy`.", default="numba", choices=("numba", "numpy")),
+    Field("verify", "boolean", "Simulate the synthesized striker against the struck system and report the "
+                               "deviation from the target.", default=True),
+))
+
+SPEC_OUTPUT = Table("output", "What to write.", (
+    Field("plots", "boolean", "Write the plots.", default=True),
+))
+
+SPEC = Table("synthesis spec", "Top level of a synthesis spec.", (
+    Field("title", "string", "Short title."),
+    Field("description", "string", "Free text."),
+    Field("parameters", "parameters", "Named constants for expressions, converted to SI."),
+    Field("materials", "mapping", "Named materials (as in model files).", table=MATERIAL),
+    Field("striker", "table", "The striker.", table=STRIKER, required=True),
+    Field("target", "variant", "The prescribed force, chosen by `type`.", required=True,
+          variants=Variants("type", TARGET_TYPES)),
+    Field("struck", "tables", "The struck system: rods from the impact face outwards, with the keys of "
+                              "`[[rods]]` in model files.", table=ROD, required=True, minimum=1),
+    Field("junctions", "tables", "Between struck rods; default bonded.", variants=Variants("type", JUNCTION_TYPES)),
+    Field("far_end", "variant", "Condition at the far end of the struck system.", default="free",
+          variants=Variants("type", END_TYPES)),
+    Field("loads", "tables", "Loads on struck rods.", variants=Variants("type", LOAD_TYPES)),
+    Field("synthesis", "table", "Numerical settings.", table=SYNTHESIS),
+    Field("output", "table", "Output settings.", table=SPEC_OUTPUT),
+))
+
+
+def spec_reference_markdown() -> str:
+    """Reference tables of the spec keys (included in docs/cli.md)."""
+    lines: list[str] = []
+    _table_md("Top level", SPEC, 3, lines)
+    _table_md("`[striker]`", STRIKER, 3, lines)
+    lines.extend(["### `[target]`", "", "Chosen by `type`; every type also takes `rule`, `position` and "
+                  "`quantity`.", ""])
+    for name, t in TARGET_TYPES.items():
+        _table_md(f"type = \"{name}\"", t, 4, lines, key="type")
+    _table_md("`[synthesis]`", SYNTHESIS, 3, lines)
+    _table_md("`[output]`", SPEC_OUTPUT, 3, lines)
+    lines.append("`[[struck]]`, `[[junctions]]`, `far_end` and `[[loads]]` take the keys of `[[rods]]`, "
+                 "`[[junctions]]`, `[ends]` entries and `[[loads]]` in model files (docs/model-reference.md); "
+                 "rod references in `loads` name struck rods.")
+    return "\n".join(lines) + "\n"
+
+
+# ============================================================================================ spec objects
+@dataclass(frozen=True, eq=False)
+class SynthesisSpec:
+    """A validated synthesis specification: the arguments of :func:`rodimpact.synthesize` plus output settings."""
+
+    target: Any
+    struck: tuple
+    striker_velocity: float
+    n: Optional[int]
+    dt: Optional[float]
+    far_end: Any
+    struck_velocity: tuple[float, ...]
+    junctions: Optional[list]
+    loads: tuple
+    initial: Optional[list]
+    position: Optional[float]
+    quantity: str
+    rule: str
+    material: Any
+    bore: float
+    max_diameter_ratio: float
+    backend: str = "numba"
+    verify: bool = True
+    plots: bool = True
+    title: str = ""
+    text: str = ""
+    source: Optional[Path] = None
+
+    def synthesize(self):
+        """Run :func:`rodimpact.synthesize` with these settings."""
+        from ..inverse import synthesize
+
+        return synthesize(self.target, list(self.struck), self.striker_velocity, self.n, self.dt,
+                          far_end=self.far_end, struck_velocity=list(self.struck_velocity),
+                          junctions=self.junctions, loads=self.loads, initial=self.initial, position=self.position,
+                          quantity=self.quantity, rule=self.rule, material=self.material, backend=self.backend)
+
+
+def load_spec(path: str | Path) -> SynthesisSpec:
+    """Read a synthesis spec file (relative file names are resolved against its folder)."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ModelError(f"{p}: no such spec file") from None
+    spec = loads_spec(text, p.parent, str(p))
+    object.__setattr__(spec, "source", p)
+    return spec
+
+
+def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> SynthesisSpec:
+    """Read a synthesis spec from TOML text."""
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    base = Path(base_dir)
+    d = validate_table(SPEC, raw, "")
+    params = d["parameters"] or {}
+    materials = _materials(d["materials"] or {})
+    syn = d["synthesis"] or {"dt": None, "backend": "numba", "verify": True}
+    rods, vel, initial = [], [], []
+    for i, r in enumerate(d["struck"]):
+        rod, st = _rod(r, f"struck[{i}]", materials, params, syn["dt"], base)
+        rods.append(rod)
+        vel.append(r["velocity"])
+        initial.append(st)
+    names = {r.name: i for i, r in enumerate(rods) if r.name is not None}
+    junctions = None
+    if d["junctions"] is not None:
+        if len(d["junctions"]) != len(rods) - 1:
+            raise ModelError(f"junctions: need one per neighbouring pair of struck rods ({len(rods) - 1}), got "
+                             f"{len(d['junctions'])}")
+        junctions = [Contact(j["gap"]) if j["type"] == "contact" else Bonded() for j in d["junctions"]]
+    fe = d["far_end"] if isinstance(d["far_end"], dict) else {"type": d["far_end"]}
+    far_end = _end(fe, "far_end", params, base)
+    loads = []
+    for i, ld in enumerate(d["loads"] or []):
+        k = _rod_index(ld["rod"], names, len(rods), f"loads[{i}].rod")
+        if ld["type"] == "force":
+            loads.append(NodalForce(k, ld["position"], _history(ld["force"], f"loads[{i}].force", params, base,
+                                                               "force"), ld["interpolation"]))
+        else:
+            loads.append(Bearings(k, ld["spans"], ld["friction_coefficient"], ld["gravity"], ld["normal_load"]))
+    st = d["striker"]
+    if not st["velocity"] > 0:
+        raise ModelError(f"striker.velocity: must be > 0 (towards the struck system), got {st['velocity']:g} m/s")
+    mat = _material(st["material"], materials, "striker.material") or STEEL
+    t = d["target"]
+    target = _target(t, params, base)
+    out = d["output"] or {"plots": True}
+    return SynthesisSpec(target=target, struck=tuple(rods), striker_velocity=st["velocity"], n=st["elements"],
+                         dt=syn["dt"], far_end=far_end, struck_velocity=tuple(vel), junctions=junctions,
+                         loads=tuple(loads), initial=initial if any(s is not None for s in initial) else None,
+                         position=t["position"], quantity=t["quantity"], rule=t["rule"], material=mat,
+                         bore=st["bore"], max_diameter_ratio=st["max_diameter_ratio"], backend=syn["backend"],
+                         verify=syn["verify"], plots=out["plots"], title=d["title"] or "", text=text)
+
+
+def _target(t: dict, params: dict[str, float], base: Path) -> Any:
+    from ..inverse import ExponentialDecay, ExponentialGrowth, LinearRamp
+    from ..inverse.targets import ForceTarget
+
+    kind = t["type"]
+    if kind == "exponential-decay":
+        return ExponentialDecay(t["peak"], t["time_constant"])
+    if kind == "linear-ramp":
+        return LinearRamp(t["peak"], t["time_constant"])
+    if kind == "exponential-growth":
+        return ExponentialGrowth(t["initial"], t["rate"])
+    if kind == "expression":
+        f = SafeExpression(t["force"], ("t",), params, path="target.force")
+        f(np.linspace(0.0, 1e-3, 5))
+        if t["duration"] is not None:
+            return ForceTarget.from_callable(f, t["rule"], duration=t["duration"])
+        return f
+    if kind == "samples":
+        if len(t["time"]) != len(t["force"]) or len(t["time"]) < 2:
+            raise ModelError(f"target: time and force need the same number (>= 2) of entries, got "
+                             f"{len(t['time'])} and {len(t['force'])}")
+        return (np.array(t["time"]), np.array(t["force"]))
+    if kind == "file":
+        cols = read_csv_columns(base / t["file"], "target.file", None, positional=("time", "force"))
+        return (cols["time"], cols["force"])
+    if not t["values"]:
+        raise ModelError("target.values: needs at least one window value")
+    return np.array(t["values"])
+
+
+# ============================================================================================ running, saving
+@dataclass
+class SynthesisRun:
+    """A synthesis result with its verification and the striker's shape."""
+
+    result: Any
+    verification: Any = None
+    shape: Any = None
+    warnings: list[str] = field(default_factory=list)
+
+
+def run(spec: SynthesisSpec) -> SynthesisRun:
+    """Synthesize, verify with the direct solver (if ``spec.verify``) and derive the shape."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = spec.synthesize()
+        verification = result.verify(spec.backend) if spec.verify and result.n_feasible > 0 else None
+        shape = result.shape(spec.material, spec.bore, spec.max_diameter_ratio) if result.n_feasible else None
+    return SynthesisRun(result, verification, shape, [str(w.message) for w in caught])
+
+
+def summarize_run(r: SynthesisRun, spec: SynthesisSpec) -> dict[str, Any]:
+    """Key numbers of a synthesis (JSON-ready, SI units)."""
+    res = r.result
+    out: dict[str, Any] = {"title": spec.title, "n_requested": res.n_requested, "n_feasible": res.n_feasible,
+                           "feasible": bool(res.feasible),
+                           "failure": None if res.failure is None else res.failure.message,
+                           "dt_s": res.dt, "striker_velocity_m_s": res.striker_velocity,
+                           "impact_force_n0_N": res.impact_force_n0,
+                           "position_m": None if res.position is None else float(res.position.used)}
+    if r.shape is not None:
+        s = r.shape
+        out["striker"] = {"material": s.material.name, "length_m": s.length, "mass_kg": s.mass,
+                          "impedance_min_N_s_per_m": float(res.impedance.min()),
+                          "impedance_max_N_s_per_m": float(res.impedance.max()),
+                          "outer_diameter_min_m": float(s.outer_diameter.min()),
+                          "outer_diameter_max_m": float(s.outer_diameter.max()),
+                          "diameter_ratio": s.diameter_ratio, "practical": bool(s.practical), "bore_m": s.bore}
+    v = r.verification
+    out["verification"] = None if v is None else {"compared": v.compared, "max_deviation": v.max_deviation,
+                                                  "max_deviation_all_steps": v.max_deviation_all_steps}
+    out["warnings"] = list(r.warnings)
+    return out
+
+
+def format_summary(summary: dict[str, Any], spec: SynthesisSpec) -> str:
+    """A short text version of the summary."""
+    lines = [spec.title] if spec.title else []
+    lines.append(f"recursive method: {summary['n_feasible']} of {summary['n_requested']} elements exist"
+                 + ("" if summary["feasible"] else " -- the target cannot be produced for its whole duration"))
+    if summary["failure"]:
+        lines.append(summary["failure"])
+    s = summary.get("striker")
+    if s:
+        lines.append(f"striker: length {s['length_m']:.4g} m, mass {s['mass_kg']:.4g} kg, impedance "
+                     f"{s['impedance_min_N_s_per_m'] / 1e3:.4g} .. {s['impedance_max_N_s_per_m'] / 1e3:.4g} kN s/m, "
+                     f"outer diameter {s['outer_diameter_min_m'] * 1e3:.4g} .. {s['outer_diameter_max_m'] * 1e3:.4g} "
+                     f"mm{'' if s['practical'] else ' (impractical: diameter ratio %.3g)' % s['diameter_ratio']}")
+    v = summary["verification"]
+    if v:
+        lines.append(f"verification with the direct solver: max deviation {v['max_deviation']:.2e} "
+                     f"(relative, {v['compared']})")
+    for w in summary["warnings"]:
+        lines.append(f"warning: {w}")
+    return "\n".join(lines)
+
+
+def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite: bool = False,
+         plots: bool = True) -> dict[str, Any]:
+    """Write a synthesis to ``outdir`` (atomically; refuses a non-empty folder unless ``overwrite``):
+    ``spec.toml`` (the spec as given), ``report.txt`` (per-element table, thesis Tabs. 4.3/4.4),
+    ``striker.csv`` (profile), ``synthesis.nc`` (all per-element arrays), ``summary.json``, ``plots/`` and,
+    when verified, ``verification/`` -- the direct simulation of the synthesized striker hitting the struck
+    system, with its ``model.toml`` ready for ``rodimpact simulate``. Returns the summary."""
+    from .results import AtomicFolder, _to_json
+    from .results import save as save_result
+
+    files: list[str] = []
+    res = r.result
+    with AtomicFolder(outdir, overwrite) as tmp:
+        (tmp / "spec.toml").write_text(spec.text, encoding="utf-8")
+        (tmp / "report.txt").write_text(res.report() + "\n", encoding="utf-8")
+        files += ["spec.toml", "report.txt"]
+        if r.shape is not None:
+            r.shape.to_csv(tmp / "striker.csv")
+            files.append("striker.csv")
+        res.save(tmp / "synthesis.nc")
+        files.append("synthesis.nc")
+        if r.verification is not None:
+            save_result(r.verification.simulation, tmp / "verification", overwrite=True,
+                        plots=("forces", "profile") if plots else (),
+                        snapshot_times=None)
+            files.append("verification/")
+        if plots and spec.plots:
+            files += [f"plots/{p}" for p in _plots(r, tmp / "plots")]
+        summary = summarize_run(r, spec)
+        summary["files"] = files + ["summary.json"]
+        (tmp / "summary.json").write_text(_to_json(summary), encoding="utf-8")
+    return summary
+
+
+def _plots(r: SynthesisRun, folder: Path) -> list[str]:
+    """The synthesis plots of :mod:`rodimpact.plotting.synthesis`, drawn on pyplot-free figures (headless)."""
+    from ..plotting import synthesis as sp
+    from ..plotting._common import new_axes
+
+    folder.mkdir(parents=True, exist_ok=True)
+    jobs = [("impedance.png", lambda ax: sp.plot_impedance(r.result, ax=ax)),
+            ("force.png", lambda ax: sp.plot_force(r.result, r.verification, ax=ax)),
+            ("existence.png", lambda ax: sp.plot_existence(r.result, ax=ax))]
+    if r.shape is not None:
+        jobs.append(("shape.png", lambda ax: sp.plot_shape(r.shape, ax=ax)))
+    written = []
+    for name, draw in jobs:
+        fig, ax = new_axes(None)
+        draw(ax)
+        fig.savefig(folder / name, dpi=120)
+        written.append(name)
+    return written
+
+
+def summary_json(summary: dict[str, Any]) -> str:
+    """The summary as JSON text."""
+    return json.dumps(summary, indent=2, default=str)
+
+
+# ============================================================================================ template
+TEMPLATE = '''\
+# rodimpact synthesis spec -- run it with:   rodimpact synthesize synthesis.toml -o results/synthesis
+#
+# Finds the striker (impedance profile, then a shape) that produces a prescribed force history, with the
+# recursive method of the thesis (chapter 4). Quantities take units ("50 mm", "239 kN"); bare numbers are SI.
+# Forces are positive in tension: an impact force is negative. All keys: docs/cli.md.
+#
+# This template: thesis academic example 1 (Tab. 4.2): the exponentially decaying force
+# N(t) = -239 kN exp(-t / 0.383 ms) at the impact face of a semi-infinite 50 mm steel bar (Z = 79.7 kN s/m),
+# striker velocity 6 m/s, 100 elements of dt = 1.93 us. Lundberg and Lesser's exact solution is eq. 4.26.
+
+title = "Striker for an exponentially decaying impact force"
+
+# The far end of the struck system: "free", "fixed", "nonreflecting" (semi-infinite), or an inline table such as
+# { type = "bit-rock", loading_stiffness = "300 MN/m" } (percussion drilling, thesis Fig. 4.9).
+far_end = "nonreflecting"
+
+[striker]
+velocity = "6 m/s"             # v_in, towards the struck system
+material = "steel"             # sets lengths and the shape; the impedances do not depend on it
+elements = 100                 # n: striker elements = force windows of 2 dt
+bore = "0 mm"                  # central bore of the shape (0 = solid)
+max_diameter_ratio = 10        # warn when the outer diameter varies more than this
+
+[target]
+type = "exponential-decay"     # or linear-ramp, exponential-growth, expression, samples, file, windows
+peak = "239 kN"
+time_constant = "0.383 ms"
+rule = "start"                 # window value = F at the window start (the thesis's convention); or midpoint, mean
+# position = "1.0 m"           # prescribe the force inside the struck system instead (thesis Sec. 4.1.2)
+# quantity = "incident"        # ... as the incident force wave there (percussion drilling, Fig. 4.10)
+
+# The struck system, from the impact face outwards; the keys of [[rods]] in model files.
+[[struck]]
+name = "bar"
+velocity = "0 m/s"
+
+[[struck.segments]]
+shape = "cylinder"
+length = "1.0 m"
+diameter = "50 mm"             # Z = 79.7 kN s/m for steel
+
+[synthesis]
+dt = "1.93 us"                 # travel time of one element
+backend = "numba"
+verify = true                  # simulate the striker and report the deviation from the target
+
+[output]
+plots = true
+'''

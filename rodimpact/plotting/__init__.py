@@ -1,0 +1,56 @@
+"""Plots of rodimpact results (matplotlib only; headless-safe: figures are created without pyplot).
+
+Every function takes a result (or system) and an optional Axes and returns the figure.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+from .animation import animate_force, pillow_available
+from .fields import plot_snapshots, plot_xt
+from .histories import plot_energy, plot_energy_comparison, plot_forces
+from .profile import plot_profile
+
+__all__ = ["plot_forces", "plot_energy", "plot_energy_comparison", "plot_profile", "plot_snapshots", "plot_xt",
+           "animate_force", "pillow_available", "save_plots", "PLOT_FILES"]
+
+#: File written by :func:`save_plots` for each plot name.
+PLOT_FILES = {"forces": "forces.png", "profile": "profile.png", "snapshots": "snapshots.png", "xt": "xt.png",
+              "energy": "energy.png", "animation": "force.gif"}
+
+
+def save_plots(result: Any, folder: str | Path, which: Sequence[str] = ("forces", "profile", "snapshots", "xt",
+                                                                        "energy"),
+               *, snapshot_times: Optional[Sequence[float]] = None, dpi: int = 120) -> tuple[list[Path], list[str]]:
+    """Write the named plots into ``folder``; returns the files written and notes on plots that were skipped
+    (no snapshots recorded, pillow missing for the animation)."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    written: list[Path] = []
+    notes: list[str] = []
+    for name in which:
+        if name not in PLOT_FILES:
+            raise ValueError(f"plots: unknown plot {name!r}; valid: {', '.join(PLOT_FILES)}")
+        path = folder / PLOT_FILES[name]
+        try:
+            if name == "animation":
+                written.append(animate_force(result, path))
+                continue
+            if name == "forces":
+                fig = plot_forces(result)
+            elif name == "profile":
+                fig = plot_profile(result)
+            elif name == "snapshots":
+                fig = plot_snapshots(result, snapshot_times)
+            elif name == "xt":
+                fig = plot_xt(result)
+            else:
+                fig = plot_energy(result)
+        except (ValueError, ImportError) as exc:
+            notes.append(f"plot {name!r} skipped: {exc}")
+            continue
+        fig.savefig(path, dpi=dpi)
+        written.append(path)
+    return written, notes
