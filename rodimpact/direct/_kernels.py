@@ -18,7 +18,8 @@ Array layout (all rods concatenated left to right; ``rod_start`` has n_rods + 1 
   ``end_par[e] = (p0, p1)``: non-reflecting (Z_ext, incoming invariant), spring (k, c), bit-rock (k1, k2);
   ``end_state[e] = (delta, delta_max)``: outward displacement and largest penetration;
   ``end_value[e, k]``: prescribed normal force (codes 0, 2) or outward velocity (code 3) in step k.
-* junction codes 0 bonded, 1 contact; ``junction_state`` 1 = touching; ``gap`` in m.
+* junction codes 0 bonded, 1 contact; ``junction_state`` 1 = touching; ``gap`` in m; ``gap_tol`` (m) the
+  closing distance below which a separated pair is not re-contacted (rounding of the gap bookkeeping).
 * special interior nodes (loads, friction): ``sp_elem`` = element left of the node (ascending),
   ``sp_cap`` = Coulomb friction capacity (N), ``sp_force[i, k]`` = prescribed force (N, +x).
 * ``acc`` accumulates work and impulse: [W_left, W_right, W_loads, W_friction, I_left, I_right, I_loads,
@@ -85,7 +86,7 @@ def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes
     node forces of special nodes into sp_F. ``out`` is the output column for step k. The arrays come grouped
     in tuples (see :func:`_run_waves`) so that the compiler can inline this function into the step loop."""
     end_code, end_par, end_state, end_value = ends
-    junction_code, junction_state, gap, u_end = junctions
+    junction_code, junction_state, gap, gap_tol, u_end = junctions
     sp_elem, sp_cap, sp_force, sp_F, sp_V = specials
     pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp = probes
     junction_N, junction_contact, end_N, end_V = outputs
@@ -125,7 +126,8 @@ def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes
         vb_free = v[b] + N[b] / zb
         code = junction_code[r]
         if code == CONTACT and junction_state[r] == 0:
-            if gap[r] + 0.5 * (vb_free - va_free) * dt <= 0.0:
+            # re-contact if the gap closes within the first half of the step, by more than rounding
+            if gap[r] + 0.5 * (vb_free - va_free) * dt <= -gap_tol[r]:
                 junction_state[r] = 1
         touching = code == BONDED or junction_state[r] == 1
         if touching:
@@ -202,7 +204,7 @@ def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes
 
 
 def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value,
-               junction_code, junction_state, gap, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp,
+               junction_code, junction_state, gap, gap_tol, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp,
                pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
     """Advance ``n_steps`` steps in place (compiled path). Step ``k0 + i`` writes output column ``i``.
 
@@ -223,7 +225,7 @@ def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end
     sp_V = np.zeros(sp_elem.size)
     n_sp = sp_elem.size
     ends = (end_code, end_par, end_state, end_value)
-    junctions = (junction_code, junction_state, gap, u_end)
+    junctions = (junction_code, junction_state, gap, gap_tol, u_end)
     specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
     probes = (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp)
     outputs = (junction_N, junction_contact, end_N, end_V)
@@ -274,7 +276,7 @@ run_numba = njit(cache=True, error_model="numpy")(_run_waves)
 
 
 def run_numpy(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value, junction_code,
-              junction_state, gap, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp, pr_N, pr_V,
+              junction_state, gap, gap_tol, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp, pr_N, pr_V,
               pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
     """Readable reference path with the same signature as :func:`run_numba`: per step, the interior nodes
     are one vectorised evaluation of thesis eqs. 3.6-3.9 and the elements of eqs. 3.10-3.15 in the thesis's
@@ -292,7 +294,7 @@ def run_numpy(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_
     first = rod_start[:-1]
     last = rod_start[1:] - 1
     ends = (end_code, end_par, end_state, end_value)
-    junctions = (junction_code, junction_state, gap, u_end)
+    junctions = (junction_code, junction_state, gap, gap_tol, u_end)
     specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
     probes = (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp)
     outputs = (junction_N, junction_contact, end_N, end_V)

@@ -363,6 +363,7 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
         rod_start=lat.rod_start.astype(np.int64), end_code=np.array(codes, dtype=np.int64),
         end_par=np.array(pars, dtype=float), end_state=np.zeros((2, 2)), end_value=np.vstack(vals),
         junction_code=junction_code, junction_state=np.zeros(n_j, dtype=np.int64), gap=gap,
+        gap_tol=1e-9 * np.minimum(lat.element_length[lat.rod_start[1:-1] - 1], lat.element_length[lat.rod_start[1:-1]]),
         u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap, sp_force=sp_force,
         pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),
         pr_sp=np.array(pr_sp, dtype=np.int64), pr_N=np.zeros((n_p, n_steps)), pr_V=np.zeros((n_p, n_steps)),

@@ -595,7 +595,7 @@ class _Writer:
         elif isinstance(s, TabulatedProfile):
             d = {"shape": "table", "x": [float(v) for v in s.x], s.kind: [float(v) for v in s.values]}
         elif isinstance(s, AreaFunction):
-            func = getattr(s, "_func", None)
+            func = s.function
             if not isinstance(func, SafeExpression) or set(func.bound) != {"L"}:
                 raise ModelWriteError(f"{path}: an AreaFunction holding a Python callable cannot be written to a "
                                       f"model file; build it with rodimpact.io.expression_area(...) or use a "

@@ -27,7 +27,7 @@ def _check_area(name: str, area: np.ndarray, where: str) -> None:
     if not np.all(np.isfinite(area)) or np.any(area <= 0):
         bad = np.flatnonzero(~np.isfinite(area) | (area <= 0))[0]
         raise ValueError(f"{name}: the cross-section area must be finite and > 0 everywhere; {where} gives "
-                         f"{area[bad]!r} m^2 at sample {bad}")
+                         f"{float(area[bad])} m^2 at sample {bad}")
 
 
 @dataclass(frozen=True)
@@ -221,7 +221,7 @@ class AreaFunction(Segment):
                  material: Optional[Material] = None, name: str = "") -> None:
         if not callable(area):
             raise TypeError(f"AreaFunction.area: must be a callable area(s) in m^2, got {type(area).__name__}")
-        object.__setattr__(self, "_func", area)
+        object.__setattr__(self, "function", area)
         object.__setattr__(self, "name", name)
         object.__setattr__(self, "length", length)
         object.__setattr__(self, "material", material)
@@ -229,7 +229,13 @@ class AreaFunction(Segment):
 
     def area(self, s: ArrayLike) -> np.ndarray:
         s = np.asarray(s, dtype=float)
-        return np.broadcast_to(np.asarray(self._func(s), dtype=float), s.shape).copy()
+        return np.broadcast_to(np.asarray(self.function(s), dtype=float), s.shape).copy()
 
     def __repr__(self) -> str:
         return f"AreaFunction(length={self.length:.6g} m{', ' + self.name if self.name else ''})"
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, AreaFunction) and self.length == other.length and self.material == other.material
+                and (self.function is other.function or self.function == other.function))
+
+    __hash__ = None  # type: ignore[assignment]

@@ -134,3 +134,12 @@ def test_thesis_setup2_full_staircase_and_separation_time():
     np.testing.assert_allclose(res.contact_force, exact.contact_force(mid), rtol=0, atol=1e-12 * z0 * v)
     np.testing.assert_allclose(res.separation_times(), exact.separations, rtol=1e-12)
     assert exact.recontacts.size == 1          # the first contact only: no re-contact in this example
+
+
+def test_no_spurious_recontact_after_separation_at_rest():
+    """Equal cylinders: after separation the striker face is at rest and the gap stays zero to rounding; the
+    rods must not be re-contacted by rounding noise (exactly one contact phase)."""
+    rods = [ri.Rod([ri.Cylinder(0.4, 0.05)]), ri.Rod([ri.Cylinder(1.6, 0.05)])]
+    res = ri.simulate(rods, velocities=[3.0, 0.0], steps=400, elements=(0, 40))
+    np.testing.assert_allclose(res.separation_times(), [80 * res.dt], rtol=1e-12)
+    assert res.contact_times().size == 1

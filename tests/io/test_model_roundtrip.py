@@ -43,7 +43,7 @@ def assert_same_model(a: Model, b: Model) -> None:
             s = np.linspace(0.0, x.length, 11)
             np.testing.assert_array_equal(x.area(s), y.area(s))
             if isinstance(x, ri.AreaFunction):
-                assert x._func == y._func
+                assert x.function == y.function
     assert sa.velocities == sb.velocities
     assert sa.junctions == sb.junctions
     for ea, eb in ((sa.left, sb.left), (sa.right, sb.right)):
