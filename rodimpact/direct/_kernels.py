@@ -203,6 +203,17 @@ def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes
         u_end[r, 1] += rod_VR[r] * dt
 
 
+@njit(inline="always", cache=True)
+def _grouped(end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end, sp_elem,
+             sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N,
+             junction_contact, end_N, end_V, rod_NL, rod_VL, rod_NR, rod_VR):
+    """The arrays :func:`boundaries` needs, grouped into tuples (ends, junctions, specials, probes, outputs,
+    rod-end nodes); few arguments let the compiler inline :func:`boundaries` into the step loop."""
+    return ((end_code, end_par, end_state, end_value), (junction_code, junction_state, gap, gap_tol, u_end),
+            (sp_elem, sp_cap, sp_force, sp_F, sp_V), (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp),
+            (junction_N, junction_contact, end_N, end_V), (rod_NL, rod_VL, rod_NR, rod_VR))
+
+
 def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value,
                junction_code, junction_state, gap, gap_tol, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp,
                pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
@@ -224,12 +235,10 @@ def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end
     sp_F = np.zeros(sp_elem.size)
     sp_V = np.zeros(sp_elem.size)
     n_sp = sp_elem.size
-    ends = (end_code, end_par, end_state, end_value)
-    junctions = (junction_code, junction_state, gap, gap_tol, u_end)
-    specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
-    probes = (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp)
-    outputs = (junction_N, junction_contact, end_N, end_V)
-    rod_nodes = (rod_NL, rod_VL, rod_NR, rod_VR)
+    ends, junctions, specials, probes, outputs, rod_nodes = _grouped(
+        end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end, sp_elem, sp_cap,
+        sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N,
+        end_V, rod_NL, rod_VL, rod_NR, rod_VR)
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
     for i in range(n_steps):
@@ -293,12 +302,10 @@ def run_numpy(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_
     sp_pos = np.searchsorted(a, sp_elem)
     first = rod_start[:-1]
     last = rod_start[1:] - 1
-    ends = (end_code, end_par, end_state, end_value)
-    junctions = (junction_code, junction_state, gap, gap_tol, u_end)
-    specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
-    probes = (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp)
-    outputs = (junction_N, junction_contact, end_N, end_V)
-    rod_nodes = (rod_NL, rod_VL, rod_NR, rod_VR)
+    ends, junctions, specials, probes, outputs, rod_nodes = _grouped.py_func(
+        end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end, sp_elem, sp_cap,
+        sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N,
+        end_V, rod_NL, rod_VL, rod_NR, rod_VR)
     for i in range(n_steps):
         boundaries.py_func(k0 + i, i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         f = np.zeros(a.size)
