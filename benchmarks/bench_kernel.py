@@ -80,10 +80,10 @@ def main() -> None:
     striker = ri.Rod.from_impedance([51e3] * 50 + [28.7e3] * 50, dt=DT)
     bar = ri.Rod.from_impedance([51e3] * 400, dt=DT)
     ri.simulate([striker, bar], velocities=[5.0, 0.0], steps=600, right="nonreflecting")
-    walls, kern = [], []
+    walls = []
     for _ in range(20):
         t0 = time.perf_counter()
-        res = ri.simulate([striker, bar], velocities=[5.0, 0.0], steps=600, right="nonreflecting")
+        ri.simulate([striker, bar], velocities=[5.0, 0.0], steps=600, right="nonreflecting")
         walls.append(time.perf_counter() - t0)
     t_k = _time_kernel(K.run_numba, 500, 600, 20)
     # memory of a long run: 10^6 steps of a 500-element system with 10 snapshots and 3 probes

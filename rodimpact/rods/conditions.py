@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import Any, Optional
 
 from .._validate import non_negative, positive
-from .history import History, HistoryLike, as_history
+from .history import HistoryLike, as_history
 
 
 class EndCondition:

@@ -8,7 +8,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from .._validate import finite, finite_array, positive, positive_array
+from .._validate import positive, positive_array
 from .material import STEEL, Material
 from .segments import Cylinder, Segment
 

@@ -1,7 +1,6 @@
 """Energy and momentum bookkeeping, linearity and time reversal (property-based where it is cheap)."""
 
 import numpy as np
-import pytest
 from hypothesis import given, strategies as st
 
 import rodimpact as ri

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import rodimpact as ri
-from rodimpact.inverse import StrikerShape, academic_example, impedance_to_shape
+from rodimpact.inverse import academic_example, impedance_to_shape
 
 
 def test_diameters_by_hand():
