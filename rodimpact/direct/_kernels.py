@@ -17,11 +17,12 @@ Array layout (all rods concatenated left to right; ``rod_start`` has n_rods + 1 
 * end codes 0 free/force, 1 fixed, 2 force, 3 velocity, 4 non-reflecting, 5 spring-dashpot, 6 bit-rock;
   ``end_par[e] = (p0, p1)``: non-reflecting (Z_ext, incoming invariant), spring (k, c), bit-rock (k1, k2);
   ``end_state[e] = (delta, delta_max)``: outward displacement and largest penetration;
-  ``end_value[e, k]``: prescribed normal force (codes 0, 2) or outward velocity (code 3) in step k.
+  ``end_value[e, i]``: prescribed normal force (codes 0, 2) or outward velocity (code 3) in the i-th step of
+  the call.
 * junction codes 0 bonded, 1 contact; ``junction_state`` 1 = touching; ``gap`` in m; ``gap_tol`` (m) the
   closing distance below which a separated pair is not re-contacted (rounding of the gap bookkeeping).
 * special interior nodes (loads, friction): ``sp_elem`` = element left of the node (ascending),
-  ``sp_cap`` = Coulomb friction capacity (N), ``sp_force[i, k]`` = prescribed force (N, +x).
+  ``sp_cap`` = Coulomb friction capacity (N), ``sp_force[i, j]`` = prescribed force (N, +x) in the j-th step of the call.
 * ``acc`` accumulates work and impulse: [W_left, W_right, W_loads, W_friction, I_left, I_right, I_loads,
   I_friction] in J and N s.
 """
@@ -79,11 +80,11 @@ def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
 
 
 @njit(inline="always", error_model="numpy", cache=True)
-def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes):
-    """Everything of step ``k`` that is not a plain interior node: the two outer ends, the junctions,
+def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes):
+    """Everything of one step that is not a plain interior node: the two outer ends, the junctions,
     loaded/frictional interior nodes and the probes. Uses only the element states at t_k; writes node
     forces/velocities of each rod's first and last node into rod_NL/rod_VL/rod_NR/rod_VR and the resolved
-    node forces of special nodes into sp_F. ``out`` is the output column for step k. The arrays come grouped
+    node forces of special nodes into sp_F. ``out`` is the step's column in the per-step inputs and outputs. The arrays come grouped
     in tuples (see :func:`_run_waves`) so that the compiler can inline this function into the step loop."""
     end_code, end_par, end_state, end_value = ends
     junction_code, junction_state, gap, gap_tol, u_end = junctions
@@ -94,7 +95,7 @@ def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes
     n_rods = rod_start.size - 1
     n_el = rod_start[n_rods]
     # ---- left end of rod 0: element side N^- = N_0 + Z_0 v_0 - Z_0 V, outward w = -V
-    w, nn, dm = end_solve(end_code[0], N[0] + Z[0] * v[0], Z[0], end_value[0, k], end_par[0, 0],
+    w, nn, dm = end_solve(end_code[0], N[0] + Z[0] * v[0], Z[0], end_value[0, out], end_par[0, 0],
                           end_par[0, 1], end_state[0, 0], end_state[0, 1], dt)
     end_state[0, 0] += w * dt
     end_state[0, 1] = dm
@@ -106,7 +107,7 @@ def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes
     end_V[0, out] = -w
     # ---- right end of the last rod: N^+ = N - Z v + Z V, outward w = V
     e = n_el - 1
-    w, nn, dm = end_solve(end_code[1], N[e] - Z[e] * v[e], Z[e], end_value[1, k], end_par[1, 0],
+    w, nn, dm = end_solve(end_code[1], N[e] - Z[e] * v[e], Z[e], end_value[1, out], end_par[1, 0],
                           end_par[1, 1], end_state[1, 0], end_state[1, 1], dt)
     end_state[1, 0] += w * dt
     end_state[1, 1] = dm
@@ -157,7 +158,7 @@ def boundaries(k, out, dt, N, v, Z, rod_start, ends, junctions, specials, probes
     for i in range(sp_elem.size):
         a = sp_elem[i]
         zs = Z[a] + Z[a + 1]
-        f_load = sp_force[i, k]
+        f_load = sp_force[i, out]
         v0 = (f_load + N[a + 1] - N[a] + Z[a] * v[a] + Z[a + 1] * v[a + 1]) / zs
         cap = sp_cap[i]
         f_fric = 0.0
@@ -214,10 +215,11 @@ def _grouped(end_code, end_par, end_state, end_value, junction_code, junction_st
             (junction_N, junction_contact, end_N, end_V), (rod_NL, rod_VL, rod_NR, rod_VR))
 
 
-def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value,
+def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value,
                junction_code, junction_state, gap, gap_tol, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp,
                pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
-    """Advance ``n_steps`` steps in place (compiled path). Step ``k0 + i`` writes output column ``i``.
+    """Advance ``n_steps`` steps in place (compiled path). The i-th step reads and writes column ``i`` of the
+    per-step input (``end_value``, ``sp_force``) and output arrays.
 
     The same lattice as :func:`run_numpy`, written in travelling-wave variables: element j carries a
     right-going force wave f_j and a left-going g_j, N = f + g, v = (g - f) / Z (thesis Sec. 2.3.2). At a
@@ -245,7 +247,7 @@ def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end
         for t in touch:
             N[t] = f[t] + g[t]
             v[t] = (g[t] - f[t]) / Z[t]
-        boundaries(k0 + i, i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         ptr = 0
         for r in range(n_rods):
             s = rod_start[r]
@@ -284,7 +286,7 @@ def _run_waves(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end
 run_numba = njit(cache=True, error_model="numpy")(_run_waves)
 
 
-def run_numpy(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value, junction_code,
+def run_numpy(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value, junction_code,
               junction_state, gap, gap_tol, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp, pr_N, pr_V,
               pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
     """Readable reference path with the same signature as :func:`run_numba`: per step, the interior nodes
@@ -307,7 +309,7 @@ def run_numpy(n_steps, k0, N, v, Z, R, touch, rod_start, end_code, end_par, end_
         sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N,
         end_V, rod_NL, rod_VL, rod_NR, rod_VR)
     for i in range(n_steps):
-        boundaries.py_func(k0 + i, i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        boundaries.py_func(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         f = np.zeros(a.size)
         f[sp_pos] = sp_F
         # eq. 3.7 / 3.9 written as V = v_a + d, which keeps uniform motion exact in floating point

@@ -6,7 +6,7 @@ import math
 import sys
 import time as _time
 import warnings
-from typing import Any, Iterable, Literal, Optional, Sequence
+from typing import Any, Callable, Iterable, Literal, Optional, Sequence
 
 import numpy as np
 
@@ -22,6 +22,7 @@ from . import _kernels as K
 from .result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
 
 Backend = Literal["numba", "numpy"]
+_MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-chunk input arrays
 
 
 def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[float]] = None,
@@ -92,17 +93,18 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     z = lattice.impedance
     rs = lattice.rod_start
     energy_steps = sorted(set(range(0, n_steps + 1, every)) | {n_steps})
-    events = sorted(set(energy_steps) | set(snap_steps))
+    events = sorted(set(energy_steps) | set(snap_steps) | set(range(0, n_steps, _MAX_CHUNK)))
     bar = _progress_bar(progress, n_steps, lattice.n_elements)
     e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
     snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
     k = 0
     for target in events:
         if target > k:
-            kw = dict(arrays)
+            kw = {key: val for key, val in arrays.items() if key != "step_inputs"}
             for key in ("pr_N", "pr_V", "pr_u", "junction_N", "junction_contact", "end_N", "end_V"):
                 kw[key] = arrays[key][:, k:target]
-            run(target - k, k, N, v, z, reflection, touch, **kw, dt=dt)
+            kw["end_value"], kw["sp_force"] = arrays["step_inputs"](k, target - k)
+            run(target - k, N, v, z, reflection, touch, **kw, dt=dt)
             if bar is not None:
                 bar.update(target - k)
             k = target
@@ -259,11 +261,12 @@ def _initial_state(system: System, lat: Lattice) -> dict[str, np.ndarray]:
 
 
 def _end_setup(cond: EndCondition, side: int, N: np.ndarray, v: np.ndarray, z: np.ndarray,
-               n_steps: int, dt: float) -> tuple[int, tuple[float, float], np.ndarray]:
-    """Kernel code, parameters and per-step values of one outer end (side 0 = left, 1 = right)."""
+               dt: float) -> tuple[int, tuple[float, float], Callable[[int, int], np.ndarray]]:
+    """Kernel code, parameters and the per-step values (a function of first step and count) of one outer end
+    (side 0 = left, 1 = right)."""
     e = 0 if side == 0 else z.size - 1
     sign = -1.0 if side == 0 else 1.0        # outward direction in x
-    values = np.zeros(n_steps)
+    values: Callable[[int, int], np.ndarray] = lambda first, n: np.zeros(n)  # noqa: E731
     par = (0.0, 0.0)
     if isinstance(cond, FreeEnd):
         code = K.FREE
@@ -271,10 +274,10 @@ def _end_setup(cond: EndCondition, side: int, N: np.ndarray, v: np.ndarray, z: n
         code = K.FIXED
     elif isinstance(cond, ForceEnd):
         code = K.FORCE
-        values = cond.force.step_values(n_steps, dt)
+        values = lambda first, n: cond.force.step_values(n, dt, first)  # noqa: E731
     elif isinstance(cond, VelocityEnd):
         code = K.VELOCITY
-        values = sign * cond.velocity.step_values(n_steps, dt)
+        values = lambda first, n: sign * cond.velocity.step_values(n, dt, first)  # noqa: E731
     elif isinstance(cond, NonReflectingEnd):
         code = K.NONREFLECTING
         zx = z[e] if cond.impedance is None else cond.impedance
@@ -297,13 +300,12 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
     dt = lat.dt
     N, v, z = state["N"], state["v"], lat.impedance
     n_rods = lat.n_rods
-    codes, pars, vals = zip(*(_end_setup(c, s, N, v, z, n_steps, dt)
-                              for s, c in enumerate((system.left, system.right))))
+    codes, pars, end_values = zip(*(_end_setup(c, s, N, v, z, dt) for s, c in enumerate((system.left, system.right))))
     junction_code = np.array([j.code for j in system.junctions], dtype=np.int64)
     gap = np.array([getattr(j, "gap", 0.0) for j in system.junctions], dtype=float)
     # ---- special interior nodes
-    sp: dict[int, list[float]] = {}        # element-left-of-node -> [capacity, index of load rows]
-    load_rows: dict[int, np.ndarray] = {}
+    sp: dict[int, list[float]] = {}        # element-left-of-node -> [friction capacity]
+    node_loads: dict[int, list] = {}        # element-left-of-node -> prescribed force histories
     for i, ld in enumerate(system.loads):
         n_r = lat.rod_start[ld.rod + 1] - lat.rod_start[ld.rod]
         if isinstance(ld, NodalForce):
@@ -313,8 +315,7 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
                 raise ValueError(f"loads[{i}]: rod {ld.rod} has a single element and no interior node; use a smaller dt")
             a = int(lat.rod_start[ld.rod] + m - 1)
             sp.setdefault(a, [0.0])
-            f = ld.force.step_values(n_steps, dt)
-            load_rows[a] = load_rows.get(a, 0.0) + f
+            node_loads.setdefault(a, []).append(ld.force)
         else:
             s = lat.rod_start[ld.rod]
             x_nodes = np.cumsum(lat.element_length[s:lat.rod_start[ld.rod + 1]])[:-1]   # interior nodes 1..n-1
@@ -332,10 +333,17 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
                 sp.setdefault(a, [0.0])[0] += total / n_hat
     sp_elem = np.array(sorted(sp), dtype=np.int64)
     sp_cap = np.array([sp[a][0] for a in sp_elem], dtype=float)
-    sp_force = np.zeros((sp_elem.size, n_steps))
-    for i, a in enumerate(sp_elem):
-        if a in load_rows:
-            sp_force[i] = load_rows[a]
+    loaded = [(i, node_loads[a]) for i, a in enumerate(sp_elem) if a in node_loads]
+
+    def step_inputs(first: int, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """Prescribed end values and nodal forces for steps first .. first + n - 1 (evaluated per chunk so
+        that memory does not grow with the run length)."""
+        sp_force = np.zeros((sp_elem.size, n))
+        for i, histories in loaded:
+            for h in histories:
+                sp_force[i] += h.step_values(n, dt, first)
+        return np.vstack([f(first, n) for f in end_values]), sp_force
+
     # ---- probes
     pr_rod, pr_local, pr_sp = [], [], []
     names = set()
@@ -361,10 +369,10 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
     n_p, n_j = len(probes), n_rods - 1
     return dict(
         rod_start=lat.rod_start.astype(np.int64), end_code=np.array(codes, dtype=np.int64),
-        end_par=np.array(pars, dtype=float), end_state=np.zeros((2, 2)), end_value=np.vstack(vals),
+        end_par=np.array(pars, dtype=float), end_state=np.zeros((2, 2)), step_inputs=step_inputs,
         junction_code=junction_code, junction_state=np.zeros(n_j, dtype=np.int64), gap=gap,
         gap_tol=1e-9 * np.minimum(lat.element_length[lat.rod_start[1:-1] - 1], lat.element_length[lat.rod_start[1:-1]]),
-        u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap, sp_force=sp_force,
+        u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap,
         pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),
         pr_sp=np.array(pr_sp, dtype=np.int64), pr_N=np.zeros((n_p, n_steps)), pr_V=np.zeros((n_p, n_steps)),
         pr_u=np.zeros((n_p, n_steps)), pr_disp=np.zeros(n_p), junction_N=np.zeros((n_j, n_steps)),

@@ -143,3 +143,15 @@ def test_no_spurious_recontact_after_separation_at_rest():
     res = ri.simulate(rods, velocities=[3.0, 0.0], steps=400, elements=(0, 40))
     np.testing.assert_allclose(res.separation_times(), [80 * res.dt], rtol=1e-12)
     assert res.contact_times().size == 1
+
+
+def test_prescribed_histories_are_applied_at_every_step_of_a_long_run():
+    """End and nodal-force histories are evaluated chunk by chunk (bounded memory): across chunk boundaries
+    (every 65536 steps and at energy samples) the end force equals the history at the step midpoints."""
+    rod = rect_bar(3e4, 6)
+    hist = lambda t: -100.0 * np.sin(2e3 * t) - 50.0      # noqa: E731
+    res = ri.simulate([rod], velocities=[0.0], steps=140_000, left=ri.ForceEnd(hist), right="fixed",
+                      loads=[ri.NodalForce(0, rod.length / 2, lambda t: 10.0 * np.cos(1e3 * t))], energy_every=999)
+    np.testing.assert_allclose(res.end_force["left"], hist((np.arange(140_000) + 0.5) * DT), rtol=0, atol=1e-12 * 150)
+    e = res.energy
+    assert e.balance_error < 1e-10
