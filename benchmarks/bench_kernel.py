@@ -116,7 +116,12 @@ def main() -> None:
         "",
         f"Memory of a long run (10^6 steps, 500 elements, 3 probes, 10 snapshots): peak traced allocation "
         f"{peak / 2**20:.1f} MiB -- per-step node histories (8 bytes x steps x probes/junctions/ends) dominate; "
-        f"fields are kept only at the requested snapshots and energy at a bounded number of samples.",
+        f"fields are kept only at the requested snapshots and energy at a bounded number of samples; "
+        f"prescribed histories are evaluated per chunk of at most 65536 steps.",
+        "",
+        "Batches (parameter sweeps): the compiled kernel `rodimpact.direct._kernels.run_numba` is a pure "
+        "function of arrays with no Python objects, so a sweep over many designs can call it from one compiled "
+        "loop with the batch as the outer loop (not packaged as an API yet).",
     ]
     write_section("kernel", "\n".join(lines))
 
