@@ -119,9 +119,9 @@ def main() -> None:
         f"fields are kept only at the requested snapshots and energy at a bounded number of samples; "
         f"prescribed histories are evaluated per chunk of at most 65536 steps.",
         "",
-        "Batches (parameter sweeps): the compiled kernel `rodimpact.direct._kernels.run_numba` is a pure "
-        "function of arrays with no Python objects, so a sweep over many designs can call it from one compiled "
-        "loop with the batch as the outer loop (not packaged as an API yet).",
+        "Batches (parameter sweeps): the compiled kernel `rodimpact.direct._kernels.run_numba` takes only "
+        "arrays and scalars (no Python objects), the shape needed to run a sweep over many designs in one compiled "
+        "loop with the batch as the outer loop; such a batch API is not packaged or tested yet.",
     ]
     write_section("kernel", "\n".join(lines))
 
