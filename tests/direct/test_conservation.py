@@ -101,3 +101,22 @@ def test_friction_linear_energy_decay_over_100_round_trips():
     # linear decay: a straight-line fit follows the curve to within 5 % of the total loss
     fit = np.polyval(np.polyfit(e.time, total, 1), e.time)
     assert np.max(np.abs(fit - total)) < 0.05 * loss
+
+
+def test_friction_stops_a_sliding_rod_without_chatter_or_energy_gain():
+    """A free rod sliding at v0 in a bearing over its whole length: while every node slides, the momentum falls
+    exactly as m v0 - F_R t (Coulomb, thesis eqs. 3.22-3.23); the rod stops at t = m v0 / F_R and then stays
+    at rest: nodes stick (no sign chatter), the energy never increases and stays constant once stuck."""
+    rod = ri.Rod.from_impedance([4e4] * 50, dt=DT)
+    m, v0, f_r = 4e4 * 50 * DT, 0.3, 0.5 * 2e4
+    res = ri.simulate([rod], velocities=[v0], steps=3000, energy_every=1,
+                      loads=[ri.Bearings(0, [(0.0, rod.length)], friction_coefficient=0.5, normal_load=2e4)])
+    e = res.energy
+    p, t, total = e.momentum[0], e.time, e.total
+    t_stop = m * v0 / f_r
+    sliding = t < 0.9 * t_stop
+    np.testing.assert_allclose(p[sliding], m * v0 - f_r * t[sliding], rtol=0, atol=1e-12 * m * v0)
+    assert np.all(np.diff(total) <= 1e-15 * total[0])
+    stuck = t > 1.5 * t_stop
+    assert np.max(np.abs(p[stuck])) < 1e-3 * m * v0
+    assert np.max(np.abs(total[stuck] - total[-1])) <= 1e-12 * total[0]
