@@ -24,7 +24,17 @@ from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, For
                       impedance_to_shape, synthesize, transform_force)
 from .io.model import Model, dump_model, load_model, loads_model, save_model
 from .io.results import load, save, summarize
-from . import inverse, io, plotting, reference, signals
+from . import inverse, io
+
+_LAZY_SUBPACKAGES = ("plotting", "reference", "signals")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
+
+
+def __getattr__(name: str):
+    if name in _LAZY_SUBPACKAGES:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'rodimpact' has no attribute {name!r}")
 
 __all__ = [
     "__version__",

@@ -13,13 +13,14 @@ Two methods:
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import fftconvolve, lfilter
 
 SUBSTITUTION_MAX = 2048
 
 
 def _conv(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
     """First ``n`` terms of the linear convolution a * b."""
+    from scipy.signal import fftconvolve   # imported on use: scipy.signal is slow to import
+
     return fftconvolve(a[:n], b[:n])[:n]
 
 
@@ -53,6 +54,8 @@ def solve_lower_toeplitz(column: np.ndarray, rhs: np.ndarray, method: str = "aut
     if method == "auto":
         method = "substitution" if n <= SUBSTITUTION_MAX else "fft"
     if method == "substitution":
+        from scipy.signal import lfilter
+
         return lfilter([1.0], g, y)
     if method != "fft":
         raise ValueError(f"method: must be 'auto', 'substitution' or 'fft', got {method!r}")
