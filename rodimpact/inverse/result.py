@@ -10,6 +10,7 @@ import numpy as np
 
 from ..direct.result import SimulationResult
 from ..direct.simulate import simulate
+from ._files import write_new_file
 from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.system import System
@@ -310,12 +311,10 @@ class SynthesisResult:
             attrs[f"diag_{k}"] = str(v)
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
-    def save(self, path: str | Path) -> Path:
+    def save(self, path: str | Path, overwrite: bool = False) -> Path:
         """Write :meth:`to_xarray` to a netCDF file (engine h5netcdf when h5py is installed, else netCDF4, else
-        scipy's NetCDF3 writer)."""
-        path = Path(path)
-        self.to_xarray().to_netcdf(path, engine=_netcdf_engine())
-        return path
+        scipy's NetCDF3 writer). An existing file is refused unless ``overwrite=True``; written atomically."""
+        return write_new_file(path, lambda tmp: self.to_xarray().to_netcdf(tmp, engine=_netcdf_engine()), overwrite)
 
     @classmethod
     def load(cls, path: str | Path) -> "SynthesisResult":

@@ -22,6 +22,7 @@ from .._validate import non_negative, positive, positive_array
 from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.segments import Cylinder, Tube
+from ._files import write_new_file
 
 #: Default limit of the outer-diameter ratio max/min above which a profile is reported as impractical.
 MAX_DIAMETER_RATIO = 10.0
@@ -134,9 +135,12 @@ class StrikerShape:
             segs = [Cylinder((b - a) * ell, float(d[a]), material=mat) for a, b in zip(starts, stops)]
         return Rod(segs, mat, name)
 
-    def to_csv(self, path: str | Path) -> Path:
-        """Write the profile, one row per element from the impact face (SI units), and return the path."""
-        path = Path(path)
+    def to_csv(self, path: str | Path, overwrite: bool = False) -> Path:
+        """Write the profile, one row per element from the impact face (SI units), and return the path.
+        An existing file is refused unless ``overwrite=True``; the file is written atomically."""
+        return write_new_file(path, self._write_csv, overwrite)
+
+    def _write_csv(self, path: Path) -> None:
         th = self.dt * np.arange(self.n_elements)
         s = self.boundaries
         with path.open("w", newline="") as fh:
@@ -150,7 +154,6 @@ class StrikerShape:
                 w.writerow([q + 1, repr(float(s[q])), repr(float(s[q + 1])), repr(float(th[q])),
                             repr(float(self.impedance[q])), repr(float(self.area[q])),
                             repr(float(self.outer_diameter[q])), repr(self.bore)])
-        return path
 
     def summary(self) -> str:
         """One paragraph: length, mass, diameters and practicality."""

@@ -23,9 +23,11 @@ PLOT_FILES = {"forces": "forces.png", "profile": "profile.png", "snapshots": "sn
 
 def save_plots(result: Any, folder: str | Path, which: Sequence[str] = ("forces", "profile", "snapshots", "xt",
                                                                         "energy"),
-               *, snapshot_times: Optional[Sequence[float]] = None, dpi: int = 120) -> tuple[list[Path], list[str]]:
+               *, snapshot_times: Optional[Sequence[float]] = None, dpi: int = 120,
+               overwrite: bool = False) -> tuple[list[Path], list[str]]:
     """Write the named plots into ``folder``; returns the files written and notes on plots that were skipped
-    (no snapshots recorded, pillow missing for the animation)."""
+    (no snapshots recorded, pillow missing for the animation). Existing plot files are refused unless
+    ``overwrite=True``."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
@@ -34,6 +36,8 @@ def save_plots(result: Any, folder: str | Path, which: Sequence[str] = ("forces"
         if name not in PLOT_FILES:
             raise ValueError(f"plots: unknown plot {name!r}; valid: {', '.join(PLOT_FILES)}")
         path = folder / PLOT_FILES[name]
+        if path.exists() and not overwrite:
+            raise FileExistsError(f"{path}: exists; choose another folder or pass overwrite=True to replace it")
         try:
             if name == "animation":
                 written.append(animate_force(result, path))

@@ -73,3 +73,18 @@ def test_geometric_rod_reproduces_the_synthesized_force(bore):
         forces.append(sim.contact_force)
     np.testing.assert_allclose(forces[0], forces[1], rtol=1e-11)
     np.testing.assert_allclose(forces[1], np.repeat(res.window_values, 2), rtol=1e-13)
+
+
+def test_exports_never_overwrite_silently(tmp_path):
+    """A saved profile or result is refused as a target unless overwrite=True; the old file stays intact."""
+    res = academic_example(1).solve()
+    csv_path = res.shape().to_csv(tmp_path / "striker.csv")
+    before = csv_path.read_text()
+    with pytest.raises(FileExistsError, match="striker.csv: exists"):
+        res.shape().to_csv(csv_path)
+    assert csv_path.read_text() == before
+    res.shape().to_csv(csv_path, overwrite=True)
+    nc = res.save(tmp_path / "synthesis.nc")
+    with pytest.raises(FileExistsError, match="synthesis.nc: exists"):
+        res.save(nc)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["striker.csv", "synthesis.nc"]   # no temp files left

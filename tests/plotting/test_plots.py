@@ -114,6 +114,12 @@ def test_save_plots_writes_files_and_notes_what_it_skipped(result, tmp_path, mon
     assert written == [] and len(notes) == 2 and "no field snapshots" in notes[0]
     with pytest.raises(ValueError, match="unknown plot 'pie'"):
         save_plots(result, tmp_path, ["pie"])
+    before = (tmp_path / "forces.png").read_bytes()
+    with pytest.raises(FileExistsError, match="forces.png: exists"):
+        save_plots(result, tmp_path, ["forces"])
+    assert (tmp_path / "forces.png").read_bytes() == before
+    written, _ = save_plots(result, tmp_path, ["forces"], overwrite=True)
+    assert written == [tmp_path / "forces.png"]
 
 
 def test_plots_do_not_need_pyplot_or_a_display(tmp_path):
