@@ -40,7 +40,7 @@ def save_plots(result: Any, folder: str | Path, which: Sequence[str] = ("forces"
             raise FileExistsError(f"{path}: exists; choose another folder or pass overwrite=True to replace it")
         try:
             if name == "animation":
-                written.append(animate_force(result, path))
+                written.append(animate_force(result, path, overwrite=overwrite))
                 continue
             if name == "forces":
                 fig = plot_forces(result)

@@ -16,11 +16,15 @@ def pillow_available() -> bool:
     return importlib.util.find_spec("PIL") is not None
 
 
-def animate_force(result: Any, path: str | Path, *, fps: int = 15, max_frames: int = 150) -> Path:
-    """Write a GIF of N(x) over the recorded snapshots (at most ``max_frames`` evenly chosen) to ``path``.
+def animate_force(result: Any, path: str | Path, *, fps: int = 15, max_frames: int = 150,
+                  overwrite: bool = False) -> Path:
+    """Write a GIF of N(x) over the recorded snapshots (at most ``max_frames`` evenly chosen) to ``path``
+    (an existing file is refused unless ``overwrite=True``).
 
     Raises :class:`ImportError` with a clear message when pillow is not installed.
     """
+    if Path(path).exists() and not overwrite:
+        raise FileExistsError(f"{path}: exists; choose another file name or pass overwrite=True to replace it")
     if not pillow_available():
         raise ImportError("animate_force: writing a GIF needs pillow (pip install pillow); skipped")
     from matplotlib.animation import FuncAnimation, PillowWriter

@@ -100,6 +100,8 @@ def test_animation_writes_a_gif_with_one_frame_per_snapshot(result, tmp_path):
     path = animate_force(result, tmp_path / "n.gif", max_frames=10)
     with Image.open(path) as im:
         assert im.n_frames == 10
+    with pytest.raises(FileExistsError, match="n.gif: exists"):
+        animate_force(result, path, max_frames=10)
 
 
 def test_save_plots_writes_files_and_notes_what_it_skipped(result, tmp_path, monkeypatch):
