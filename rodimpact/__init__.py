@@ -17,7 +17,7 @@ from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEn
 from .rods.loads import Bearings, NodalForce
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
-from .direct.result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
+from .direct.result import EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory, SimulationResult
 from .direct.simulate import simulate
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
@@ -45,7 +45,7 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
-    "simulate", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory",
+    "simulate", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory", "JunctionEvents",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+import math
+from typing import Any, Optional
 
 import numpy as np
 
@@ -103,12 +104,94 @@ class EnergyHistory:
         return float(np.max(np.abs(err)) / max(np.max(np.abs(self.total)), 1e-300))
 
 
+@dataclass(frozen=True, repr=False)
+class JunctionEvents:
+    """Contact phases of one junction, taken at every time step (whatever the recording stride).
+
+    Phase ``i`` covers the steps ``start[i] <= k < stop[i]`` (``stop = n_steps`` if the faces still touch at
+    the end); ``max_abs_force[i]`` is the largest magnitude of the junction force in it, N. ``min_force`` is the
+    most compressive junction force of the whole run (N, tension positive) and ``min_force_step`` its first
+    step. ``max_abs_force_run`` is the largest magnitude over the whole run.
+    """
+
+    start: np.ndarray
+    stop: np.ndarray
+    max_abs_force: np.ndarray
+    min_force: float
+    min_force_step: int
+    max_abs_force_run: float
+
+    def __repr__(self) -> str:
+        return f"JunctionEvents({self.start.size} contact phase(s), min force {self.min_force:.6g} N)"
+
+
+class EventTracker:
+    """Builds :class:`JunctionEvents` from the per-step junction force and contact flag, fed in consecutive
+    chunks of steps (so that the histories need not be kept at every step)."""
+
+    def __init__(self, n_junctions: int) -> None:
+        self._inside = [False] * n_junctions
+        self._open = [(0, 0.0)] * n_junctions       # (start step, max |force| so far) of an open phase
+        self._phases: list[list[tuple[int, int, float]]] = [[] for _ in range(n_junctions)]
+        self._min = [(math.inf, 0)] * n_junctions
+        self._max_abs = [0.0] * n_junctions
+
+    def feed(self, first: int, force: np.ndarray, contact: np.ndarray) -> None:
+        """Steps ``first .. first + n - 1``: ``force`` and ``contact`` of shape (n_junctions, n)."""
+        n = force.shape[1]
+        if n == 0:
+            return
+        for j in range(force.shape[0]):
+            f = force[j]
+            k = int(np.argmin(f))
+            if f[k] < self._min[j][0]:
+                self._min[j] = (float(f[k]), first + k)
+            self._max_abs[j] = max(self._max_abs[j], float(np.max(np.abs(f))))
+            c = np.asarray(contact[j]) > 0.5
+            flips = np.flatnonzero(c != np.concatenate([[self._inside[j]], c[:-1]]))
+            pos = 0
+            for e in flips.tolist():
+                if self._inside[j]:        # the faces part at step e: the phase ends
+                    start, peak = self._open[j]
+                    if e > pos:
+                        peak = max(peak, float(np.max(np.abs(f[pos:e]))))
+                    self._phases[j].append((start, first + e, peak))
+                else:                      # contact begins at step e
+                    self._open[j] = (first + e, 0.0)
+                self._inside[j] = not self._inside[j]
+                pos = e
+            if self._inside[j] and n > pos:
+                start, peak = self._open[j]
+                self._open[j] = (start, max(peak, float(np.max(np.abs(f[pos:])))))
+
+    def finish(self, n_steps: int) -> tuple[JunctionEvents, ...]:
+        """The events of every junction; a phase still open ends at ``n_steps``."""
+        out = []
+        for j, phases in enumerate(self._phases):
+            rows = phases + ([(self._open[j][0], n_steps, self._open[j][1])] if self._inside[j] else [])
+            arr = np.array(rows, dtype=float).reshape(-1, 3)
+            low, step = self._min[j]
+            out.append(JunctionEvents(start=arr[:, 0].astype(np.int64), stop=arr[:, 1].astype(np.int64),
+                                      max_abs_force=arr[:, 2], min_force=low if math.isfinite(low) else 0.0,
+                                      min_force_step=int(step), max_abs_force_run=self._max_abs[j]))
+        return tuple(out)
+
+
+def junction_events_from_history(force: np.ndarray, contact: np.ndarray) -> tuple[JunctionEvents, ...]:
+    """:class:`JunctionEvents` of per-step histories of shape (n_junctions, n_steps)."""
+    tracker = EventTracker(force.shape[0])
+    tracker.feed(0, force, contact)
+    return tracker.finish(force.shape[1])
+
+
 @dataclass(frozen=True)
 class SimulationResult:
     """Everything :func:`rodimpact.simulate` computed.
 
     Node values (contact force, end values, probes) belong to step k and hold on [k dt, (k+1) dt); they are
-    reported with the step start time ``time[k] = k dt``.
+    reported with the step start time ``k dt``. The histories hold every ``record_every``-th step
+    (``time = [0, s dt, 2 s dt, ...]``); contact and separation times, contact durations and the peak contact
+    force come from ``junction_events``, which are taken at every step whatever the stride.
     """
 
     system: System
@@ -124,10 +207,28 @@ class SimulationResult:
     final_force: np.ndarray            # element forces at t = n_steps dt
     final_velocity: np.ndarray         # element velocities at t = n_steps dt
     diagnostics: dict[str, Any] = field(default_factory=dict)
+    record_every: int = 1              # steps between recorded history samples
+    n_steps: Optional[int] = None      # steps simulated (default: time.size, for record_every = 1)
+    junction_events: Optional[tuple[JunctionEvents, ...]] = None   # default: from the histories
+
+    def __post_init__(self) -> None:
+        if isinstance(self.record_every, bool) or not isinstance(self.record_every, (int, np.integer)) \
+                or self.record_every < 1:
+            raise ValueError(f"record_every: must be an integer >= 1, got {self.record_every!r}")
+        if self.n_steps is None:
+            if self.record_every != 1:
+                raise ValueError("n_steps: required when record_every > 1 (the histories do not hold every step)")
+            object.__setattr__(self, "n_steps", int(self.time.size))
+        if self.junction_events is None:
+            if self.record_every != 1:
+                raise ValueError("junction_events: required when record_every > 1")
+            object.__setattr__(self, "junction_events",
+                               junction_events_from_history(self.junction_force, self.junction_contact))
 
     def __repr__(self) -> str:
         lines = [f"SimulationResult({self.system.n_rods} rod(s), {self.lattice.n_elements} elements, "
-                 f"{self.time.size} steps of dt = {self.dt:.4g} s)"]
+                 f"{self.n_steps} steps of dt = {self.dt:.4g} s"
+                 + (f", every {self.record_every}th recorded)" if self.record_every > 1 else ")")]
         for j in range(self.junction_force.shape[0]):
             lines.append(f"  junction {j}: peak force {self.junction_force[j].min():.6g} N, contact "
                          f"{self.contact_duration(j):.6g} s, separations at {np.round(self.separation_times(j), 12)} s")
@@ -157,23 +258,25 @@ class SimulationResult:
             raise KeyError(f"probe {name!r} not recorded; recorded probes: {sorted(self.probes)}")
         return self.probes[name]
 
-    def _transitions(self, junction: int, rising: bool) -> np.ndarray:
-        c = self.junction_contact[junction].astype(int)
-        prev = np.concatenate([[0], c[:-1]])
-        k = np.flatnonzero((c - prev) == (1 if rising else -1))
-        return self.time[k] if k.size else np.empty(0)
+    def _events(self, junction: int) -> JunctionEvents:
+        events = self.junction_events or ()
+        if not 0 <= junction < len(events):
+            raise ValueError(f"junction: must be 0..{len(events) - 1} for {len(events) + 1} rods, got {junction!r}")
+        return events[junction]
 
     def contact_times(self, junction: int = 0) -> np.ndarray:
         """Start times of each contact phase at ``junction`` (first impact and every re-contact), s."""
-        return self._transitions(junction, True)
+        return self._events(junction).start * self.dt
 
     def separation_times(self, junction: int = 0) -> np.ndarray:
         """Times at which the rods at ``junction`` separate, s."""
-        return self._transitions(junction, False)
+        ev = self._events(junction)
+        return ev.stop[ev.stop < self.n_steps] * self.dt
 
     def contact_duration(self, junction: int = 0) -> float:
         """Total time the rods at ``junction`` were in contact, s."""
-        return float(self.junction_contact[junction].sum() * self.dt)
+        ev = self._events(junction)
+        return float(np.sum(ev.stop - ev.start) * self.dt)
 
     @property
     def rigid_body_velocity(self) -> np.ndarray:

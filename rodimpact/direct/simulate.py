@@ -19,7 +19,7 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
 from . import _kernels as K
-from .result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
+from .result import EnergyHistory, EventTracker, FieldSnapshots, Probe, ProbeHistory, SimulationResult
 
 Backend = Literal["numba", "numpy"]
 _MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-chunk input arrays
@@ -32,7 +32,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
              junctions: Optional[Sequence[Any]] = None, loads: Sequence[NodalForce | Bearings] = (),
              initial: Optional[Sequence[Optional[InitialState]]] = None, probes: Iterable[Probe] = (),
              snapshot_times: Optional[Sequence[float]] = None, snapshot_every: Optional[int] = None,
-             energy_every: Optional[int] = None, backend: Backend = "numba",
+             energy_every: Optional[int] = None, record_every: int = 1, backend: Backend = "numba",
              progress: bool | None = None) -> SimulationResult:
     """Simulate the longitudinal impact of rods with the exact wave propagation method (thesis Sec. 3.1).
 
@@ -66,6 +66,10 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
         Field snapshots N(x), v(x), u(x) at the steps nearest to the given times and/or every k steps.
     energy_every:
         Energy sampling stride in steps (default: about 256 samples per run).
+    record_every:
+        Keep every ``record_every``-th step of the histories (contact force, contact flag, end values, probes);
+        default 1 (every step). A stride bounds their memory on long runs; contact and separation times, contact
+        durations and the peak contact force are still taken at every step (``result.junction_events``).
     backend:
         "numba" (compiled, default) or "numpy" (readable reference path; slow).
     progress:
@@ -82,9 +86,11 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     probe_list = list(probes)
     snap_steps = _snapshot_steps(snapshot_times, snapshot_every, n_steps, dt)
     every = _energy_stride(energy_every, n_steps)
+    stride = _record_stride(record_every)
     wall0 = _time.perf_counter()
     state = _initial_state(system, lattice)
-    arrays = _kernel_arrays(system, lattice, state, probe_list, n_steps)
+    arrays = _kernel_arrays(system, lattice, state, probe_list)
+    history = _History(arrays, n_steps, stride)
     run = K.run_numba if backend == "numba" else K.run_numpy
 
     N, v = state["N"], state["v"]
@@ -97,12 +103,11 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     bar = _progress_bar(progress, n_steps, lattice.n_elements)
     e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
     snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
+    static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key != "step_inputs"}
     k = 0
     for target in events:
         if target > k:
-            kw = {key: val for key, val in arrays.items() if key != "step_inputs"}
-            for key in ("pr_N", "pr_V", "pr_u", "junction_N", "junction_contact", "end_N", "end_V"):
-                kw[key] = arrays[key][:, k:target]
+            kw = {**static, **history.buffers(target - k)}
             kw["end_value"], kw["sp_force"] = arrays["step_inputs"](k, target - k)
             run(target - k, N, v, z, reflection, touch, **kw, dt=dt)
             if bar is not None:
@@ -121,7 +126,9 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
         bar.close()
     wall = _time.perf_counter() - wall0
 
-    time = np.arange(n_steps) * dt
+    history.flush()
+    time = np.arange(0, n_steps, stride) * dt
+    arrays.update(history.recorded)
     acc = np.array(e_rec["acc"])
     energy = EnergyHistory(
         time=np.array(e_rec["t"]), kinetic=np.array(e_rec["kin"]).T, strain=np.array(e_rec["pot"]).T,
@@ -143,6 +150,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
             warn_list.append(msg)
             warnings.warn(msg, stacklevel=2)
     diagnostics = {"version": __version__, "backend": backend, "wall_time_s": wall, "steps": n_steps,
+                   "record_every": stride,
                    "elements": lattice.n_elements, "dt": dt, "energy_balance_error": energy.balance_error,
                    "lattice_report": lattice.report(), "warnings": warn_list}
     return SimulationResult(
@@ -151,7 +159,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
         end_force={"left": arrays["end_N"][0], "right": arrays["end_N"][1]},
         end_velocity={"left": arrays["end_V"][0], "right": arrays["end_V"][1]},
         probes=probe_hist, snapshots=snapshots, energy=energy, final_force=N.copy(), final_velocity=v.copy(),
-        diagnostics=diagnostics)
+        diagnostics=diagnostics, record_every=stride, n_steps=n_steps, junction_events=history.events.finish(n_steps))
 
 
 # ---------------------------------------------------------------------------------------------- helpers
@@ -217,6 +225,56 @@ def _energy_stride(every, n_steps: int) -> int:
     if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
         raise ValueError(f"energy_every: must be an integer number of steps >= 1, got {every!r}")
     return int(every)
+
+
+def _record_stride(every) -> int:
+    if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
+        raise ValueError(f"record_every: must be an integer number of steps >= 1, got {every!r}")
+    return int(every)
+
+
+#: per-step history arrays the kernels write (one column per step)
+_HISTORIES = ("pr_N", "pr_V", "pr_u", "junction_N", "junction_contact", "end_N", "end_V")
+
+
+class _History:
+    """The per-step outputs of the kernels. The kernels write consecutive steps into buffers of at most
+    ``_MAX_CHUNK`` steps; when a buffer is full (and at the end) every ``stride``-th step is kept and the contact
+    events are taken from all its steps. With stride 1 the buffers are windows of the recorded arrays."""
+
+    def __init__(self, arrays: dict, n_steps: int, stride: int) -> None:
+        self.stride = stride
+        self._capacity = max(1, min(n_steps, _MAX_CHUNK))
+        n_rec = -(-n_steps // stride)
+        self.recorded = {key: np.zeros((arrays[key].shape[0], n_rec)) for key in _HISTORIES}
+        self._buf = self.recorded if stride == 1 else {
+            key: np.zeros((arrays[key].shape[0], self._capacity)) for key in _HISTORIES}
+        self._first = 0        # first step of the current buffer
+        self._filled = 0       # steps written into it
+        self.events = EventTracker(arrays["junction_N"].shape[0])
+
+    def _offset(self) -> int:
+        """Column of the current buffer's first step in the storage the kernels write to."""
+        return self._first if self.stride == 1 else 0
+
+    def buffers(self, n: int) -> dict[str, np.ndarray]:
+        """Output arrays for the next ``n <= _MAX_CHUNK`` steps (views)."""
+        if self._filled + n > self._capacity:
+            self.flush()
+        a = self._offset() + self._filled
+        self._filled += n
+        return {key: buf[:, a:a + n] for key, buf in self._buf.items()}
+
+    def flush(self) -> None:
+        """Record the contact events of the buffered steps and keep those that fall on the stride."""
+        n, first, off = self._filled, self._first, self._offset()
+        self.events.feed(first, self._buf["junction_N"][:, off:off + n], self._buf["junction_contact"][:, off:off + n])
+        local = np.arange((-first) % self.stride, n, self.stride)
+        if self.stride > 1 and local.size:
+            target = slice((first + int(local[0])) // self.stride, (first + int(local[-1])) // self.stride + 1)
+            for key, buf in self._buf.items():
+                self.recorded[key][:, target] = buf[:, local]
+        self._first, self._filled = first + n, 0
 
 
 def _progress_bar(progress, n_steps: int, n_el: int):
@@ -295,7 +353,7 @@ def _end_setup(cond: EndCondition, side: int, N: np.ndarray, v: np.ndarray, z: n
     return code, par, values
 
 
-def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe], n_steps: int) -> dict:
+def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe]) -> dict:
     """All arrays the kernels need, in the layout documented in :mod:`rodimpact.direct._kernels`."""
     dt = lat.dt
     N, v, z = state["N"], state["v"], lat.impedance
@@ -374,10 +432,10 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
         gap_tol=1e-9 * np.minimum(lat.element_length[lat.rod_start[1:-1] - 1], lat.element_length[lat.rod_start[1:-1]]),
         u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap,
         pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),
-        pr_sp=np.array(pr_sp, dtype=np.int64), pr_N=np.zeros((n_p, n_steps)), pr_V=np.zeros((n_p, n_steps)),
-        pr_u=np.zeros((n_p, n_steps)), pr_disp=np.zeros(n_p), junction_N=np.zeros((n_j, n_steps)),
-        junction_contact=np.zeros((n_j, n_steps)), end_N=np.zeros((2, n_steps)), end_V=np.zeros((2, n_steps)),
-        acc=np.zeros(8))
+        pr_sp=np.array(pr_sp, dtype=np.int64), pr_disp=np.zeros(n_p), acc=np.zeros(8),
+        # per-step histories: shapes only (rows); the steps are written through _History's buffers
+        pr_N=np.zeros((n_p, 0)), pr_V=np.zeros((n_p, 0)), pr_u=np.zeros((n_p, 0)), junction_N=np.zeros((n_j, 0)),
+        junction_contact=np.zeros((n_j, 0)), end_N=np.zeros((2, 0)), end_V=np.zeros((2, 0)))
 
 
 def _wave_arrays(lat: Lattice, arrays: dict) -> tuple[np.ndarray, np.ndarray]:

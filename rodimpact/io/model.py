@@ -51,6 +51,7 @@ class OutputSpec:
 
     ``snapshot_times`` (s) are recorded as they are; in addition ``snapshot_every`` steps, or, if that is not
     given, about ``snapshot_count`` evenly spaced snapshots (``None``: none) for x-t diagrams and animations.
+    ``record_every``: keep every n-th step of the signal histories (1: all).
     """
 
     snapshot_times: tuple[float, ...] = ()
@@ -59,6 +60,7 @@ class OutputSpec:
     plots: tuple[str, ...] = DEFAULT_PLOTS
     csv: bool = True
     fields: bool = True
+    record_every: int = 1
 
     def __post_init__(self) -> None:
         for p in self.plots:
@@ -124,7 +126,7 @@ class Model:
         return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
                         snapshot_times=list(self.output.snapshot_times) or None,
                         snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
-                        backend=backend or self.backend, progress=progress)
+                        record_every=self.output.record_every, backend=backend or self.backend, progress=progress)
 
 
 # ============================================================================================ reading
@@ -221,7 +223,7 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
                 raise ModelError(f"output.snapshot_times[{i}]: {t:.6g} s lies after the end of the run "
                                  f"(simulation.duration = {sim['duration']:.6g} s)")
     output = OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"], out["snapshot_count"],
-                        tuple(out["plots"]), out["csv"], out["fields"])
+                        tuple(out["plots"]), out["csv"], out["fields"], out["record_every"])
     system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
                                            initial if any(s is not None for s in initial) else None))
     return Model(system, sim["duration"], sim["steps"], sim["dt"], tuple(probes), output, sim["backend"],
@@ -719,6 +721,8 @@ class _Writer:
         out["plots"] = list(o.plots)
         out["csv"] = bool(o.csv)
         out["fields"] = bool(o.fields)
+        if o.record_every != 1:
+            out["record_every"] = int(o.record_every)
         doc["output"] = out
         return doc
 
@@ -733,8 +737,8 @@ def model_from_result(result: SimulationResult, **settings: Any) -> Model:
     snapshot settings read from the recorded snapshots; ``settings`` override :class:`Model` fields."""
     snaps = result.snapshots
     output = OutputSpec(snapshot_times=tuple(float(t) for t in snaps.time) if snaps is not None else (),
-                        snapshot_count=None)
-    kw: dict[str, Any] = dict(system=result.system, steps=int(result.time.size), dt=float(result.dt),
+                        snapshot_count=None, record_every=int(result.record_every))
+    kw: dict[str, Any] = dict(system=result.system, steps=int(result.n_steps), dt=float(result.dt),
                               probes=tuple(p.probe for p in result.probes.values()), output=output,
                               backend=str(result.diagnostics.get("backend", "numba")))
     kw.update(settings)

@@ -39,11 +39,12 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .. import __version__
-from ..direct.result import EnergyHistory, FieldSnapshots, Probe, ProbeHistory, SimulationResult
+from ..direct.result import (EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
+                             SimulationResult)
 from ..lattice.discretize import RodDiscretization
 from ..lattice.lattice import Lattice
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2   # 2: recording stride, steps and contact events stored
 RESULT_FILE = "result.nc"
 
 
@@ -121,50 +122,48 @@ def _rod_label(result: SimulationResult, i: int) -> str:
     return name if name else f"rod {i}"
 
 
-def contact_phases(force: np.ndarray, contact: np.ndarray, rel_tol: float = 1e-9) -> list[tuple[int, int]]:
-    """Contact phases as step ranges [start, stop) that transmit force.
+def contact_phases(events: JunctionEvents, rel_tol: float = 1e-9) -> list[tuple[int, int]]:
+    """Contact phases of one junction as step ranges [start, stop) that transmit force.
 
-    A phase in which the faces touch but the force never exceeds ``rel_tol`` times the largest contact force of
+    A phase in which the faces touch but the force never exceeds ``rel_tol`` times the largest junction force of
     the run (e.g. two rods at rest against each other after the pulse has passed, where rounding decides the
     contact flag) is no impact and is left out.
     """
-    c = np.asarray(contact).astype(int)
-    edges = np.diff(np.concatenate([[0], c, [0]]))
-    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-    peak = float(np.max(np.abs(force))) if force.size else 0.0
-    return [(int(a), int(b)) for a, b in zip(starts, stops)
-            if peak > 0.0 and float(np.max(np.abs(force[a:b]))) > rel_tol * peak]
+    peak = events.max_abs_force_run
+    return [(int(a), int(b)) for a, b, m in zip(events.start, events.stop, events.max_abs_force)
+            if peak > 0.0 and m > rel_tol * peak]
 
 
 def summarize(result: SimulationResult) -> dict[str, Any]:
     """Key numbers of a run, JSON-ready (SI units, keys say the unit).
 
-    Per junction: the peak compressive contact force and its time, the first contact phase (start, duration),
-    every separation and re-contact time, the total time in contact (phases that carry no force beyond
-    rounding are not counted, see :func:`contact_phases`). Per rod: initial and final energy and
+    Per junction (taken at every step, whatever the recording stride): the peak compressive contact force and its
+    time, the first contact phase (start, duration), every separation and re-contact time, the total time in
+    contact (phases that carry no force beyond rounding are not counted, see :func:`contact_phases`). Per probe:
+    the extreme forces among the recorded samples. Per rod: initial and final energy and
     rigid-body (centre-of-mass) velocity -- the rebound velocity once the rods have separated. Energy transfer:
     the fraction of rod 0's initial energy it gave away. Energy balance error: max |E - E0 - W| / max E.
     """
     t = result.time
     dt = result.dt
-    out: dict[str, Any] = {"rodimpact_version": __version__, "steps": int(t.size), "dt_s": dt,
-                           "duration_s": float(t.size * dt), "elements": int(result.lattice.n_elements)}
+    n = int(result.n_steps)
+    out: dict[str, Any] = {"rodimpact_version": __version__, "steps": n, "dt_s": dt,
+                           "duration_s": float(n * dt), "elements": int(result.lattice.n_elements),
+                           "record_every": int(result.record_every)}
     junctions = []
-    for j in range(result.junction_force.shape[0]):
-        f = result.junction_force[j]
-        phases = contact_phases(f, result.junction_contact[j])
-        k = int(np.argmin(f))
+    for j, ev in enumerate(result.junction_events or ()):
+        phases = contact_phases(ev)
         first = phases[0] if phases else None
         junctions.append({
             "index": j, "between": [_rod_label(result, j), _rod_label(result, j + 1)],
-            "peak_compressive_force_N": float(f[k]) if f[k] < 0 else 0.0,
-            "peak_time_s": float(t[k]) if f[k] < 0 else None,
+            "peak_compressive_force_N": ev.min_force if ev.min_force < 0 else 0.0,
+            "peak_time_s": float(ev.min_force_step * dt) if ev.min_force < 0 else None,
             "first_contact_s": float(first[0] * dt) if first else None,
             "contact_duration_s": float((first[1] - first[0]) * dt) if first else None,
             "total_contact_time_s": float(sum(b - a for a, b in phases) * dt),
-            "separation_times_s": [float(b * dt) for a, b in phases if b < t.size],
+            "separation_times_s": [float(b * dt) for a, b in phases if b < n],
             "recontact_times_s": [float(a * dt) for a, b in phases[1:]],
-            "in_contact_at_end": bool(phases and phases[-1][1] == t.size),
+            "in_contact_at_end": bool(phases and phases[-1][1] == n),
         })
     out["junctions"] = junctions
     e = result.energy
@@ -201,6 +200,7 @@ def format_summary(summary: dict[str, Any], title: str = "") -> str:
     lines = [title] if title else []
     lines.append(f"{summary['steps']} steps of dt = {summary['dt_s'] * 1e6:.4g} us "
                  f"({summary['duration_s'] * 1e3:.4g} ms), {summary['elements']} elements"
+                 + (f", every {summary['record_every']}th step recorded" if summary.get("record_every", 1) > 1 else "")
                  + (f", {summary['wall_time_s']:.2f} s" if summary.get("wall_time_s") is not None else ""))
     for j in summary["junctions"]:
         a, b = j["between"]
@@ -360,13 +360,29 @@ def to_dataset(result: SimulationResult, fields: bool = True):
         data["velocity_field"] = (("element", "snapshot"), s.velocity, {"units": "m/s"})
         data["displacement_field"] = (("node", "snapshot"), s.displacement, {"units": "m"})
     data["time"] = (("time",), result.time, {"units": "s"})
+    events = result.junction_events or ()
+    if events:
+        data["junction_min_force"] = (("junction",), np.array([e.min_force for e in events]), {"units": "N"})
+        data["junction_min_force_step"] = (("junction",), np.array([e.min_force_step for e in events],
+                                                                   dtype=np.int32), {})
+        data["junction_max_abs_force"] = (("junction",), np.array([e.max_abs_force_run for e in events]),
+                                          {"units": "N"})
+    if sum(e.start.size for e in events):
+        # contact phases of all junctions, one row per phase: [start, stop) in steps
+        data["phase_junction"] = (("phase",), np.concatenate([np.full(e.start.size, j, dtype=np.int32)
+                                                              for j, e in enumerate(events)]), {})
+        data["phase_start"] = (("phase",), np.concatenate([e.start for e in events]).astype(np.int32), {})
+        data["phase_stop"] = (("phase",), np.concatenate([e.stop for e in events]).astype(np.int32), {})
+        data["phase_max_abs_force"] = (("phase",), np.concatenate([e.max_abs_force for e in events]),
+                                       {"units": "N"})
     attrs = {"title": "rodimpact simulation result", "rodimpact_version": __version__,
-             "format_version": FORMAT_VERSION, "dt": float(result.dt),
+             "format_version": FORMAT_VERSION, "dt": float(result.dt), "steps": int(result.n_steps),
+             "record_every": int(result.record_every),
              "probe_names": json.dumps([p.probe.name for p in probes]),
              "rod_methods": json.dumps([r.method for r in lat.rods]),
              "diagnostics": json.dumps(result.diagnostics, default=_json_default),
              "conventions": "SI units; normal force positive in tension; node values per step at the step start "
-                            "time k*dt"}
+                            "time k*dt, every record_every-th step kept; contact phases [start, stop) in steps"}
     return xr.Dataset(data, attrs=attrs)
 
 
@@ -438,6 +454,21 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
     return Path(outdir)
 
 
+def _events(v: dict[str, np.ndarray], n_j: int) -> tuple[JunctionEvents, ...]:
+    """The contact events stored by :func:`to_dataset` (format 2)."""
+    owner = v.get("phase_junction", np.zeros(0, dtype=np.int32))
+    out = []
+    for j in range(n_j):
+        mine = owner == j
+        out.append(JunctionEvents(
+            start=v["phase_start"][mine].astype(np.int64) if mine.any() else np.zeros(0, dtype=np.int64),
+            stop=v["phase_stop"][mine].astype(np.int64) if mine.any() else np.zeros(0, dtype=np.int64),
+            max_abs_force=v["phase_max_abs_force"][mine] if mine.any() else np.zeros(0),
+            min_force=float(v["junction_min_force"][j]), min_force_step=int(v["junction_min_force_step"][j]),
+            max_abs_force_run=float(v["junction_max_abs_force"][j])))
+    return tuple(out)
+
+
 def load(outdir: str | Path) -> SimulationResult:
     """Read a folder written by :func:`save` back into a :class:`~rodimpact.SimulationResult` with identical
     arrays. The system is rebuilt from ``model.toml`` (``None`` when the folder has none)."""
@@ -456,7 +487,7 @@ def load(outdir: str | Path) -> SimulationResult:
     v = {k: ds[k].values for k in ds.variables}
     dt = float(ds.attrs["dt"])
     time = v["time"]
-    n_steps = time.size
+    n_steps = time.size          # recorded samples
     rod_start = v["rod_start"].astype(np.int64)
     n_rods = rod_start.size - 1
     methods = json.loads(ds.attrs["rod_methods"])
@@ -498,9 +529,12 @@ def load(outdir: str | Path) -> SimulationResult:
         warnings.warn(f"{folder}/model.toml has {system.n_rods} rods but the result has {n_rods}; ignoring the "
                       f"model", stacklevel=2)
         system = None
+    record_every = int(ds.attrs.get("record_every", 1))
+    events = _events(v, n_j) if "junction_min_force" in v or n_j == 0 else None   # format 1: rebuilt from histories
     return SimulationResult(
         system=system, lattice=lattice, time=time, junction_force=jf, junction_contact=jc,
         end_force={"left": v["end_force"][0].copy(), "right": v["end_force"][1].copy()},
         end_velocity={"left": v["end_velocity"][0].copy(), "right": v["end_velocity"][1].copy()},
         probes=probes, snapshots=snapshots, energy=energy, final_force=v["final_force"],
-        final_velocity=v["final_velocity"], diagnostics=diagnostics)
+        final_velocity=v["final_velocity"], diagnostics=diagnostics, record_every=record_every,
+        n_steps=int(ds.attrs.get("steps", n_steps)), junction_events=events)

@@ -245,7 +245,7 @@ SIMULATION = Table("simulation", "How long and how finely to simulate. Give `dur
                      "one giving every segment >= 4 and the longest rod >= 200 elements.", required=False),
     Field("backend", "string", "`numba` (compiled) or `numpy` (reference).", default="numba",
           choices=("numba", "numpy")),
-    Field("energy_every", "integer", "Energy sampling stride in steps; default about 2000 samples per run.",
+    Field("energy_every", "integer", "Energy sampling stride in steps; default about 256 samples per run.",
           minimum=1),
 ), '[simulation]\nduration = "1 ms"\ndt = "0.5 us"')
 
@@ -260,6 +260,10 @@ OUTPUT = Table("output", "What to record and write besides the signals.", (
           default=("forces", "profile", "snapshots", "xt", "energy"), choices=PLOT_NAMES),
     Field("csv", "boolean", "Write `signals.csv` and `energy.csv`.", default=True),
     Field("fields", "boolean", "Keep field snapshots in `result.nc`.", default=True),
+    Field("record_every", "integer", "Keep every this many steps of the signal histories (contact force, end "
+                                     "values, probes) to bound memory on long runs; contact and separation times "
+                                     "and the peak contact force are still taken at every step.", default=1,
+          minimum=1),
 ), '[output]\nsnapshot_times = ["0.064 ms", "0.259 ms", "0.549 ms"]\nplots = ["forces", "snapshots", "xt"]')
 
 MODEL = Table("model file", "Top level of a model file.", (

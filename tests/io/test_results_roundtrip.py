@@ -59,6 +59,14 @@ def assert_identical(a, b):
             assert getattr(ra, q) == getattr(rb, q), q
     assert a.diagnostics["steps"] == b.diagnostics["steps"]
     assert a.diagnostics["lattice_report"] == b.diagnostics["lattice_report"]
+    assert (a.record_every, a.n_steps) == (b.record_every, b.n_steps)
+    assert len(a.junction_events) == len(b.junction_events)
+    for ea, eb in zip(a.junction_events, b.junction_events):
+        for q in ("start", "stop", "max_abs_force"):
+            x, y = getattr(ea, q), getattr(eb, q)
+            assert x.dtype == y.dtype and np.array_equal(x, y), q
+        assert (ea.min_force, ea.min_force_step, ea.max_abs_force_run) == \
+            (eb.min_force, eb.min_force_step, eb.max_abs_force_run)
 
 
 @pytest.mark.parametrize("engine", ENGINES)
