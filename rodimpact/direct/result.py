@@ -33,7 +33,7 @@ class Probe:
 
 @dataclass(frozen=True, repr=False)
 class ProbeHistory:
-    """Histories recorded by a :class:`Probe`, one value per step (step start time)."""
+    """Histories recorded by a :class:`Probe`, one value per recorded step (step start time)."""
 
     probe: Probe
     node_position: float      # position of the node actually read, m from the rod's left end
@@ -197,9 +197,9 @@ class SimulationResult:
     system: System
     lattice: Lattice
     time: np.ndarray
-    junction_force: np.ndarray         # (n_junctions, n_steps) N, tension positive (0 while apart)
-    junction_contact: np.ndarray       # (n_junctions, n_steps) bool
-    end_force: dict[str, np.ndarray]   # "left"/"right" -> (n_steps,) normal force at the outer ends
+    junction_force: np.ndarray         # (n_junctions, n_recorded) N, tension positive (0 while apart)
+    junction_contact: np.ndarray       # (n_junctions, n_recorded) bool
+    end_force: dict[str, np.ndarray]   # "left"/"right" -> (n_recorded,) normal force at the outer ends
     end_velocity: dict[str, np.ndarray]
     probes: dict[str, ProbeHistory]
     snapshots: FieldSnapshots | None
@@ -245,8 +245,8 @@ class SimulationResult:
 
     @property
     def contact_force(self) -> np.ndarray:
-        """Force at the junction(s), one value per step, tension positive (compressive impact < 0): shape
-        (n_steps,) for two rods, (n_junctions, n_steps) for more."""
+        """Force at the junction(s), one value per recorded step (``time``), tension positive (compressive
+        impact < 0): shape (n_recorded,) for two rods, (n_junctions, n_recorded) for more."""
         if self.junction_force.shape[0] == 0:
             raise ValueError("contact_force: this system has a single rod and no junction; "
                              "use end_force or probes")
