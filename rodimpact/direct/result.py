@@ -127,12 +127,12 @@ class JunctionEvents:
 
 class EventTracker:
     """Builds :class:`JunctionEvents` from the per-step junction force and contact flag, fed in consecutive
-    chunks of steps (so that the histories need not be kept at every step)."""
+    chunks of steps (so that the histories need not be kept at every step). Vectorised per chunk: the cost does
+    not depend on how often the contact opens and closes."""
 
     def __init__(self, n_junctions: int) -> None:
-        self._inside = [False] * n_junctions
-        self._open = [(0, 0.0)] * n_junctions       # (start step, max |force| so far) of an open phase
-        self._phases: list[list[tuple[int, int, float]]] = [[] for _ in range(n_junctions)]
+        self._open: list[tuple[int, float] | None] = [None] * n_junctions   # (start step, max |force|) if touching
+        self._closed: list[list[np.ndarray]] = [[] for _ in range(n_junctions)]   # (m, 3) rows start, stop, peak
         self._min = [(math.inf, 0)] * n_junctions
         self._max_abs = [0.0] * n_junctions
 
@@ -142,34 +142,37 @@ class EventTracker:
         if n == 0:
             return
         for j in range(force.shape[0]):
-            f = force[j]
+            f, c = force[j], np.asarray(contact[j]) > 0.5
             k = int(np.argmin(f))
             if f[k] < self._min[j][0]:
                 self._min[j] = (float(f[k]), first + k)
-            self._max_abs[j] = max(self._max_abs[j], float(np.max(np.abs(f))))
-            c = np.asarray(contact[j]) > 0.5
-            flips = np.flatnonzero(c != np.concatenate([[self._inside[j]], c[:-1]]))
-            pos = 0
-            for e in flips.tolist():
-                if self._inside[j]:        # the faces part at step e: the phase ends
-                    start, peak = self._open[j]
-                    if e > pos:
-                        peak = max(peak, float(np.max(np.abs(f[pos:e]))))
-                    self._phases[j].append((start, first + e, peak))
-                else:                      # contact begins at step e
-                    self._open[j] = (first + e, 0.0)
-                self._inside[j] = not self._inside[j]
-                pos = e
-            if self._inside[j] and n > pos:
-                start, peak = self._open[j]
-                self._open[j] = (start, max(peak, float(np.max(np.abs(f[pos:])))))
+            absf = np.abs(f)
+            self._max_abs[j] = max(self._max_abs[j], float(absf.max()))
+            runs = np.flatnonzero(np.concatenate([[True], c[1:] != c[:-1]]))     # first step of each run of c
+            ends = np.append(runs[1:], n)
+            peaks = np.maximum.reduceat(absf, runs)
+            on = np.flatnonzero(c[runs])
+            rows = np.column_stack([first + runs[on], first + ends[on], peaks[on]]).astype(float)
+            previous = self._open[j]
+            if previous is not None:
+                if c[0]:               # the open phase continues into this chunk
+                    rows[0, 0], rows[0, 2] = previous[0], max(previous[1], rows[0, 2])
+                else:                  # it ended with the last chunk
+                    self._closed[j].append(np.array([[previous[0], first, previous[1]]]))
+            if c[-1]:
+                self._open[j] = (int(rows[-1, 0]), float(rows[-1, 2]))
+                rows = rows[:-1]
+            else:
+                self._open[j] = None
+            self._closed[j].append(rows)
 
     def finish(self, n_steps: int) -> tuple[JunctionEvents, ...]:
         """The events of every junction; a phase still open ends at ``n_steps``."""
         out = []
-        for j, phases in enumerate(self._phases):
-            rows = phases + ([(self._open[j][0], n_steps, self._open[j][1])] if self._inside[j] else [])
-            arr = np.array(rows, dtype=float).reshape(-1, 3)
+        for j, closed in enumerate(self._closed):
+            still = self._open[j]
+            arr = np.concatenate(closed + ([np.array([[still[0], n_steps, still[1]]])] if still else [])
+                                 + [np.zeros((0, 3))])
             low, step = self._min[j]
             out.append(JunctionEvents(start=arr[:, 0].astype(np.int64), stop=arr[:, 1].astype(np.int64),
                                       max_abs_force=arr[:, 2], min_force=low if math.isfinite(low) else 0.0,
