@@ -113,6 +113,7 @@ snapshot_count = 200           # evenly spaced snapshots for the x-t diagram and
 plots = ["forces", "profile", "snapshots", "xt", "energy"]   # add "animation" for force.gif
 csv = true                     # signals.csv and energy.csv
 fields = true                  # keep the snapshots in result.nc
+# record_every = 10            # keep every 10th step of the signals (memory of very long runs)
 '''
 
 TEMPLATES: dict[str, tuple[str, str]] = {"simulate": (SIMULATE, "model.toml")}
