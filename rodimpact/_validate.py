@@ -7,6 +7,7 @@ so that bad input never reaches the numerical kernels as NaN.
 from __future__ import annotations
 
 import math
+import os
 from typing import Any
 
 import numpy as np
@@ -66,3 +67,20 @@ def positive_array(name: str, values: Any, *, min_size: int = 1) -> np.ndarray:
 
 def _unit(unit: str, sep: str = " ") -> str:
     return f"{sep}{unit}" if unit else ""
+
+
+def physical_memory() -> float | None:
+    """Installed memory in bytes (POSIX ``sysconf``), or ``None`` where it cannot be read."""
+    try:
+        return float(os.sysconf("SC_PAGE_SIZE")) * float(os.sysconf("SC_PHYS_PAGES"))
+    except (AttributeError, OSError, ValueError):
+        return None
+
+
+def fits_in_memory(name: str, n_bytes: float, what: str, hint: str = "") -> None:
+    """Raise ``ValueError`` naming ``name`` if an allocation of ``n_bytes`` for ``what`` cannot fit in this machine's
+    memory (so that the user gets a message instead of a MemoryError deep in numpy or the process being killed)."""
+    total = physical_memory()
+    if total is not None and n_bytes > 0.8 * total:
+        raise ValueError(f"{name}: {what} would need {n_bytes / 2**30:.3g} GiB, more than this machine's memory "
+                         f"({total / 2**30:.3g} GiB)" + (f"; {hint}" if hint else ""))
