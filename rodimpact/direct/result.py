@@ -8,6 +8,7 @@ from typing import Any, Optional
 
 import numpy as np
 
+from .._validate import finite
 from ..lattice.lattice import Lattice
 from ..rods.system import System
 
@@ -16,19 +17,25 @@ from ..rods.system import System
 class Probe:
     """An output request: histories at ``position`` (m from the left end of rod number ``rod``).
 
-    The probe reads the lattice node nearest to ``position``; node values are exact and constant during each
-    step. ``strain`` uses the true E and A at ``position``.
+    ``rod`` may also be the rod's name. The probe reads the lattice node nearest to ``position``; node values
+    are exact and constant during each step. ``strain`` uses the true E and A at ``position``.
     """
 
     name: str
-    rod: int
+    rod: int | str
     position: float
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
             raise ValueError(f"Probe.name: must be a non-empty string, got {self.name!r}")
-        if not isinstance(self.rod, int) or self.rod < 0:
-            raise ValueError(f"Probe.rod: must be a rod index >= 0, got {self.rod!r}")
+        if isinstance(self.rod, str):
+            if not self.rod:
+                raise ValueError("Probe.rod: a rod name must not be empty")
+        elif isinstance(self.rod, bool) or not isinstance(self.rod, (int, np.integer)) or self.rod < 0:
+            raise ValueError(f"Probe.rod: must be a rod index >= 0 or a rod name, got {self.rod!r}")
+        else:
+            object.__setattr__(self, "rod", int(self.rod))
+        object.__setattr__(self, "position", finite("Probe.position", self.position, "m"))
 
 
 @dataclass(frozen=True, repr=False)

@@ -11,7 +11,7 @@ from typing import Any, Callable, Iterable, Literal, Optional, Sequence
 import numpy as np
 
 from .. import __version__
-from .._validate import finite_array, positive
+from .._validate import finite_array, fits_in_memory, positive
 from ..lattice.lattice import Lattice, build_lattice, default_time_step
 from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
                                SpringEnd, VelocityEnd)
@@ -22,6 +22,8 @@ from . import _kernels as K
 from .result import EnergyHistory, EventTracker, FieldSnapshots, Probe, ProbeHistory, SimulationResult
 
 Backend = Literal["numba", "numpy"]
+#: longest run in steps (step indices are stored as int32 in result files)
+_MAX_STEPS = 2_000_000_000
 _MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-chunk input arrays
 
 
@@ -83,13 +85,16 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
     lattice = build_lattice(system, dt)
-    probe_list = list(probes)
+    probe_list = [_named_rod(p, i, system) for i, p in enumerate(probes)]
     snap_steps = _snapshot_steps(snapshot_times, snapshot_every, n_steps, dt)
     every = _energy_stride(energy_every, n_steps)
     stride = _record_stride(record_every)
     wall0 = _time.perf_counter()
     state = _initial_state(system, lattice)
     arrays = _kernel_arrays(system, lattice, state, probe_list)
+    rows = sum(arrays[key].shape[0] for key in _HISTORIES) + len(probe_list)      # + strain per probe
+    fits_in_memory("steps", 8.0 * rows * -(-n_steps // stride), f"the histories of {n_steps} steps ({rows} signals)",
+                   "keep every n-th step with record_every=n, or split the run")
     history = _History(arrays, n_steps, stride)
     run = K.run_numba if backend == "numba" else K.run_numpy
 
@@ -163,6 +168,16 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
 
 
 # ---------------------------------------------------------------------------------------------- helpers
+def _named_rod(probe: Any, i: int, system: System) -> Any:
+    """``probe`` with a rod name replaced by the rod's index (other objects are checked later)."""
+    if not isinstance(probe, Probe) or not isinstance(probe.rod, str):
+        return probe
+    names = [r.name for r in system.rods]
+    if probe.rod not in names:
+        raise ValueError(f"probes[{i}].rod: no rod is named {probe.rod!r}; rod names: {names}")
+    return Probe(probe.name, names.index(probe.rod), probe.position)
+
+
 def _missing(name: str):
     raise ValueError(f"{name}: required when rods are given as a list (one initial velocity per rod, m/s)")
 
@@ -176,11 +191,11 @@ def _time_step(system: System, dt, elements, resolution) -> float:
         return positive("dt", dt, "s")
     if elements is not None:
         rod, n = (0, elements) if not isinstance(elements, tuple) else elements
-        if not isinstance(rod, int) or not 0 <= rod < system.n_rods:
+        if isinstance(rod, bool) or not isinstance(rod, (int, np.integer)) or not 0 <= rod < system.n_rods:
             raise ValueError(f"elements: rod index must be 0..{system.n_rods - 1}, got {rod!r}")
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
             raise ValueError(f"elements: the number of elements must be an integer >= 1, got {n!r}")
-        return system.rods[rod].total_travel_time / int(n)
+        return system.rods[int(rod)].total_travel_time / int(n)
     if resolution is not None:
         res = positive("resolution", resolution, "m")
         c_max = max(float(np.max(r.wave_speed(r.segment_bounds[:-1]))) for r in system.rods)
@@ -194,12 +209,15 @@ def _step_count(duration: Optional[float], steps: Optional[int], dt: float) -> i
     if steps is not None:
         if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
             raise ValueError(f"steps: must be an integer >= 1, got {steps!r}")
+        if steps > _MAX_STEPS:
+            raise ValueError(f"steps: at most {_MAX_STEPS:.0e} per run, got {steps}; use a larger dt")
         return int(steps)
     duration = positive("duration", duration, "s")
     x = duration / dt
+    if not x <= _MAX_STEPS:
+        raise ValueError(f"duration: {duration:.4g} s needs {x:.3g} steps of dt = {dt:.4g} s; at most "
+                         f"{_MAX_STEPS:.0e} per run")
     n = int(round(x)) if abs(x - round(x)) <= 1e-9 * max(x, 1.0) else int(math.ceil(x))
-    if n > 2_000_000_000:
-        raise ValueError(f"duration: {duration:.4g} s needs {n} steps of dt = {dt:.4g} s; that is too many")
     return max(n, 1)
 
 

@@ -39,6 +39,9 @@ def inverse_series(g: np.ndarray, n: int) -> np.ndarray:
     return h
 
 
+TOEPLITZ_METHODS = ("auto", "substitution", "fft")
+
+
 def solve_lower_toeplitz(column: np.ndarray, rhs: np.ndarray, method: str = "auto") -> np.ndarray:
     """Solve the lower-triangular Toeplitz system whose first column is ``column`` (length >= len(rhs)).
 
@@ -58,7 +61,7 @@ def solve_lower_toeplitz(column: np.ndarray, rhs: np.ndarray, method: str = "aut
 
         return lfilter([1.0], g, y)
     if method != "fft":
-        raise ValueError(f"method: must be 'auto', 'substitution' or 'fft', got {method!r}")
+        raise ValueError(f"method: must be one of {TOEPLITZ_METHODS}, got {method!r}")
     h = inverse_series(g, n)
     x = _conv(h, y, n)
     for _ in range(2):

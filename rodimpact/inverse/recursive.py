@@ -18,14 +18,15 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .. import __version__
-from .._validate import finite
+from .._validate import finite, positive
 from ..rods.material import STEEL, Material
 from ..rods.system import InitialState
 from . import _kernels as K
 from .result import ExistenceFailure, SynthesisResult
 from .struck import as_struck_system, face_response, locate
 from .targets import as_target
-from .transform import _resolve_dt, _resolve_n, transform_windows
+from ._toeplitz import TOEPLITZ_METHODS
+from .transform import _check_quantity, _resolve_dt, _resolve_n, transform_windows
 
 #: Default threshold of the estimated relative error of Z_q above which a precision warning is issued.
 PRECISION_WARNING = 1e-6
@@ -96,6 +97,10 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
     v_in = finite("striker_velocity", striker_velocity, "m/s")
+    _check_quantity(quantity)       # also without position, so that a typo does not pass unnoticed
+    if toeplitz_method not in TOEPLITZ_METHODS:
+        raise ValueError(f"toeplitz_method: must be one of {TOEPLITZ_METHODS}, got {toeplitz_method!r}")
+    precision_warning = positive("precision_warning", precision_warning)
     if not isinstance(material, Material):
         raise TypeError(f"material: must be a Material, got {type(material).__name__}")
     system = as_struck_system(struck, struck_velocity, far_end, junctions, loads, initial)

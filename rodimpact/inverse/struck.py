@@ -14,7 +14,7 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .._validate import finite, non_negative
+from .._validate import finite, fits_in_memory, non_negative
 from ..direct.result import Probe
 from ..direct.simulate import simulate
 from ..lattice.lattice import Lattice, build_lattice
@@ -223,5 +223,7 @@ def window_count_check(n: Any) -> int:
     """Validate a number of windows/elements."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n: must be an integer number of striker elements >= 1, got {n!r}")
+    # per element: the target, the face response of 2n steps, the peeled waves and the reported quantities
+    fits_in_memory("n", 400.0 * n, f"{n} striker elements", "use fewer, longer elements (a larger dt)")
     return int(n)
 

@@ -152,7 +152,11 @@ class ForceTarget:
         except Exception as exc:  # noqa: BLE001 - report the user's function failing, with context
             raise ValueError(f"target: calling the force function with an array of times failed ({exc}); "
                              f"it must accept a numpy array t (s) and return forces (N)") from exc
-        y = np.broadcast_to(y, t.shape)
+        try:
+            y = np.broadcast_to(y, t.shape)
+        except ValueError:
+            raise ValueError(f"target: the force function returned shape {y.shape} for times of shape {t.shape}; it "
+                             "must return one force per time (N)") from None
         if self.rule == "mean":
             y = y @ _GAUSS[1] / 2.0
         return np.array(y, dtype=float)

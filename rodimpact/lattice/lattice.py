@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import positive
+from .._validate import fits_in_memory, positive
 from ..rods.system import System
 from .discretize import RodDiscretization, discretize_rod
 
@@ -90,6 +90,10 @@ class Lattice:
 def build_lattice(system: System, dt: float) -> Lattice:
     """Discretise every rod of ``system`` with the common time step ``dt`` (s)."""
     dt = positive("dt", dt, "s")
+    n_est = sum(rod.total_travel_time for rod in system.rods) / dt
+    # about 16 arrays of 8 bytes per element live at once (lattice, discretisation, kernel state)
+    fits_in_memory("dt", 128.0 * n_est, f"{n_est:.3g} lattice elements (dt = {dt:.4g} s)",
+                   "use a larger time step (fewer elements)")
     discs = tuple(discretize_rod(rod, dt, i) for i, rod in enumerate(system.rods))
     z = np.concatenate([d.impedance for d in discs])
     length = np.concatenate([d.length for d in discs])

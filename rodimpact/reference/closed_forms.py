@@ -150,8 +150,10 @@ def stepped_striker_force(
     """
     ta = _times(t)
     z = positive_array("impedances", impedances)
-    tt = np.broadcast_to(np.asarray(travel_times, dtype=float), z.shape)
-    tt = positive_array("travel_times", tt)
+    tt = np.asarray(travel_times, dtype=float)
+    if tt.ndim > 1 or (tt.ndim == 1 and tt.size != z.size):
+        raise ValueError(f"travel_times: one per impedance ({z.size}) or a single value, got shape {tt.shape}")
+    tt = positive_array("travel_times", np.broadcast_to(tt, z.shape))
     zr = positive("rod_impedance", rod_impedance, "N s/m")
     v = positive("impact_velocity", impact_velocity, "m/s")
     duration = max(float(np.max(ta, initial=0.0)), 0.0)

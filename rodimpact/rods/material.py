@@ -27,6 +27,9 @@ class Material:
     name: str = ""
 
     def __post_init__(self) -> None:
+        if not isinstance(self.name, str):
+            raise TypeError(f"Material.name: must be a string, got {type(self.name).__name__} {self.name!r} "
+                            "(Material takes youngs_modulus, density, name; the Poisson ratio is not used in 1D)")
         object.__setattr__(self, "youngs_modulus", positive("youngs_modulus", self.youngs_modulus, "Pa"))
         object.__setattr__(self, "density", positive("density", self.density, "kg/m^3"))
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Optional, Sequence
 
@@ -48,6 +49,9 @@ class Rod:
     native: Optional[ImpedanceProfile] = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
+        if isinstance(self.segments, (str, bytes)) or not isinstance(self.segments, (Segment, Iterable)):
+            raise TypeError(f"Rod.segments: must be a Segment or a list of Segments (Cylinder, Cone, ...), got "
+                            f"{type(self.segments).__name__}")
         segs = tuple(self.segments) if not isinstance(self.segments, Segment) else (self.segments,)
         if not segs:
             raise ValueError("Rod.segments: needs at least one segment")

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import rodimpact as ri
+from rodimpact._validate import physical_memory
 
 DT = 1e-6
 
@@ -32,6 +33,11 @@ def rods():
      "ForceEnd.force: evaluates to nan"),
     (dict(velocities=[1.0, 0.0], duration=1e-4, backend="fortran"), "backend: must be"),
     (dict(velocities=[1.0, 0.0], duration=1e-4, snapshot_times=[1.0]), "snapshot_times: must lie in"),
+    (dict(velocities=[1.0, 0.0], steps=10**12), "steps: at most"),
+    (dict(velocities=[1.0, 0.0], duration=1e308), "duration: .* steps of dt"),
+    (dict(velocities=[1.0, 0.0], duration=1e-4, probes=[ri.Probe("p", "nope", 0.0)]),
+     r"probes\[0\].rod: no rod is named 'nope'"),
+    (dict(velocities=[1.0, 0.0], steps=2, elements=(True, 10)), "elements: rod index"),
 ])
 def test_bad_simulation_input(rods, kwargs, match):
     with pytest.raises((ValueError, TypeError), match=match):
@@ -49,3 +55,36 @@ def test_bearing_span_without_nodes():
     with pytest.raises(ValueError, match="no lattice node"):
         ri.simulate([rod], velocities=[1.0], duration=1e-4, dt=2e-5,
                     loads=[ri.Bearings(0, [(0.22, 0.25)], 0.3)])
+
+
+@pytest.mark.skipif(physical_memory() is None, reason="the platform does not report its memory (no sysconf)")
+def test_runs_too_large_for_the_memory_are_refused_before_allocating():
+    rods = [ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(1.0, 0.04)])]
+    with pytest.raises(ValueError, match="dt: .* lattice elements .* more than this machine's memory"):
+        ri.simulate(rods, [1.0, 0.0], steps=2, elements=10**12)
+    with pytest.raises(ValueError, match="dt: .* lattice elements"):
+        ri.simulate(rods, [1.0, 0.0], steps=2, resolution=1e-13)
+    with pytest.raises(ValueError, match="steps: the histories .* record_every"):
+        ri.simulate(rods, [1.0, 0.0], steps=1_999_000_000, elements=2,
+                    probes=[ri.Probe(f"p{i}", 1, 0.5) for i in range(20)])
+
+
+def test_probe_fields_are_checked_and_rods_may_be_named():
+    with pytest.raises(TypeError, match="Probe.position: must be a real number in m, got str '110 mm'"):
+        ri.Probe("p", 1, "110 mm")
+    with pytest.raises(TypeError, match="Probe.position"):
+        ri.Probe("p", 1, None)
+    with pytest.raises(ValueError, match="Probe.rod: must be a rod index >= 0 or a rod name"):
+        ri.Probe("p", True, 0.1)
+    assert ri.Probe("p", np.int64(1), np.float32(0.5)).rod == 1
+    rods = [ri.Rod([ri.Cylinder(0.2, 0.04)], name="striker"), ri.Rod([ri.Cylinder(1.0, 0.04)], name="bar")]
+    by_name = ri.simulate(rods, [5.0, 0.0], duration=3e-4, probes=[ri.Probe("g", "bar", 0.5)])
+    by_index = ri.simulate(rods, [5.0, 0.0], duration=3e-4, probes=[ri.Probe("g", 1, 0.5)])
+    assert by_name.probes["g"].probe == by_index.probes["g"].probe
+    assert np.array_equal(by_name.probes["g"].force, by_index.probes["g"].force)
+
+
+def test_elements_accepts_numpy_integers():
+    rods = [ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(1.0, 0.04)])]
+    res = ri.simulate(rods, [5.0, 0.0], steps=10, elements=(np.int64(1), np.int32(10)))
+    assert res.lattice.rod_start[2] - res.lattice.rod_start[1] == 10

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import rodimpact as ri
+from rodimpact._validate import physical_memory
 from rodimpact.inverse import SynthesisWarning, synthesize
 
 DT = 1.93e-6
@@ -70,6 +71,24 @@ def test_other_bad_arguments():
         _syn(-1e5 * np.ones(20), striker_velocity="fast")
     with pytest.raises(ValueError, match="rule: must be one of"):
         _syn(lambda t: -1e5 + 0 * t, rule="left")
+    # options that only matter with position= are still checked without it (a typo must not pass)
+    with pytest.raises(ValueError, match="quantity: must be one of"):
+        _syn(-1e5 * np.ones(20), quantity="forse")
+    with pytest.raises(ValueError, match="toeplitz_method: must be one of"):
+        _syn(-1e5 * np.ones(20), toeplitz_method="ff")
+    for bad in (float("nan"), -1.0):
+        with pytest.raises(ValueError, match="precision_warning: must be"):
+            _syn(-1e5 * np.ones(20), precision_warning=bad)
+    with pytest.raises(ValueError, match=r"target: the force function returned shape \(3,\)"):
+        _syn(lambda t: -np.ones(3))
+
+
+@pytest.mark.skipif(physical_memory() is None, reason="the platform does not report its memory (no sysconf)")
+def test_sizes_beyond_the_memory_are_refused_before_allocating():
+    with pytest.raises(ValueError, match="n: .* striker elements would need .* GiB"):
+        _syn(lambda t: -1e5 + 0 * t, n=10**12)
+    with pytest.raises(ValueError, match="dt: .* lattice elements"):
+        _syn(lambda t: -1e5 + 0 * t, struck=ri.Rod([ri.Cylinder(1.0, 0.05)]), dt=1e-16, n=10)
 
 
 def test_tensile_impact_force_required_at_a_position():

@@ -142,3 +142,8 @@ def test_bad_input_names_the_quantity():
         rr.lundberg_lesser_impedance(-1.0, Z, 1e3, 1e-4, V)
     with pytest.raises(TypeError, match="mass"):
         rr.rigid_mass_force(0.0, "2 kg", Z, V)
+
+
+def test_stepped_striker_needs_one_travel_time_per_step():
+    with pytest.raises(ValueError, match=r"travel_times: one per impedance \(2\) or a single value"):
+        rr.stepped_striker_force([1e-5], [4e4, 3e4], [1e-5] * 3, 4e4, 5.0)

@@ -67,6 +67,8 @@ def test_from_impedance_rod():
     (lambda: ri.AreaFunction(1.0, lambda s: 1e-3 - 2e-3 * s), "area must be finite and > 0"),
     (lambda: ri.TabulatedProfile([0, 0.2, 0.1], diameter=[1, 1, 1]), "strictly increasing"),
     (lambda: ri.Rod([]), "at least one segment"),
+    (lambda: ri.Rod(None), "Rod.segments: must be a Segment or a list of Segments"),
+    (lambda: ri.Material(210e9, 7840, 0.3), "Material.name: must be a string"),
     (lambda: ri.Rod.from_impedance([1e4, -1e4], dt=1e-6), r"impedances: every entry must be > 0"),
     (lambda: ri.Rod.from_impedance([1e4, float("nan")], dt=1e-6), "impedances: must be finite"),
     (lambda: ri.Bearings(0, [(0.0, 0.5), (0.4, 0.8)], 0.3), "must not overlap"),
