@@ -56,12 +56,40 @@ def _report(summary: dict, text: str, args: argparse.Namespace, extra: str = "")
 
 
 def _check_out(path: Path, force: bool) -> None:
+    """Refuse an output folder before any work is done: non-empty without --force, holding files rodimpact did
+    not write, or the current working folder (see :func:`rodimpact.io.results.check_output_folder`)."""
     from .io.results import OutputExistsError, check_output_folder
 
     try:
         check_output_folder(path, force)
     except OutputExistsError as exc:
         raise InputError(str(exc)) from None
+
+
+def _file_target(output: Optional[str], default: str) -> Path:
+    """The file ``-o`` names: ``default`` in the current folder without ``-o``, or inside ``output`` when that is
+    an existing folder or ends in a path separator (``-o newdir/``)."""
+    if output is None:
+        return Path(default)
+    seps = tuple(s for s in (os.sep, os.altsep) if s)
+    if output.endswith(seps) or Path(output).is_dir():
+        return Path(output) / default
+    return Path(output)
+
+
+def _write_file(path: Path, text: str, force: bool, what: str = "file") -> None:
+    """Write a text file for the user: refuse to replace one without --force, never write over a folder, and
+    turn file-system errors into input errors naming the path."""
+    from .io.results import write_text_atomic
+
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder, not a {what}; give a file name with -o")
+    if (path.exists() or path.is_symlink()) and not force:
+        raise InputError(f"{path}: exists; choose another file with -o or use --force to replace it")
+    try:
+        write_text_atomic(path, text)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot be written ({exc.strerror or exc})") from None
 
 
 # ============================================================================================ simulate
@@ -86,17 +114,13 @@ def cmd_simulate(args: argparse.Namespace) -> int:
 
 # ============================================================================================ init
 def cmd_init(args: argparse.Namespace) -> int:
-    from .io.results import write_text_atomic
-
     kind = args.kind
     templates = _templates()
     if kind not in templates:
         raise InputError(f"init: no template {kind!r}; available: {', '.join(templates)}")
     text, default = templates[kind]
-    path = Path(args.output or default)
-    if path.exists() and not args.force:
-        raise InputError(f"{path}: exists; choose another file with -o or use --force to replace it")
-    write_text_atomic(path, text)
+    path = _file_target(args.output, default)
+    _write_file(path, text, args.force, "model file" if kind == "simulate" else "spec file")
     if not args.quiet:
         cmd = "simulate" if kind == "simulate" else "synthesize"
         print(f"wrote {path}; edit it, then run:  rodimpact {cmd} {path}")
@@ -147,16 +171,20 @@ def cmd_examples(args: argparse.Namespace) -> int:
             print(model_text(f))
         return EXIT_OK
     if action == "copy":
-        from .io.results import write_text_atomic
-
-        folder = Path(args.output or ".")
-        targets = [folder / f for f in ex.models] if args.output is None or folder.is_dir() or len(ex.models) > 1 \
-            else [folder]
+        if len(ex.models) == 1:
+            targets = [_file_target(args.output, ex.models[0])]
+        else:                       # several files: -o names a folder
+            targets = [Path(args.output or ".") / f for f in ex.models]
+            if args.output is not None and Path(args.output).exists() and not Path(args.output).is_dir():
+                raise InputError(f"{args.output}: is a file; example {ex.name!r} has {len(ex.models)} model files, "
+                                 f"so -o names a folder to copy them into")
         for t in targets:
-            if t.exists() and not args.force:
+            if t.is_dir():
+                raise InputError(f"{t}: is a folder, not a model file; give a file name with -o")
+            if (t.exists() or t.is_symlink()) and not args.force:
                 raise InputError(f"{t}: exists; use --force to replace it")
         for f, t in zip(ex.models, targets):
-            write_text_atomic(t, model_text(f))
+            _write_file(t, model_text(f), True)
             if not args.quiet:
                 print(f"wrote {t}")
         return EXIT_OK
@@ -201,7 +229,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     def output_flags(sp: argparse.ArgumentParser, what: str) -> None:
         sp.add_argument("-o", "--output", metavar="OUTDIR", help=f"output folder (default: results/{what})")
-        sp.add_argument("--force", action="store_true", help="replace an existing, non-empty output folder")
+        sp.add_argument("--force", action="store_true", help="replace an existing output folder written by "
+                                                             "rodimpact (never one holding other files)")
         sp.add_argument("--quiet", action="store_true", help="print nothing but errors")
         sp.add_argument("--json", action="store_true", help="print the summary as JSON on stdout")
         sp.add_argument("--no-plots", action="store_true", help="write no plots (faster)")
@@ -216,7 +245,9 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Write a fully commented template model (simulate) or synthesis spec "
                                    "(synthesize) that runs as it is.")
     i.add_argument("kind", nargs="?", default="simulate", help="simulate (default) or synthesize")
-    i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml)")
+    i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml; "
+                                                          "an existing folder or a name ending in / means "
+                                                          "that file inside it)")
     i.add_argument("--force", action="store_true", help="replace an existing file")
     i.add_argument("--quiet", action="store_true", help="print nothing but errors")
     i.set_defaults(func=cmd_init)
@@ -239,6 +270,12 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def _is_output_exists(exc: BaseException) -> bool:
+    from .io.results import OutputExistsError
+
+    return isinstance(exc, OutputExistsError)
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Entry point of the ``rodimpact`` command; returns the exit code."""
     parser = build_parser()
@@ -255,6 +292,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         _err("interrupted; no partial results were written")
         return 130
     except Exception as exc:  # a bug: say so, keep the traceback available
+        if _is_output_exists(exc):      # raised late: the output folder changed while we computed
+            _err(str(exc))
+            return EXIT_INPUT
         if os.environ.get("RODIMPACT_DEBUG"):
             traceback.print_exc()
         _err(f"internal error: {type(exc).__name__}: {exc}\n(this is a bug in rodimpact; set RODIMPACT_DEBUG=1 "

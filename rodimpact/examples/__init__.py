@@ -70,7 +70,8 @@ def run_example(name: str, outdir: str | Path, *, overwrite: bool = False, plots
                 progress: Optional[bool] = False) -> list[tuple[str, Any, Path]]:
     """Run every model of example ``name`` and write results and plots to ``outdir`` (sub-folders named after the
     model files when there are several, plus ``energy-comparison.png``). Returns (model file, result, folder)
-    per model. The whole folder is written atomically and never replaces existing results unless ``overwrite``."""
+    per model. The whole folder is written atomically and never replaces existing results unless ``overwrite``;
+    even then only a folder rodimpact wrote (:func:`rodimpact.io.results.check_output_folder`)."""
     from ..io.results import AtomicFolder, save
     from ..plotting import plot_energy_comparison
 
@@ -80,6 +81,7 @@ def run_example(name: str, outdir: str | Path, *, overwrite: bool = False, plots
         for i, file in enumerate(ex.models):
             model = load_example(name, i)
             result = model.simulate(progress=progress)
+            # into the fresh temporary folder itself (it holds only AtomicFolder's marker) or a new sub-folder
             sub = tmp if len(ex.models) == 1 else tmp / Path(file).stem
             save(result, sub, model=model, overwrite=True, plots=model.output.plots if plots else (),
                  csv=model.output.csv, fields=model.output.fields,

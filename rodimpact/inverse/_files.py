@@ -7,6 +7,8 @@ import tempfile
 from pathlib import Path
 from typing import Callable
 
+from .._permissions import normal_mode
+
 
 def write_new_file(path: str | Path, write: Callable[[Path], None], overwrite: bool = False) -> Path:
     """Call ``write(tmp)`` on a temporary file next to ``path`` and move it into place atomically.
@@ -19,10 +21,12 @@ def write_new_file(path: str | Path, write: Callable[[Path], None], overwrite: b
         raise FileExistsError(f"{path}: exists; choose another file name or pass overwrite=True to replace it")
     if not path.parent.is_dir():
         raise FileNotFoundError(f"{path.parent}: no such folder to write {path.name} into")
+    mode = normal_mode(path if path.is_file() else None)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     os.close(fd)
     try:
         write(Path(tmp))
+        os.chmod(tmp, mode)      # mkstemp's 0o600 -> what open() would have given
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

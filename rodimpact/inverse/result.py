@@ -322,7 +322,30 @@ class SynthesisResult:
         :meth:`verify` is unavailable on a loaded result."""
         import xarray as xr
 
-        ds = xr.load_dataset(Path(path), engine=_netcdf_engine())
+        p = Path(path)
+        if not p.exists():
+            raise FileNotFoundError(f"{p}: no such file (a synthesis result written by SynthesisResult.save)")
+        if p.is_dir():
+            raise IsADirectoryError(f"{p}: is a folder, not a synthesis result file (e.g. synthesis.nc)")
+        try:
+            with open(p, "rb") as fh:
+                magic = fh.read(4)
+            engine = "scipy" if magic.startswith(b"CDF") else _netcdf_engine()
+            ds = xr.load_dataset(p, engine=engine)
+        except PermissionError:
+            raise PermissionError(f"{p}: no permission to read it") from None
+        except (OSError, ValueError, KeyError, IndexError, TypeError):
+            raise ValueError(f"{p}: not a rodimpact synthesis result (not readable as NetCDF); the file is "
+                             f"damaged or was not written by SynthesisResult.save") from None
+        try:
+            return cls._from_dataset(ds)
+        except (KeyError, IndexError, TypeError, ValueError) as exc:
+            what = f"no {exc}" if isinstance(exc, KeyError) else "malformed data"
+            raise ValueError(f"{p}: not a complete rodimpact synthesis result ({what}); the file is damaged or was "
+                             f"not written by SynthesisResult.save") from None
+
+    @classmethod
+    def _from_dataset(cls, ds) -> "SynthesisResult":
         a = ds.attrs
         failure = None
         if "failure_element" in a:

@@ -27,6 +27,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .. import __version__
+from .._validate import fits_in_memory
 from ..direct.result import Probe, SimulationResult
 from ..rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd,
                                NonReflectingEnd, SpringEnd, VelocityEnd)
@@ -363,9 +364,15 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
         z = np.asarray(cols["impedance"])
     else:
         parts = []
+        total = 0
         for i, run in enumerate(e["runs"]):
             rp = f"{path}.runs[{i}]"
             count = _run_count(run, rp, c * dt)
+            total += count
+            # each element becomes a lattice element (about 128 bytes of state and history, as lattice.py counts)
+            fits_in_memory(f"{rp}.{'count' if run['count'] is not None else 'length'}", _BYTES_PER_ELEMENT * total,
+                           f"{total:,} elements" + (f" (runs[0..{i}])" if i else ""),
+                           "use fewer elements (a larger dt or element_length, shorter runs)")
             if run["impedance"] is not None:
                 if run["impedance_start"] is not None or run["impedance_end"] is not None:
                     raise ModelError(f"{rp}: give impedance, or impedance_start and impedance_end, not both")
@@ -378,6 +385,9 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
     if z.size == 0:
         raise ModelError(f"{path}: needs at least one element")
     return _wrap(path, lambda: Rod.from_impedance(z, dt, c, density=e["density"], name=name))
+
+
+_BYTES_PER_ELEMENT = 128.0
 
 
 def _run_count(run: dict, path: str, element_length: float) -> int:
@@ -462,6 +472,14 @@ def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, ne
         text = Path(path).read_text(encoding="utf-8-sig")
     except FileNotFoundError:
         raise ModelError(f"{key}: no such file {str(path)!r}") from None
+    except IsADirectoryError:
+        raise ModelError(f"{key}: {str(path)!r} is a folder, not a CSV file") from None
+    except PermissionError:
+        raise ModelError(f"{key}: no permission to read {str(path)!r}") from None
+    except UnicodeDecodeError as exc:
+        raise ModelError(f"{key}: {str(path)!r} is not a text (CSV) file ({exc.reason})") from None
+    except OSError as exc:
+        raise ModelError(f"{key}: cannot read {str(path)!r} ({exc.strerror or exc})") from None
     rows = [r for r in csv.reader(text.splitlines()) if r and any(c.strip() for c in r)]
     rows = [r for r in rows if not r[0].lstrip().startswith("#")]
     if len(rows) < 2:

@@ -3,7 +3,11 @@
 
 Folder layout (all files are written into a temporary folder next to the target and moved into place at the
 end, so an interrupted run never leaves half-written results; an existing non-empty folder is only replaced
-with ``overwrite=True``):
+with ``overwrite=True``, and only if rodimpact wrote it: see :func:`check_output_folder`):
+
+``.rodimpact-output``
+    Marks the folder as written by rodimpact and lists what was written (:data:`MARKER`). ``overwrite=True``
+    (``--force``) replaces a folder only when it holds this file and nothing that is not listed in it.
 
 ``model.toml``
     The model as a self-contained file in SI numbers (written by :func:`rodimpact.io.model.dump_model`);
@@ -39,6 +43,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .. import __version__
+from .._permissions import normal_mode
 from ..direct.result import (EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
                              SimulationResult)
 from ..lattice.discretize import RodDiscretization
@@ -49,18 +54,36 @@ RESULT_FILE = "result.nc"
 
 
 class OutputExistsError(FileExistsError):
-    """The output folder exists and is not empty, and overwriting was not requested."""
+    """The output folder exists and may not be replaced: it is not empty and overwriting was not requested, or it
+    holds files rodimpact did not write, or it is (or contains) the current working folder."""
+
+
+MARKER = ".rodimpact-output"
+"""Name of the file :class:`AtomicFolder` writes into every output folder: line 1 says what wrote the folder, the
+other lines list its entries (relative paths, ``/``-separated). ``overwrite=True`` / ``--force`` only replaces a
+folder that holds this file and nothing but the entries it lists."""
+
+_MARKER_NOTE = (f"This folder was written by rodimpact (version {__version__}); rodimpact --force / overwrite=True "
+                f"may replace it as a whole. Entries written:")
 
 
 # ============================================================================================ atomic writes
 def write_text_atomic(path: str | Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in the same folder and an atomic rename."""
+    """Write ``text`` to ``path`` through a temporary file in the same folder and an atomic rename.
+
+    The file gets normal permissions (0o666 less the umask, or those of the file it replaces), not the 0o600 of a
+    temporary file. ``path`` may not be a folder (:class:`IsADirectoryError` naming it).
+    """
     p = Path(path)
+    if p.is_dir():
+        raise IsADirectoryError(f"{p}: is a folder, not a file; give a file name")
     p.parent.mkdir(parents=True, exist_ok=True)
+    mode = normal_mode(p if p.is_file() else None)
     fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent)
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
+        os.chmod(tmp, mode)
         os.replace(tmp, p)
     except BaseException:
         if os.path.exists(tmp):
@@ -68,29 +91,109 @@ def write_text_atomic(path: str | Path, text: str) -> None:
         raise
 
 
+def _contains_cwd(folder: Path) -> bool:
+    """True if ``folder`` is the current working folder or one of its parents."""
+    try:
+        cwd = Path.cwd().resolve()
+        target = folder.resolve()
+    except OSError:
+        return False
+    return target == cwd or target in cwd.parents
+
+
+def _entries(folder: Path) -> set[str]:
+    """Every file, folder and link below ``folder`` as relative ``/``-separated paths (links are not followed).
+    Raises ``OSError`` if part of it cannot be read (so that nothing unseen is ever replaced)."""
+    def fail(exc: OSError) -> None:
+        raise exc
+
+    out: set[str] = set()
+    for root, dirs, files in os.walk(folder, onerror=fail):
+        rel = Path(root).relative_to(folder)
+        for name in dirs + files:
+            out.add((rel / name).as_posix())
+    return out
+
+
+def _written_entries(folder: Path) -> Optional[set[str]]:
+    """The entries the marker of ``folder`` lists, or ``None`` when it has no readable marker."""
+    try:
+        lines = (folder / MARKER).read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError):
+        return None
+    if not lines or not lines[0].startswith("This folder was written by rodimpact"):
+        return None
+    return {ln for ln in lines[1:] if ln}
+
+
+def _write_marker(folder: Path, entries: Sequence[str] = ()) -> None:
+    (folder / MARKER).write_text("\n".join([_MARKER_NOTE, *sorted(entries)]) + "\n", encoding="utf-8")
+
+
 def check_output_folder(outdir: str | Path, overwrite: bool) -> Path:
-    """Raise :class:`OutputExistsError` if ``outdir`` holds anything and ``overwrite`` is false."""
+    """Raise :class:`OutputExistsError` unless ``outdir`` may be written: it does not exist, or is an empty folder,
+    or -- with ``overwrite`` -- a folder written by rodimpact (it holds the :data:`MARKER` file and no entries
+    other than those the marker lists). Never the current working folder or a folder containing it."""
     out = Path(outdir)
-    if out.exists():
-        if not out.is_dir():
-            raise OutputExistsError(f"{out}: exists and is not a folder; choose another output folder")
-        if any(out.iterdir()) and not overwrite:
-            raise OutputExistsError(f"{out}: exists and is not empty; choose another output folder or use "
-                                    f"--force (overwrite=True) to replace it")
+    if not (out.exists() or out.is_symlink()):
+        return out
+    if not out.is_dir():
+        raise OutputExistsError(f"{out}: exists and is not a folder; choose another output folder")
+    if _contains_cwd(out):
+        raise OutputExistsError(f"{out}: is the current working folder or contains it; results are written as a "
+                                f"whole folder that replaces the target, so give a new sub-folder, e.g. -o "
+                                f"{Path('results') / 'run1'}")
+    try:
+        if not any(out.iterdir()):
+            return out
+        written = _written_entries(out)
+        if not overwrite:
+            if written is None:
+                raise OutputExistsError(f"{out}: exists and is not empty, and holds files rodimpact did not write; "
+                                        f"choose another output folder (--force only replaces earlier rodimpact "
+                                        f"results)")
+            raise OutputExistsError(f"{out}: exists and is not empty; choose another output folder or use --force "
+                                    f"(overwrite=True) to replace these earlier rodimpact results")
+        if written is None:
+            raise OutputExistsError(f"{out}: holds files rodimpact did not write (it has no {MARKER} file); --force "
+                                    f"(overwrite=True) only replaces earlier rodimpact results, so choose another "
+                                    f"output folder")
+        extra = sorted(_entries(out) - written - {MARKER})
+    except OSError as exc:
+        if isinstance(exc, OutputExistsError):
+            raise
+        raise OutputExistsError(f"{out}: cannot be read ({exc.strerror or exc}: {exc.filename}); choose another "
+                                f"output folder") from None
+    if extra:
+        shown = ", ".join(extra[:5]) + (f" and {len(extra) - 5} more" if len(extra) > 5 else "")
+        raise OutputExistsError(f"{out}: holds files rodimpact did not write ({shown}); --force (overwrite=True) "
+                                f"only replaces earlier rodimpact results, so move them away or choose another "
+                                f"output folder")
     return out
 
 
 class AtomicFolder:
-    """Context manager: yields a temporary folder; on success it replaces ``target`` in one rename."""
+    """Context manager: yields a temporary folder; on success it replaces ``target`` in one rename.
+
+    The folder gets a :data:`MARKER` file listing what was written, so that a later ``overwrite=True`` can tell
+    rodimpact's results from a user's files (:func:`check_output_folder`, checked on entry and again just before
+    the rename).
+    """
 
     def __init__(self, target: str | Path, overwrite: bool = False) -> None:
         self.target = check_output_folder(target, overwrite)
+        self.overwrite = overwrite
         self.tmp: Optional[Path] = None
 
     def __enter__(self) -> Path:
         parent = self.target.resolve().parent
         parent.mkdir(parents=True, exist_ok=True)
         self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.target.name}.tmp-", dir=parent))
+        try:
+            _write_marker(self.tmp)
+        except BaseException:
+            shutil.rmtree(self.tmp, ignore_errors=True)
+            raise
         return self.tmp
 
     def __exit__(self, exc_type, exc, tb) -> bool:
@@ -98,8 +201,21 @@ class AtomicFolder:
         if exc_type is not None:
             shutil.rmtree(self.tmp, ignore_errors=True)
             return False
+        try:
+            _write_marker(self.tmp, _entries(self.tmp) - {MARKER})
+            check_output_folder(self.target, self.overwrite)    # files may have appeared while we computed
+        except OutputExistsError as err:
+            kept = Path(tempfile.mkdtemp(prefix=f"{self.target.name}-new-", dir=self.tmp.parent))
+            os.rmdir(kept)
+            os.replace(self.tmp, kept)
+            os.chmod(kept, normal_mode(folder=True))
+            raise OutputExistsError(f"{err} (it changed while rodimpact was working; the new results are in "
+                                    f"{kept})") from None
+        except BaseException:
+            shutil.rmtree(self.tmp, ignore_errors=True)
+            raise
         target = self.target.resolve()
-        os.chmod(self.tmp, 0o755)
+        os.chmod(self.tmp, normal_mode(folder=True))
         if target.exists():
             old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
             os.rmdir(old)
@@ -416,7 +532,9 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
 
     ``model`` (a :class:`~rodimpact.io.model.Model`) is written as ``model.toml``; by default one is built
     from the result (:func:`~rodimpact.io.model.model_from_result`). ``plots`` names the figures to write
-    (see :func:`rodimpact.plotting.save_plots`). Refuses to replace a non-empty folder unless ``overwrite``.
+    (see :func:`rodimpact.plotting.save_plots`). Refuses to replace a non-empty folder unless ``overwrite``, and
+    even then refuses a folder holding files rodimpact did not write, or the current working folder
+    (:class:`OutputExistsError`, see :func:`check_output_folder`).
     ``engine``: the xarray NetCDF engine (default: h5netcdf with h5py, else netcdf4, else scipy).
     """
     from .model import ModelWriteError, dump_model, model_from_result
@@ -472,18 +590,41 @@ def _events(v: dict[str, np.ndarray], n_j: int) -> tuple[JunctionEvents, ...]:
 def load(outdir: str | Path) -> SimulationResult:
     """Read a folder written by :func:`save` back into a :class:`~rodimpact.SimulationResult` with identical
     arrays. The system is rebuilt from ``model.toml`` (``None`` when the folder has none)."""
-    import xarray as xr
-
-    from .model import load_model
-
     folder = Path(outdir)
     nc = folder / RESULT_FILE
     if not nc.is_file():
         raise FileNotFoundError(f"{folder}: no {RESULT_FILE} here; is this a folder written by rodimpact "
                                 f"simulate / rodimpact.save?")
-    ds = xr.load_dataset(nc, engine=_read_engine(nc), decode_times=False, decode_timedelta=False, mask_and_scale=False)
+    ds = _open_result(nc)
     if int(ds.attrs.get("format_version", 0)) > FORMAT_VERSION:
         raise ValueError(f"{nc}: written by a newer rodimpact (format {ds.attrs['format_version']}); upgrade")
+    try:
+        return _from_dataset(ds, folder, nc)
+    except (KeyError, IndexError, TypeError, json.JSONDecodeError) as exc:
+        what = f"no {exc}" if isinstance(exc, KeyError) else "malformed data"
+        raise ValueError(f"{nc}: not a complete rodimpact result ({what}); the file is damaged or was not written "
+                         f"by rodimpact.save") from None
+
+
+def _open_result(nc: Path):
+    """``nc`` as an xarray Dataset; a file that is no NetCDF (or a damaged one) gives a ValueError naming it."""
+    import xarray as xr
+
+    try:
+        engine = _read_engine(nc)
+        return xr.load_dataset(nc, engine=engine, decode_times=False, decode_timedelta=False, mask_and_scale=False)
+    except PermissionError:
+        raise PermissionError(f"{nc}: no permission to read it") from None
+    except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
+        if isinstance(exc, FileNotFoundError):
+            raise FileNotFoundError(f"{nc}: no such file") from None
+        raise ValueError(f"{nc}: not a rodimpact result file (not readable as NetCDF); it is damaged or was not "
+                         f"written by rodimpact.save") from None
+
+
+def _from_dataset(ds, folder: Path, nc: Path) -> SimulationResult:
+    from .model import load_model
+
     v = {k: ds[k].values for k in ds.variables}
     dt = float(ds.attrs["dt"])
     time = v["time"]

@@ -65,13 +65,14 @@ TARGET_TYPES = {
         _q("duration", "time", "Time span the target covers (sets the number of elements if "
                                "`striker.elements` is not given).", required=False)) + _COMMON),
     "samples": Table("samples", "Samples interpolated linearly.", (
-        Field("time", "quantities", "Sample times.", dimension="time", sign="non_negative"),
-        Field("force", "quantities", "Forces (tension positive).", dimension="force", sign=None)) + _COMMON),
+        Field("time", "quantities", "Sample times.", dimension="time", sign="non_negative", required=True),
+        Field("force", "quantities", "Forces (tension positive).", dimension="force", sign=None,
+              required=True)) + _COMMON),
     "file": Table("file", "Samples from a CSV file with two columns, time and force (units in the header, e.g. "
                           "`time [ms]`, `force [kN]`; default SI).", (
         Field("file", "string", "CSV file, relative to the spec.", required=True),) + _COMMON),
     "windows": Table("windows", "The window values X_1..X_n directly.", (
-        Field("values", "quantities", "Window values.", dimension="force", sign=None),) + _COMMON),
+        Field("values", "quantities", "Window values.", dimension="force", sign=None, required=True),) + _COMMON),
 }
 
 STRIKER = Table("striker", "The striker to be found.", (
@@ -177,6 +178,12 @@ def load_spec(path: str | Path) -> SynthesisSpec:
         text = p.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise ModelError(f"{p}: no such spec file") from None
+    except IsADirectoryError:
+        raise ModelError(f"{p}: is a folder, not a spec file") from None
+    except PermissionError:
+        raise ModelError(f"{p}: no permission to read the spec file") from None
+    except UnicodeDecodeError as exc:
+        raise ModelError(f"{p}: not a text file ({exc.reason})") from None
     spec = loads_spec(text, p.parent, str(p))
     object.__setattr__(spec, "source", p)
     return spec
@@ -330,7 +337,8 @@ def format_summary(summary: dict[str, Any], spec: SynthesisSpec) -> str:
 
 def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite: bool = False,
          plots: bool = True) -> dict[str, Any]:
-    """Write a synthesis to ``outdir`` (atomically; refuses a non-empty folder unless ``overwrite``):
+    """Write a synthesis to ``outdir`` (atomically; refuses a non-empty folder unless ``overwrite``, and even then
+    one holding files rodimpact did not write, see :func:`rodimpact.io.results.check_output_folder`):
     ``spec.toml`` (the spec as given), ``report.txt`` (per-element table, thesis Tabs. 4.3/4.4),
     ``striker.csv`` (profile), ``synthesis.nc`` (all per-element arrays), ``summary.json``, ``plots/`` and,
     when verified, ``verification/`` -- the direct simulation of the synthesized striker hitting the struck

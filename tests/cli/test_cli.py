@@ -96,7 +96,8 @@ def test_simulate_writes_results_plots_and_a_summary(tmp_path):
     out = tmp_path / "results" / "m"                      # default output folder
     assert "peak contact force    -" in p.stdout and f"results written to {Path('results') / 'm'}" in p.stdout
     names = {f.name for f in out.iterdir()}
-    assert names == {"model.toml", "summary.json", "signals.csv", "energy.csv", "result.nc", "plots"}
+    assert names == {"model.toml", "summary.json", "signals.csv", "energy.csv", "result.nc", "plots",
+                     ".rodimpact-output"}                 # the marker that lets --force replace this folder later
     assert {f.name for f in (out / "plots").iterdir()} == {"forces.png", "profile.png", "snapshots.png", "xt.png",
                                                            "energy.png"}
     summary = json.loads((out / "summary.json").read_text())
@@ -212,6 +213,8 @@ def test_multi_model_example_writes_subfolders_and_comparison(tmp_path, monkeypa
     assert (tmp_path / "e" / "energy-comparison.png").is_file()
     for sub in ("complex-example-friction", "complex-example-no-friction"):
         assert (tmp_path / "e" / sub / "result.nc").is_file()
+    ex.run_example("complex-example-energy", tmp_path / "e", overwrite=True, plots=False)   # its own results
+    assert not (tmp_path / "e" / "energy-comparison.png").exists()
 
 
 def test_internal_errors_exit_1_and_say_it_is_a_bug(tmp_path, monkeypatch, capsys):

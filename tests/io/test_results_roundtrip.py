@@ -138,8 +138,14 @@ def test_existing_output_is_never_silently_overwritten(tmp_path):
     with pytest.raises(OutputExistsError, match="exists and is not empty"):
         save(res, out)
     assert os.listdir(out) == ["precious.txt"]
-    save(res, out, overwrite=True)
-    assert not (out / "precious.txt").exists() and (out / "result.nc").is_file()
+    with pytest.raises(OutputExistsError, match="holds files rodimpact did not write"):
+        save(res, out, overwrite=True)     # overwrite only replaces folders rodimpact wrote
+    assert os.listdir(out) == ["precious.txt"]
+    (out / "precious.txt").unlink()
+    save(res, out)
+    (out / "result.nc").write_bytes(b"old")
+    save(res, out, overwrite=True)         # earlier results are replaced
+    assert (out / "result.nc").read_bytes() != b"old" and load(out).n_steps == res.n_steps
     assert [p for p in os.listdir(tmp_path) if p.startswith(".")] == []     # no temporary folders left
     empty = tmp_path / "empty"
     empty.mkdir()
@@ -157,12 +163,14 @@ def test_failed_save_leaves_nothing_behind(tmp_path, monkeypatch):
     with pytest.raises(RuntimeError, match="disk full"):
         save(three_rod_result(), tmp_path / "out")
     assert os.listdir(tmp_path) == []
+    monkeypatch.undo()
     out = tmp_path / "old"
-    out.mkdir()
-    (out / "a.txt").write_text("old results")
+    save(three_rod_result(), out)
+    before = {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()}
+    monkeypatch.setattr(results, "_csv_text", boom)
     with pytest.raises(RuntimeError):
         save(three_rod_result(), out, overwrite=True)
-    assert (out / "a.txt").read_text() == "old results"
+    assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before
     assert sorted(os.listdir(tmp_path)) == ["old"]
 
 
