@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Optional, Sequence
 
+from ._common import check_dpi, check_figure_pixels, check_output_folder, check_result, check_snapshot_times
 from .animation import animate_force, pillow_available
 from .fields import plot_snapshots, plot_xt
 from .histories import plot_energy, plot_energy_comparison, plot_forces
@@ -27,19 +28,27 @@ def save_plots(result: Any, folder: str | Path, which: Sequence[str] = ("forces"
                overwrite: bool = False) -> tuple[list[Path], list[str]]:
     """Write the named plots into ``folder``; returns the files written and notes on plots that were skipped
     (no snapshots recorded, pillow missing for the animation). Existing plot files are refused unless
-    ``overwrite=True``."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    written: list[Path] = []
-    notes: list[str] = []
-    for name in which:
+    ``overwrite=True``. ``snapshot_times`` (s) must lie within the recorded snapshot times (see
+    :func:`plot_snapshots`). Arguments are checked before anything is written."""
+    check_result(result)
+    names = [which] if isinstance(which, str) else list(which)
+    for name in names:
         if name not in PLOT_FILES:
             raise ValueError(f"plots: unknown plot {name!r}; valid: {', '.join(PLOT_FILES)}")
+    dpi = check_dpi(dpi)
+    if snapshot_times is not None and "snapshots" in names and result.snapshots is not None:
+        check_snapshot_times(result.snapshots.time, snapshot_times, result.dt, "snapshot_times")
+    folder = Path(folder)
+    check_output_folder(folder)
+    written: list[Path] = []
+    notes: list[str] = []
+    for name in names:
         path = folder / PLOT_FILES[name]
         if path.exists() and not overwrite:
             raise FileExistsError(f"{path}: exists; choose another folder or pass overwrite=True to replace it")
         try:
             if name == "animation":
+                folder.mkdir(parents=True, exist_ok=True)
                 written.append(animate_force(result, path, overwrite=overwrite))
                 continue
             if name == "forces":
@@ -55,6 +64,9 @@ def save_plots(result: Any, folder: str | Path, which: Sequence[str] = ("forces"
         except (ValueError, ImportError) as exc:
             notes.append(f"plot {name!r} skipped: {exc}")
             continue
+        check_figure_pixels(fig, dpi, f"{name} plot")
+        folder.mkdir(parents=True, exist_ok=True)
         fig.savefig(path, dpi=dpi)
         written.append(path)
+    folder.mkdir(parents=True, exist_ok=True)
     return written, notes

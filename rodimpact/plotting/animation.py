@@ -8,7 +8,11 @@ from typing import Any
 
 import numpy as np
 
-from ._common import junction_positions, time_scale
+from .._validate import finite
+from ._common import check_int, check_output_file, check_result, junction_positions, time_scale
+
+#: Frame rates a GIF can hold: its frame delays are whole hundredths of a second, at most 655.35 s.
+MIN_FPS, MAX_FPS = 0.01, 100.0
 
 
 def pillow_available() -> bool:
@@ -18,11 +22,18 @@ def pillow_available() -> bool:
 
 def animate_force(result: Any, path: str | Path, *, fps: int = 15, max_frames: int = 150,
                   overwrite: bool = False) -> Path:
-    """Write a GIF of N(x) over the recorded snapshots (at most ``max_frames`` evenly chosen) to ``path``
-    (an existing file is refused unless ``overwrite=True``).
+    """Write a GIF of N(x) over the recorded snapshots (at most ``max_frames`` >= 2 evenly chosen) to ``path``
+    (an existing file is refused unless ``overwrite=True``) at ``fps`` frames per second (0.01 to 100).
 
     Raises :class:`ImportError` with a clear message when pillow is not installed.
     """
+    check_result(result)
+    fps = finite("fps", fps, "frames per second")
+    if not MIN_FPS <= fps <= MAX_FPS:
+        raise ValueError(f"fps: must lie in [{MIN_FPS}, {MAX_FPS:g}] frames per second (GIF frame delays are whole "
+                         f"hundredths of a second, at most 655 s), got {fps!r}")
+    max_frames = check_int("max_frames", max_frames, 2)
+    check_output_file(Path(path))
     if Path(path).exists() and not overwrite:
         raise FileExistsError(f"{path}: exists; choose another file name or pass overwrite=True to replace it")
     if not pillow_available():

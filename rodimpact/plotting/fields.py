@@ -6,7 +6,8 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from ._common import junction_positions, nearest_snapshots, new_axes, time_scale
+from .._validate import positive
+from ._common import check_result, junction_positions, nearest_snapshots, new_axes, time_scale
 
 
 def _rod_slices(result: Any):
@@ -21,17 +22,23 @@ def plot_snapshots(result: Any, times: Optional[Sequence[float]] = None, axes: A
     """Displacement u(x) (mm, left column) and normal force N(x) (kN, right column) at the recorded snapshots
     nearest to ``times`` (s; default three spread over the run), one row per time, as in thesis Figs. 3.6 and
     3.8. Each rod is drawn separately, so a displacement jump at a contact face shows the separation; contact
-    faces are dashed. Returns the figure."""
+    faces are dashed. ``times`` must lie within the recorded snapshot times (to one time step). ``axes``: one row
+    of two Axes per distinct snapshot shown, or ``None``. Returns the figure."""
+    check_result(result)
     s = result.snapshots
     if s is None:
         raise ValueError("plot_snapshots: the result holds no field snapshots; record some with snapshot_times= "
                          "or snapshot_every= ([output] in a model file)")
-    idx = nearest_snapshots(s.time, None if times is None else np.asarray(times, dtype=float))
+    idx = nearest_snapshots(s.time, times, result.dt, "times")
     if axes is None:
         fig, axes = new_axes(None, nrows=len(idx), ncols=2, figsize=(9.0, 2.3 * len(idx) + 0.6), sharex=True)
     else:
-        fig = np.ravel(axes)[0].figure
-    axes = np.asarray(axes).reshape(len(idx), 2)
+        flat = np.ravel(np.asarray(axes, dtype=object))
+        if flat.size != 2 * len(idx) or not all(hasattr(a, "plot") for a in flat):
+            raise ValueError(f"axes: need {2 * len(idx)} Axes ({len(idx)} row(s) of 2: displacement, force), "
+                             f"got {flat.size} object(s)")
+        fig = flat[0].figure
+    axes = np.asarray(axes, dtype=object).reshape(len(idx), 2)
     faces = junction_positions(result)
     for row, k in enumerate(idx):
         ax_u, ax_n = axes[row]
@@ -68,10 +75,26 @@ def _grid(result: Any):
     return np.array(edges), np.array(cell_el)
 
 
+def _check_cmap(cmap: Any) -> None:
+    from matplotlib import colormaps
+    from matplotlib.colors import Colormap
+
+    if isinstance(cmap, Colormap):
+        return
+    if not isinstance(cmap, str) or cmap not in colormaps:
+        raise ValueError(f"cmap: must be a matplotlib colormap or its name (e.g. 'RdBu_r', 'coolwarm', 'seismic'), "
+                         f"got {cmap!r}")
+
+
 def plot_xt(result: Any, ax: Any = None, *, cmap: str = "RdBu_r", limit: Optional[float] = None):
     """The Lagrangian x-t diagram: the normal force (colour, kN; red tension, blue compression) over the
     reference position x and time, from the recorded snapshots. Wave fronts are straight lines of slope 1/c;
-    contact faces are dashed. Returns the figure."""
+    contact faces are dashed. ``limit``: colour scale +-limit in kN (default: the largest |N|). Returns the
+    figure."""
+    check_result(result)
+    if limit is not None:
+        limit = positive("limit", limit, "kN")
+    _check_cmap(cmap)
     s = result.snapshots
     if s is None or s.time.size < 2:
         raise ValueError("plot_xt: needs at least two field snapshots; record them with snapshot_every= or "

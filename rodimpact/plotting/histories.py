@@ -6,7 +6,8 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from ._common import new_axes, rod_label, time_scale
+from .._validate import positive
+from ._common import check_result, new_axes, rod_label, time_scale
 
 
 def plot_forces(result: Any, ax: Any = None, *, probes: Optional[Sequence[str]] = None, contact: bool = True,
@@ -17,6 +18,15 @@ def plot_forces(result: Any, ax: Any = None, *, probes: Optional[Sequence[str]] 
     Forces are positive in tension (impacts are negative). ``probes``: names to show (default all); ``ends``:
     also the outer-end forces where they are not zero (default: only for a single rod, which has no contact).
     """
+    check_result(result)
+    if probes is None:
+        names = list(result.probes)
+    else:
+        names = [probes] if isinstance(probes, str) else list(probes)
+        unknown = [n for n in names if n not in result.probes]
+        if unknown:
+            raise ValueError(f"probes: {unknown[0]!r} was not recorded; recorded probes: "
+                             f"{', '.join(map(repr, result.probes)) or 'none'}")
     fig, ax = new_axes(ax)
     if ends is None:
         ends = result.junction_force.shape[0] == 0
@@ -31,7 +41,6 @@ def plot_forces(result: Any, ax: Any = None, *, probes: Optional[Sequence[str]] 
             if np.any(result.end_force[side] != 0):
                 ax.plot(t * k, result.end_force[side] / 1e3, drawstyle="steps-post", lw=1.0, ls="--",
                         label=f"{side} end")
-    names = list(result.probes) if probes is None else list(probes)
     for name in names:
         p = result.probe(name)
         ax.plot(t * k, p.force / 1e3, drawstyle="steps-post", lw=1.0,
@@ -48,6 +57,7 @@ def plot_forces(result: Any, ax: Any = None, *, probes: Optional[Sequence[str]] 
 def plot_energy(result: Any, ax: Any = None):
     """Kinetic + strain energy of each rod, the total, and the total minus the work done on the rods by ends,
     loads and friction (constant when the bookkeeping balances); returns the figure."""
+    check_result(result)
     fig, ax = new_axes(ax)
     e = result.energy
     k, unit = time_scale(float(e.time[-1]) if e.time.size else 0.0)
@@ -71,16 +81,26 @@ def plot_energy_comparison(results: Sequence[Any], labels: Sequence[str], ax: An
 
     With ``round_trip_time`` (s) the abscissa counts round trips ("iterations" in the thesis) instead of time.
     """
+    if isinstance(results, (str, bytes)) or not hasattr(results, "__len__"):
+        raise TypeError(f"results: must be a sequence of SimulationResults, got {type(results).__name__}")
+    if isinstance(labels, (str, bytes)) or not hasattr(labels, "__len__"):
+        raise TypeError(f"labels: must be a sequence of strings, one per result, got {type(labels).__name__}")
+    if len(results) == 0:
+        raise ValueError("results: give at least one result")
+    for i, res in enumerate(results):
+        check_result(res, f"results[{i}]")
     if len(results) != len(labels):
         raise ValueError(f"labels: need one per result ({len(results)}), got {len(labels)}")
+    if round_trip_time is not None:
+        round_trip_time = positive("round_trip_time", round_trip_time, "s")
     fig, ax = new_axes(ax)
     for res, label in zip(results, labels):
         e = res.energy
         if round_trip_time:
-            ax.plot(e.time / round_trip_time, e.total, label=label)
+            ax.plot(e.time / round_trip_time, e.total, label=str(label))
         else:
             k, unit = time_scale(float(e.time[-1]))
-            ax.plot(e.time * k, e.total, label=label)
+            ax.plot(e.time * k, e.total, label=str(label))
     ax.set_xlabel("round trips of the wave in the struck rod" if round_trip_time else "time")
     ax.set_ylabel("total energy E_tot [J]")
     ax.legend(fontsize="small")

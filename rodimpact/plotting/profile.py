@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from ._common import new_axes, rod_label
+from ._common import check_int, new_axes, rod_label
 
 
 def plot_profile(obj: Any, axes: Any = None, *, samples: int = 400):
@@ -15,8 +15,15 @@ def plot_profile(obj: Any, axes: Any = None, *, samples: int = 400):
 
     ``obj`` is a :class:`~rodimpact.System` or a result (then the lattice impedance, one value per
     equal-travel-time element, is drawn as steps over the true profile). ``axes``: two Axes or ``None``.
-    Contact faces are marked by dashed lines.
+    Contact faces are marked by dashed lines. ``samples``: points per rod for the true profile (2 to 100000).
     """
+    from ..direct.result import SimulationResult
+    from ..rods.system import System
+
+    if not isinstance(obj, (System, SimulationResult)):
+        raise TypeError(f"obj: must be a System or a SimulationResult (from rodimpact.simulate or rodimpact.io.load), "
+                        f"got {type(obj).__name__}")
+    samples = check_int("samples", samples, 2, 100_000)
     system = getattr(obj, "system", obj)
     lattice = getattr(obj, "lattice", None)
     if system is None:
@@ -24,7 +31,10 @@ def plot_profile(obj: Any, axes: Any = None, *, samples: int = 400):
     if axes is None:
         fig, (ax_z, ax_d) = new_axes(None, nrows=2, figsize=(7.0, 5.0), sharex=True)
     else:
-        ax_z, ax_d = axes
+        flat = np.ravel(np.asarray(axes, dtype=object))
+        if flat.size != 2 or not all(hasattr(a, "plot") for a in flat):
+            raise ValueError(f"axes: need two Axes (impedance, diameter) or None, got {flat.size} object(s)")
+        ax_z, ax_d = flat
         fig = ax_z.figure
     offsets = system.rod_offsets()
     for i, rod in enumerate(system.rods):

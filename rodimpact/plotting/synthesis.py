@@ -11,12 +11,18 @@ import numpy as np
 from ._common import new_axes
 
 
+def _check_synthesis(result: Any, name: str = "result") -> None:
+    from ..inverse.result import SynthesisResult
+
+    if not isinstance(result, SynthesisResult):
+        raise TypeError(f"{name}: must be a SynthesisResult (from a synthesis solve), got {type(result).__name__}")
 
 
 def plot_impedance(result: Any, ax: Optional[Any] = None, x: str = "s", log: Optional[bool] = None):
     """Impedance Z_q of the synthesized striker (steps) against ``x`` = "s" (distance from the impact face, m),
     "theta" (travel time, s) or "q" (element number). The failing element, if any, is marked. ``log``: log
     scale for Z (default: when Z spans more than a factor 100)."""
+    _check_synthesis(result)
     fig, ax = new_axes(ax)
     m = result.n_feasible
     if x == "s":
@@ -49,6 +55,12 @@ def plot_force(result: Any, verification: Optional[Any] = None, ax: Optional[Any
     """Target window values (and, with a :class:`~rodimpact.inverse.result.VerificationReport`, the force the
     synthesized striker achieves) against time. For a position target the prescribed quantity there is shown
     (time from the wavefront's arrival) together with the transformed impact force."""
+    _check_synthesis(result)
+    if verification is not None:
+        from ..inverse.result import VerificationReport
+
+        if not isinstance(verification, VerificationReport):
+            raise TypeError(f"verification: must be a VerificationReport or None, got {type(verification).__name__}")
     fig, ax = new_axes(ax)
     dt = result.dt
     n = result.window_values.size
@@ -73,6 +85,7 @@ def plot_force(result: Any, verification: Optional[Any] = None, ax: Optional[Any
 
 def plot_existence(result: Any, ax: Optional[Any] = None):
     """Force difference |Delta N_q| against the force reserve |K_q N_0| (thesis eq. 4.20) per element."""
+    _check_synthesis(result)
     fig, ax = new_axes(ax)
     q = result.element
     ax.plot(q, result.force_reserve / 1e3, label=r"force reserve $|K_q N_0|$")
@@ -90,8 +103,13 @@ def plot_existence(result: Any, ax: Optional[Any] = None):
 def plot_shape(shape: Any, ax: Optional[Any] = None):
     """Drawing-style side view of a :class:`~rodimpact.inverse.shape.StrikerShape` (or of a synthesis result
     as a solid steel striker): outline +-d/2 against the distance from the impact face, bore dashed."""
-    if not hasattr(shape, "outer_diameter"):
+    from ..inverse.result import SynthesisResult
+    from ..inverse.shape import StrikerShape
+
+    if isinstance(shape, SynthesisResult):
         shape = shape.shape()
+    elif not isinstance(shape, StrikerShape):
+        raise TypeError(f"shape: must be a StrikerShape or a SynthesisResult, got {type(shape).__name__}")
     fig, ax = new_axes(ax)
     s = shape.boundaries * 1e3
     r = 0.5 * shape.outer_diameter * 1e3
@@ -111,6 +129,7 @@ def plot_shape(shape: Any, ax: Optional[Any] = None):
 
 def plot_synthesis(result: Any, verification: Optional[Any] = None):
     """Summary figure: impedance, force (target/achieved), existence margin and shape. Returns (fig, axes)."""
+    _check_synthesis(result)
     fig, axes = new_axes(None, nrows=2, ncols=2, figsize=(11.0, 7.0))
     plot_impedance(result, axes[0, 0])
     plot_force(result, verification, axes[0, 1])

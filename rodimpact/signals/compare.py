@@ -17,6 +17,8 @@ from typing import Any
 import numpy as np
 from scipy import signal as _signal
 
+from .._validate import finite, non_negative
+
 __all__ = [
     "PeakComparison",
     "ShotStatistics",
@@ -50,6 +52,12 @@ def _series(time: Any, values: Any, what: str = "values") -> tuple[np.ndarray, n
     return t, x
 
 
+def _check_slope(slope: Any) -> str:
+    if slope not in _SLOPES:
+        raise ValueError(f"slope: must be one of {_SLOPES}, got {slope!r}")
+    return slope
+
+
 def crossing_times(time: Any, values: Any, level: float, slope: str = "either") -> np.ndarray:
     """All times where the signal crosses ``level``, linearly interpolated between samples.
 
@@ -57,8 +65,8 @@ def crossing_times(time: Any, values: Any, level: float, slope: str = "either") 
     the level), ``'rising'`` upward ones, ``'either'`` both.
     """
     t, x = _series(time, values)
-    if slope not in _SLOPES:
-        raise ValueError(f"slope must be one of {_SLOPES}, got {slope!r}")
+    level = finite("level", level)
+    _check_slope(slope)
     above = x > level
     falling = np.flatnonzero(above[:-1] & ~above[1:])
     rising = np.flatnonzero(~above[:-1] & above[1:])
@@ -82,9 +90,11 @@ def trigger_time(time: Any, values: Any, level: float, slope: str = "falling", a
     """
     times = crossing_times(time, values, level, slope)
     if after is not None:
+        after = finite("after", after, "s")
         times = times[times >= after]
     if times.size == 0:
-        raise ValueError(f"the signal never crosses level {level!r} with slope {slope!r}" + (f" after t={after}" if after is not None else ""))
+        raise ValueError(f"level: the signal never crosses level {level!r} with slope {slope!r}"
+                         + (f" after t={after}" if after is not None else ""))
     return float(times[0])
 
 
@@ -111,9 +121,10 @@ def delay_by_xcorr(time: Any, reference: Any, signal: Any, max_delay: float | No
     corr = _signal.correlate(sig, ref, mode="full", method="auto")
     lags = _signal.correlation_lags(sig.size, ref.size, mode="full")
     if max_delay is not None:
-        keep = np.abs(lags) * dt <= float(max_delay) + 1e-12 * dt
+        max_delay = non_negative("max_delay", max_delay, "s")
+        keep = np.abs(lags) * dt <= max_delay + 1e-12 * dt
         if not np.any(keep):
-            raise ValueError(f"max_delay {max_delay} s is shorter than one sample")
+            raise ValueError(f"max_delay: {max_delay} s is shorter than one sample ({dt:.6g} s)")
         corr, lags = corr[keep], lags[keep]
     i = int(np.argmax(corr))
     if np.all(corr == corr[i]):
@@ -133,7 +144,7 @@ def shifted(time: Any, values: Any, delay: float) -> np.ndarray:
     Linear interpolation; outside the recorded span the first/last value is held.
     """
     t, x = _series(time, values)
-    return np.interp(t - float(delay), t, x)
+    return np.interp(t - finite("delay", delay, "s"), t, x)
 
 
 def align(
@@ -154,10 +165,10 @@ def align(
         delay = delay_by_xcorr(time, reference, signal, max_delay)
     elif method == "trigger":
         if level is None:
-            raise ValueError("method='trigger' needs a trigger level")
+            raise ValueError("level: method='trigger' needs a trigger level")
         delay = delay_by_trigger(time, reference, signal, level, slope)
     else:
-        raise ValueError(f"method must be 'xcorr' or 'trigger', got {method!r}")
+        raise ValueError(f"method: must be 'xcorr' or 'trigger', got {method!r}")
     return shifted(time, signal, -delay), delay
 
 
@@ -172,7 +183,8 @@ def normalize_by_global_minimum(values: Any) -> np.ndarray:
         raise ValueError("values must be a non-empty finite array")
     low = float(np.min(x))
     if low >= 0:
-        raise ValueError(f"global minimum is {low!r}; normalisation by the global minimum needs a negative (compressive) value")
+        raise ValueError(f"values: the global minimum is {low!r}; normalisation by the global minimum needs a "
+                         "negative (compressive) value")
     return x / abs(low)
 
 
@@ -188,6 +200,7 @@ class ShotStatistics:
 
     def band(self, k: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
         """``(mean - k std, mean + k std)``."""
+        k = finite("k", k)
         return self.mean - k * self.std, self.mean + k * self.std
 
     @property
@@ -199,17 +212,33 @@ class ShotStatistics:
 def shot_statistics(shots: Sequence[Any], ddof: int = 1) -> ShotStatistics:
     """Mean, standard deviation (``ddof=1``: sample std) and envelope of aligned shots.
 
-    ``shots`` are equally long arrays on one common time axis (align them first).
+    ``shots`` are equally long arrays on one common time axis (align them first). ``ddof``
+    is an integer with ``0 <= ddof < number of shots`` (the divisor is ``n_shots - ddof``).
     """
-    arrays = [np.asarray(s, dtype=float) for s in shots]
+    if isinstance(shots, (str, bytes)) or not hasattr(shots, "__iter__"):
+        raise TypeError(f"shots: must be a sequence of arrays (one per shot), got {type(shots).__name__}")
+    arrays = []
+    for i, s in enumerate(shots):
+        try:
+            arrays.append(np.asarray(s, dtype=float))
+        except (TypeError, ValueError):
+            raise TypeError(f"shots[{i}]: must be an array of numbers, got {type(s).__name__}") from None
     if len(arrays) < 2:
-        raise ValueError(f"repeatability statistics need at least 2 shots, got {len(arrays)}")
+        raise ValueError(f"shots: repeatability statistics need at least 2 shots, got {len(arrays)}")
     shapes = {a.shape for a in arrays}
     if len(shapes) != 1 or arrays[0].ndim != 1:
-        raise ValueError(f"all shots must be 1-D arrays of the same length, got shapes {sorted(shapes)}")
+        raise ValueError(f"shots: all shots must be 1-D arrays of the same length, got shapes {sorted(shapes)}")
+    if arrays[0].size == 0:
+        raise ValueError("shots: the shots hold no samples")
+    if isinstance(ddof, bool) or not isinstance(ddof, (int, np.integer)):
+        raise TypeError(f"ddof: must be an integer (0 <= ddof < {len(arrays)} shots), got {ddof!r}")
+    if not 0 <= ddof < len(arrays):
+        raise ValueError(f"ddof: must satisfy 0 <= ddof < number of shots = {len(arrays)} (1: sample standard "
+                         f"deviation, 0: population), got {ddof!r}")
     stack = np.vstack(arrays)
     if not np.all(np.isfinite(stack)):
-        raise ValueError("shots contain non-finite values")
+        i, j = (int(v[0]) for v in np.nonzero(~np.isfinite(stack)))
+        raise ValueError(f"shots: must be finite, shot {i} sample {j} is {stack[i, j]!r}")
     return ShotStatistics(
         mean=stack.mean(axis=0),
         std=stack.std(axis=0, ddof=ddof),
@@ -239,13 +268,26 @@ class PeakComparison:
         return self.measured_time - self.predicted_time
 
 
+def _window(window: Any, name: str = "window") -> tuple[float, float]:
+    """``(start, stop)`` in s, finite, ``start < stop``."""
+    try:
+        start, stop = window
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}: must be a pair (start, stop) in s, got {window!r}") from None
+    start, stop = finite(f"{name} start", start, "s"), finite(f"{name} stop", stop, "s")
+    if not start < stop:
+        raise ValueError(f"{name}: start must be before stop, got ({start!r}, {stop!r}) s")
+    return start, stop
+
+
 def _window_mask(t: np.ndarray, window: tuple[float, float] | None) -> np.ndarray:
     if window is None:
         return np.ones(t.shape, dtype=bool)
-    start, stop = window
+    start, stop = _window(window)
     mask = (t >= start) & (t <= stop)
     if not np.any(mask):
-        raise ValueError(f"window {window} contains no samples")
+        raise ValueError(f"window: ({start}, {stop}) s contains no samples of the record "
+                         f"[{t[0]!r}, {t[-1]!r}] s")
     return mask
 
 
@@ -288,6 +330,11 @@ def step_timing_errors(
 
     Typical use: levels at 50 % of each step height of the predicted signal.
     """
+    if isinstance(levels, (str, bytes)) or not hasattr(levels, "__iter__"):
+        raise TypeError(f"levels: must be a sequence of levels, got {type(levels).__name__} {levels!r}")
+    levels = list(levels)
+    if not levels:
+        raise ValueError("levels: give at least one level")
     return np.array(
         [
             trigger_time(time, measured, level, slope, after) - trigger_time(time, predicted, level, slope, after)

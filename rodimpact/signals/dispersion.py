@@ -62,6 +62,8 @@ from scipy import fft as _fft
 from scipy import optimize, special
 from scipy.interpolate import CubicSpline
 
+from .._validate import finite, fits_in_memory, positive
+
 __all__ = [
     "PochhammerChree",
     "phase_velocity_at_frequency",
@@ -72,9 +74,15 @@ __all__ = [
 
 _SCAN_POINTS = 400
 
+#: Largest dispersion table (nodes, each an exact root solve of about 0.5 ms) a :class:`PochhammerChree` builds.
+_MAX_TABLE_NODES = 50_000
+
+#: Largest accepted ``table_step`` (in ``f a / c0``): coarser tables interpolate the curve poorly.
+_MAX_TABLE_STEP = 0.05
+
 
 def _poisson(nu: Any) -> float:
-    nu = float(nu)
+    nu = finite("poisson_ratio", nu)
     if not 0.0 <= nu < 0.5:
         raise ValueError(f"poisson_ratio must lie in [0, 0.5) for the Pochhammer-Chree solver, got {nu!r}")
     return nu
@@ -85,14 +93,17 @@ def _speed_ratios(nu: float) -> tuple[float, float]:
     return float(np.sqrt(2.0 * (1.0 + nu))), float(np.sqrt((1.0 - 2.0 * nu) / (2.0 * (1.0 - nu))))
 
 
-@lru_cache(maxsize=64)
 def rayleigh_speed_ratio(poisson_ratio: float) -> float:
     """Rayleigh surface-wave speed over shear speed, ``c_R / c2``, from Rayleigh's equation.
 
     Solves ``(2 - xi)^2 = 4 sqrt(1 - xi m) sqrt(1 - xi)`` with ``xi = c^2 / c2^2`` and
     ``m = c2^2 / c1^2`` for its root in ``(0, 1)``.
     """
-    nu = _poisson(poisson_ratio)
+    return _rayleigh_speed_ratio(_poisson(poisson_ratio))
+
+
+@lru_cache(maxsize=64)
+def _rayleigh_speed_ratio(nu: float) -> float:
     _, r21 = _speed_ratios(nu)
     m = r21 * r21
 
@@ -208,22 +219,40 @@ class PochhammerChree:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "poisson_ratio", _poisson(self.poisson_ratio))
-        for what in ("radius", "bar_wave_speed", "table_step"):
-            value = float(getattr(self, what))
-            if not np.isfinite(value) or value <= 0:
-                raise ValueError(f"{what} must be positive and finite, got {getattr(self, what)!r}")
-            object.__setattr__(self, what, value)
+        for what, unit in (("radius", "m"), ("bar_wave_speed", "m/s"), ("table_step", "")):
+            object.__setattr__(self, what, positive(what, getattr(self, what), unit))
+        if self.table_step > _MAX_TABLE_STEP:
+            raise ValueError(f"table_step: at most {_MAX_TABLE_STEP} (in f a / c0) for an accurate interpolation of "
+                             f"the dispersion curve, got {self.table_step!r}")
 
     def normalized_frequency(self, frequency: Any) -> np.ndarray:
         """``f a / c0``."""
-        return np.abs(np.asarray(frequency, dtype=float)) * self.radius / self.bar_wave_speed
+        try:
+            f = np.asarray(frequency, dtype=float)
+        except (TypeError, ValueError):
+            raise TypeError(f"frequency: must be a number or an array of numbers in Hz, got {frequency!r}") from None
+        if not np.all(np.isfinite(f)):
+            raise ValueError(f"frequency: must be finite, got {frequency!r}")
+        return np.abs(f) * self.radius / self.bar_wave_speed
+
+    def _table_nodes(self, fbar_max: float) -> int:
+        """Number of table nodes needed up to the normalised frequency ``fbar_max``."""
+        return int(np.ceil(max(fbar_max * 1.25, 0.5) / self.table_step)) + 1
+
+    def _check_table(self, fbar_max: float, name: str, hint: str) -> None:
+        n = self._table_nodes(fbar_max)
+        if n > _MAX_TABLE_NODES:
+            f = fbar_max * self.bar_wave_speed / self.radius
+            raise ValueError(f"{name}: up to {f:.4g} Hz (f a / c0 = {fbar_max:.4g}) the dispersion table would need "
+                             f"{n} exact solutions at table_step = {self.table_step:g}, more than "
+                             f"{_MAX_TABLE_NODES}; {hint}")
 
     def _spline(self, fbar_max: float) -> CubicSpline:
         cached = self._table.get("spline")
         if cached is not None and self._table["fbar_max"] >= fbar_max:
             return cached
-        top = max(fbar_max * 1.25, 0.5)
-        n = int(np.ceil(top / self.table_step)) + 1
+        self._check_table(fbar_max, "frequency", "ask for lower frequencies or use a larger table_step")
+        n = self._table_nodes(fbar_max)
         nodes = np.linspace(0.0, (n - 1) * self.table_step, n)
         values = phase_velocity_at_frequency(self.poisson_ratio, nodes)
         spline = CubicSpline(nodes, values)
@@ -278,14 +307,19 @@ def propagate_dispersive(time: Any, values: Any, distance: float, model: Pochham
     dt = float(np.median(steps))
     if dt <= 0 or np.any(np.abs(steps - dt) > 1e-6 * dt):
         raise ValueError("propagate_dispersive needs a uniform, increasing time axis")
-    distance = float(distance)
-    if not np.isfinite(distance):
-        raise ValueError(f"distance must be finite, got {distance!r}")
+    distance = finite("distance", distance, "m")
     if distance == 0.0:
         return x.copy()
     nyquist = 0.5 / dt
+    model._check_table(float(model.normalized_frequency(nyquist)), "time",
+                       f"its sample interval {dt:.4g} s puts the Nyquist frequency that high; resample the signal to a "
+                       "coarser grid (after a low-pass) or use a model with a larger table_step")
     c_slowest = float(np.min(model.phase_velocity(np.linspace(0.0, nyquist, 64))))
     max_shift = abs(distance) * (1.0 / c_slowest - 1.0 / model.bar_wave_speed)
+    n_pad = x.size + max_shift / dt + 16
+    fits_in_memory("distance", 64.0 * n_pad,
+                   f"propagating over {distance:.4g} m (dispersive shifts up to {max_shift:.4g} s, {n_pad:.3g} samples "
+                   "with the zero padding)", "use a shorter distance or a coarser time step")
     # An odd transform length has no Nyquist bin, whose single real coefficient could not carry
     # the phase shift; that keeps propagation and correction exact inverses.
     n_total = _fft.next_fast_len(x.size + int(np.ceil(max_shift / dt)) + 16, real=True)

@@ -35,6 +35,9 @@ from typing import Any
 
 import numpy as np
 
+from .._validate import finite
+from .dispersion import PochhammerChree
+
 __all__ = [
     "Bridge",
     "GaugedBar",
@@ -81,9 +84,12 @@ class Bridge:
     name: str = ""
 
     def __post_init__(self) -> None:
-        arms = tuple(float(k) for k in self.arms)
+        try:
+            arms = tuple(float(k) for k in self.arms)
+        except (TypeError, ValueError):
+            raise TypeError(f"arms: must be four strain factors (numbers), got {self.arms!r}") from None
         if len(arms) != 4 or not all(np.isfinite(arms)):
-            raise ValueError(f"arms must be four finite strain factors, got {self.arms!r}")
+            raise ValueError(f"arms: must be four finite strain factors, got {self.arms!r}")
         if arms[0] - arms[1] + arms[2] - arms[3] == 0.0:
             raise ValueError(f"bridge arms {arms} have zero sensitivity (k1 - k2 + k3 - k4 = 0)")
         object.__setattr__(self, "arms", arms)
@@ -194,7 +200,7 @@ class Bridge:
 
 
 def _poisson(value: float) -> float:
-    nu = float(value)
+    nu = finite("poisson_ratio", value)
     if not -1.0 < nu < 0.5:
         raise ValueError(f"poisson_ratio must lie in (-1, 0.5), got {value!r}")
     return nu
@@ -224,11 +230,8 @@ def bridge_to_strain(
     ``gain`` describes an inverting amplifier (compression shown as positive voltage).
     """
     exc = _positive(excitation_voltage, "excitation_voltage")
-    try:
-        g = float(gain)
-    except (TypeError, ValueError) as exc_:
-        raise TypeError(f"gain must be a number, got {gain!r}") from exc_
-    if not np.isfinite(g) or g == 0:
+    g = finite("gain", gain)
+    if g == 0:
         raise ValueError(f"gain must be finite and non-zero, got {gain!r}")
     vr = _as_float_array(voltage, "voltage") / (exc * g)
     return _bridge(bridge, poisson_ratio).strain(vr, gauge_factor, linearize=linearize)
@@ -336,8 +339,8 @@ class GaugedBar:
         if self.poisson_ratio is not None:
             object.__setattr__(self, "poisson_ratio", _poisson(self.poisson_ratio))
         object.__setattr__(self, "bridge", _bridge(self.bridge, self.poisson_ratio))
-        gain = float(self.gain)
-        if not np.isfinite(gain) or gain == 0:
+        gain = finite("gain", self.gain)
+        if gain == 0:
             raise ValueError(f"gain must be finite and non-zero, got {self.gain!r}")
         object.__setattr__(self, "gain", gain)
 
@@ -395,6 +398,8 @@ def gauge_length_average(
     n_total = 2 * x.size
     f = np.fft.rfftfreq(n_total, dt)
     if model is not None:
+        if not isinstance(model, PochhammerChree):
+            raise TypeError(f"model: must be a PochhammerChree (or None with wave_speed), got {type(model).__name__}")
         speed = model.phase_velocity(f)
     elif wave_speed is not None:
         speed = np.full(f.shape, _positive(wave_speed, "wave_speed"))

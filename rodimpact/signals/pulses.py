@@ -13,12 +13,14 @@ entirely into the bar, which gives a second estimate ``v = -(integral N dt) / m_
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from .compare import crossing_times
+from .._validate import finite, positive
+from .compare import _series, _window, crossing_times
 
 __all__ = [
     "PulseFeatures",
@@ -32,18 +34,30 @@ __all__ = [
 ]
 
 
-def _positive(value: Any, what: str) -> float:
-    value = float(value)
-    if not np.isfinite(value) or value <= 0:
-        raise ValueError(f"{what} must be positive and finite, got {value!r}")
-    return value
+def _positive(value: Any, what: str, unit: str = "") -> float:
+    return positive(what, value, unit)
+
+
+def _times(time: Any) -> np.ndarray:
+    """``time`` as a float array of any shape, every entry finite."""
+    try:
+        t = np.asarray(time, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"time: must be a number or an array of numbers in s, got {type(time).__name__}") from None
+    bad = ~np.isfinite(t)
+    if bad.any():
+        i = int(np.flatnonzero(bad.ravel())[0])
+        raise ValueError(f"time: must be finite, entry {i} is {t.ravel()[i]!r}")
+    return t
 
 
 def rectangular_pulse(time: Any, start: float, duration: float, amplitude: float) -> np.ndarray:
     """``amplitude`` on ``start <= t < start + duration``, zero elsewhere."""
-    t = np.asarray(time, dtype=float)
-    duration = _positive(duration, "duration")
-    return np.where((t >= start) & (t < start + duration), float(amplitude), 0.0)
+    t = _times(time)
+    start = finite("start", start, "s")
+    duration = _positive(duration, "duration", "s")
+    amplitude = finite("amplitude", amplitude)
+    return np.where((t >= start) & (t < start + duration), amplitude, 0.0)
 
 
 def equal_impedance_pulse(
@@ -59,10 +73,11 @@ def equal_impedance_pulse(
     Amplitude ``-impedance * velocity / 2``, duration ``2 striker_length / wave_speed``,
     starting at ``arrival_time`` (module docstring).
     """
-    length = _positive(striker_length, "striker_length")
-    c = _positive(wave_speed, "wave_speed")
-    z = _positive(impedance, "impedance")
-    return rectangular_pulse(time, arrival_time, 2.0 * length / c, -0.5 * z * float(velocity))
+    length = _positive(striker_length, "striker_length", "m")
+    c = _positive(wave_speed, "wave_speed", "m/s")
+    z = _positive(impedance, "impedance", "N s/m")
+    v = finite("velocity", velocity, "m/s")
+    return rectangular_pulse(time, finite("arrival_time", arrival_time, "s"), 2.0 * length / c, -0.5 * z * v)
 
 
 def striker_velocity_from_strain(plateau_strain: float, wave_speed: float) -> float:
@@ -70,7 +85,7 @@ def striker_velocity_from_strain(plateau_strain: float, wave_speed: float) -> fl
 
     Valid for a striker of the same impedance (material and section) as the bar.
     """
-    return -2.0 * _positive(wave_speed, "wave_speed") * float(plateau_strain)
+    return -2.0 * _positive(wave_speed, "wave_speed", "m/s") * finite("plateau_strain", plateau_strain)
 
 
 @dataclass(frozen=True)
@@ -126,21 +141,22 @@ def pulse_features(
     length is dropped at each end. Edges are then located with respect to that plateau
     level, with linear interpolation between samples.
     """
-    if polarity not in (1, -1):
-        raise ValueError(f"polarity must be +1 or -1, got {polarity!r}")
+    if isinstance(polarity, bool) or polarity not in (1, -1):
+        raise ValueError(f"polarity: must be +1 or -1, got {polarity!r}")
+    polarity = int(polarity)
+    low, fraction, high = finite("low", low), finite("fraction", fraction), finite("high", high)
     if not 0 < low < fraction < high < 1:
-        raise ValueError(f"need 0 < low < fraction < high < 1, got {low}, {fraction}, {high}")
-    if not 0 <= plateau_trim < 0.5:
-        raise ValueError(f"plateau_trim must lie in [0, 0.5), got {plateau_trim}")
-    t = np.asarray(time, dtype=float)
-    y = polarity * np.asarray(values, dtype=float)
-    if t.ndim != 1 or y.shape != t.shape or t.size < 3:
-        raise ValueError("time and values must be 1-D arrays of equal length (at least 3 samples)")
+        raise ValueError(f"low, fraction, high: need 0 < low < fraction < high < 1, got {low}, {fraction}, {high}")
+    plateau_trim = _plateau_trim(plateau_trim)
+    t, y = _series(time, values)
+    if t.size < 3:
+        raise ValueError(f"time and values: need at least 3 samples, got {t.size}")
+    y = polarity * y
     i_peak = int(np.argmax(y))
     t_peak = float(t[i_peak])
     peak = float(y[i_peak])
     if peak <= 0:
-        raise ValueError("the signal has no pulse of the requested polarity")
+        raise ValueError(f"values: the signal has no pulse of the requested polarity ({polarity:+d})")
 
     def edges(level: float) -> tuple[float, float]:
         return (
@@ -152,14 +168,15 @@ def pulse_features(
         s0, e0 = edges(fraction * peak)
         trim = plateau_trim * (e0 - s0)
         plateau_window = (s0 + trim, e0 - trim)
-    w0, w1 = plateau_window
+    w0, w1 = _window(plateau_window, "plateau_window")
     mask = (t >= w0) & (t <= w1)
     if np.count_nonzero(mask) < 2:
-        raise ValueError(f"plateau window {plateau_window} holds fewer than 2 samples")
+        raise ValueError(f"plateau_window: ({w0}, {w1}) s holds fewer than 2 samples")
     level = float(np.mean(y[mask]))
     spread = float(np.std(y[mask], ddof=1))
     if level <= 0:
-        raise ValueError("plateau level has the wrong sign for the requested polarity")
+        raise ValueError(f"plateau_window: the plateau level has the wrong sign for the requested polarity "
+                         f"({polarity:+d})")
     start, end = edges(fraction * level)
     rise_lo = _last_before(crossing_times(t, y, low * level, "rising"), start)
     rise_hi = _first_after(crossing_times(t, y, high * level, "rising"), start)
@@ -191,6 +208,28 @@ class VelocityEstimate:
         return self.uncertainty / abs(self.velocity)
 
 
+def _plateau_trim(value: Any, name: str = "plateau_trim") -> float:
+    trim = finite(name, value)
+    if not 0 <= trim < 0.5:
+        raise ValueError(f"{name}: the fraction of the pulse dropped at each end must lie in [0, 0.5), got {value!r}")
+    return trim
+
+
+def _relative_uncertainties(values: Any) -> dict[str, float]:
+    if values is None:
+        return {}
+    if not isinstance(values, Mapping):
+        raise TypeError(f"relative_uncertainties: must be a mapping name -> relative standard uncertainty, e.g. "
+                        f"{{'gauge factor': 0.005}}, got {type(values).__name__}")
+    out = {}
+    for name, value in values.items():
+        x = finite(f"relative_uncertainties[{name!r}]", value)
+        if x < 0:
+            raise ValueError(f"relative_uncertainties[{name!r}]: must be >= 0, got {value!r}")
+        out[str(name)] = x
+    return out
+
+
 def _combine(velocity: float, components: dict[str, float]) -> VelocityEstimate:
     for name, value in components.items():
         if not np.isfinite(value) or value < 0:
@@ -213,12 +252,22 @@ def striker_velocity_estimate(
     the component ``"plateau definition"`` is the largest relative change of the plateau
     when the trimmed fraction is changed to the other entries of ``trims``. Further relative
     standard uncertainties (gauge factor, wave speed, ...) are passed in
-    ``relative_uncertainties`` and combined in quadrature.
+    ``relative_uncertainties`` and combined in quadrature. Every entry of ``trims`` is a
+    ``plateau_trim`` of :func:`pulse_features`, a fraction in [0, 0.5); a single entry gives no
+    plateau-definition component (0).
     """
+    if isinstance(trims, (str, bytes)) or not isinstance(trims, (Sequence, np.ndarray)):
+        raise TypeError(f"trims: must be a sequence of plateau trims (fractions in [0, 0.5)), e.g. (0.1, 0.2, 0.3), "
+                        f"got {type(trims).__name__} {trims!r}")
+    trims = [_plateau_trim(trim, f"trims[{i}]") for i, trim in enumerate(trims)]
+    if not trims:
+        raise ValueError("trims: give at least one plateau trim (a fraction in [0, 0.5)), e.g. (0.1, 0.2, 0.3)")
+    wave_speed = _positive(wave_speed, "wave_speed", "m/s")
+    extra = _relative_uncertainties(relative_uncertainties)
     levels = [pulse_features(time, strain, polarity=-1, plateau_trim=trim).plateau for trim in trims]
     central = levels[len(levels) // 2]
     components = {"plateau definition": max(abs(level / central - 1.0) for level in levels)}
-    components.update(relative_uncertainties or {})
+    components.update(extra)
     return _combine(striker_velocity_from_strain(central, wave_speed), components)
 
 
@@ -235,12 +284,15 @@ def striker_velocity_from_impulse(
     ``window``; the force must be baseline-corrected. The integral is the trapezoidal rule.
     Relative uncertainties (e.g. of the striker mass) are combined in quadrature.
     """
-    t = np.asarray(time, dtype=float)
-    n = np.asarray(force, dtype=float)
-    if t.ndim != 1 or n.shape != t.shape:
-        raise ValueError("time and force must be 1-D arrays of equal length")
-    mask = (t >= window[0]) & (t <= window[1])
+    t, n = _series(time, force, "force")
+    start, stop = _window(window)
+    mass = _positive(striker_mass, "striker_mass", "kg")
+    extra = _relative_uncertainties(relative_uncertainties)
+    mask = (t >= start) & (t <= stop)
     if np.count_nonzero(mask) < 2:
-        raise ValueError(f"window {window} holds fewer than 2 samples")
+        raise ValueError(f"window: ({start}, {stop}) s holds fewer than 2 samples of the record "
+                         f"[{t[0]!r}, {t[-1]!r}] s")
     impulse = float(np.trapezoid(n[mask], t[mask]))
-    return _combine(-impulse / _positive(striker_mass, "striker_mass"), dict(relative_uncertainties or {}))
+    if impulse == 0.0:
+        raise ValueError(f"force: its integral over window ({start}, {stop}) s is zero; no pulse in the window")
+    return _combine(-impulse / mass, extra)

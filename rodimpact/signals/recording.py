@@ -14,6 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from .._validate import finite
+
 __all__ = ["Recording"]
 
 
@@ -93,6 +95,8 @@ class Recording:
         object.__setattr__(self, "time", time)
         object.__setattr__(self, "channels", channels)
         object.__setattr__(self, "units", units)
+        if not isinstance(self.metadata, Mapping):
+            raise TypeError(f"metadata: must be a mapping, got {type(self.metadata).__name__}")
         object.__setattr__(self, "metadata", dict(self.metadata))
 
     # -- access -----------------------------------------------------------------------
@@ -134,8 +138,10 @@ class Recording:
         """The samples with ``start <= time <= stop`` (bounds in s; ``None`` = open)."""
         mask = np.ones(self.time.shape, dtype=bool)
         if start is not None:
+            start = finite("start", start, "s")
             mask &= self.time >= start
         if stop is not None:
+            stop = finite("stop", stop, "s")
             mask &= self.time <= stop
         if np.count_nonzero(mask) < 2:
             raise ValueError(
@@ -152,7 +158,9 @@ class Recording:
 
     def selected(self, names: Iterable[str]) -> Recording:
         """A recording with only the named channels."""
-        names = list(names)
+        names = [names] if isinstance(names, str) else list(names)
+        if not names:
+            raise ValueError(f"names: select at least one channel; channels: {self.channel_names}")
         for name in names:
             self[name]
         return Recording(

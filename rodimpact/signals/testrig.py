@@ -232,7 +232,10 @@ class RigSetup:
 
     def gauge_travel_time(self, position: float) -> float:
         """Travel time from the rod's impact face to ``position`` (m), s."""
-        return float(self.rod.travel_time(position))
+        x = finite("position", position, "m")
+        if not 0.0 <= x <= self.rod.length:
+            raise ValueError(f"position: must lie on the rod, 0 <= x <= {self.rod.length:.6g} m, got {position!r} m")
+        return float(self.rod.travel_time(x))
 
     @property
     def face_impedance(self) -> float:
@@ -279,6 +282,9 @@ def build_rig(piston: int | str | Rod = 1, velocity: Optional[float] = None,
         velocity = v_default if velocity is None else velocity
     else:
         raise ValueError(f"piston: must be 1, 2, 'piston 1', 'piston 2' or a Rod, got {piston!r}")
+    if gauges is not None and not isinstance(gauges, Mapping):
+        raise TypeError(f"gauges: must be a mapping name -> position (m from the rod's impact face), e.g. "
+                        f"{{'SGP1': 0.110}}, got {type(gauges).__name__} {gauges!r}")
     g = tuple((GAUGE_POSITIONS if gauges is None else gauges).items())
     return RigSetup(p, rig_rod() if rod is None else rod, velocity, g)
 
@@ -292,6 +298,8 @@ def rig_time_step(setup: RigSetup, max_step: float = 1e-3 / STEEL.wave_speed) ->
     Works on lengths on a 1 um grid when all segments share one wave speed; otherwise returns ``max_step``
     (the lattice then approximates the step positions, see docs/method.md).
     """
+    if not isinstance(setup, RigSetup):
+        raise TypeError(f"setup: must be a RigSetup (see build_rig), got {type(setup).__name__}")
     max_step = positive("max_step", max_step, "s")
     speeds = {round(setup.piston.segment_material(i).wave_speed, 9) for i in range(len(setup.piston.segments))}
     speeds |= {round(setup.rod.segment_material(i).wave_speed, 9) for i in range(len(setup.rod.segments))}
@@ -527,7 +535,8 @@ def simulate_rig(setup: RigSetup, duration: float = 1.6e-3, dt: Optional[float] 
 
     ``dt`` defaults to :func:`rig_time_step` (exact lattice for stepped cylinders, <= 1 mm of steel per
     element); ``chain`` to the thesis chain ``MeasuringChain()``. The lattice node values are piecewise
-    constant in time, so the chain gets them with ``interpolation="previous"``.
+    constant in time, so the chain gets them with ``interpolation="previous"``. ``duration`` must cover one
+    sample interval of the chain plus one lattice step.
     """
     if not isinstance(setup, RigSetup):
         raise TypeError(f"setup: must be a RigSetup (see build_rig), got {type(setup).__name__}")
@@ -536,6 +545,12 @@ def simulate_rig(setup: RigSetup, duration: float = 1.6e-3, dt: Optional[float] 
     chain = MeasuringChain() if chain is None else chain
     if not isinstance(chain, MeasuringChain):
         raise TypeError(f"chain: must be a MeasuringChain, got {type(chain).__name__}")
+    # the recorded forces span (n_steps - 1) dt; the chain needs at least one of its sample intervals
+    min_duration = (1.0 / chain.sampling_rate + dt) * (1 + 1e-6)
+    if duration < min_duration:
+        raise ValueError(f"duration: must be at least {min_duration:.4g} s, one sample interval of the measuring "
+                         f"chain (1 / sampling_rate = {1.0 / chain.sampling_rate:.4g} s) plus one lattice step "
+                         f"(dt = {dt:.4g} s), got {duration!r} s")
     t_eff = min(2.0 * setup.rod.total_travel_time, duration)
     k_eff = max(1, int(math.floor(t_eff / dt * (1 + 1e-12))))
     res = simulate(setup.system, duration=duration, dt=dt, probes=setup.probes, energy_every=k_eff,
