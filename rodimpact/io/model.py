@@ -131,17 +131,29 @@ class Model:
 
 
 # ============================================================================================ reading
+def read_text_file(path: Path, label: str, kind: str, encoding: str = "utf-8") -> str:
+    """The text of ``path``; every way of failing becomes a :class:`ModelError` that starts with ``label`` (the
+    key path, or the file itself) and says what kind of file was expected."""
+    name = repr(str(path))
+    try:
+        return path.read_text(encoding=encoding)
+    except FileNotFoundError:
+        raise ModelError(f"{label}: no such {kind}" + ("" if label == str(path) else f" {name}")) from None
+    except IsADirectoryError:
+        raise ModelError(f"{label}: " + ("is" if label == str(path) else f"{name} is") + f" a folder, not a {kind}") \
+            from None
+    except PermissionError:
+        raise ModelError(f"{label}: no permission to read {name}") from None
+    except UnicodeDecodeError as exc:
+        raise ModelError(f"{label}: {name} is not a text file ({exc.reason}); expected a {kind}") from None
+    except OSError as exc:
+        raise ModelError(f"{label}: cannot read {name} ({exc.strerror or exc})") from None
+
+
 def load_model(path: str | Path) -> Model:
     """Read a model file; relative file names inside it are resolved against its folder."""
     p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ModelError(f"{p}: no such model file") from None
-    except IsADirectoryError:
-        raise ModelError(f"{p}: is a folder, not a model file") from None
-    except UnicodeDecodeError as exc:
-        raise ModelError(f"{p}: not a text file ({exc.reason})") from None
+    text = read_text_file(p, str(p), "model file")
     model = loads_model(text, base_dir=p.parent, name=str(p))
     object.__setattr__(model, "source", p)
     return model
@@ -468,18 +480,7 @@ def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, ne
     ``dims`` maps the recognised column names to dimensions (other columns are ignored); with ``positional``
     the columns are taken in order instead and named accordingly (``("time", "force")``).
     """
-    try:
-        text = Path(path).read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise ModelError(f"{key}: no such file {str(path)!r}") from None
-    except IsADirectoryError:
-        raise ModelError(f"{key}: {str(path)!r} is a folder, not a CSV file") from None
-    except PermissionError:
-        raise ModelError(f"{key}: no permission to read {str(path)!r}") from None
-    except UnicodeDecodeError as exc:
-        raise ModelError(f"{key}: {str(path)!r} is not a text (CSV) file ({exc.reason})") from None
-    except OSError as exc:
-        raise ModelError(f"{key}: cannot read {str(path)!r} ({exc.strerror or exc})") from None
+    text = read_text_file(Path(path), key, "CSV file", encoding="utf-8-sig")
     rows = [r for r in csv.reader(text.splitlines()) if r and any(c.strip() for c in r)]
     rows = [r for r in rows if not r[0].lstrip().startswith("#")]
     if len(rows) < 2:

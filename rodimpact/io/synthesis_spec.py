@@ -24,7 +24,7 @@ from ..rods.conditions import Bonded, Contact
 from ..rods.loads import Bearings, NodalForce
 from ..rods.material import STEEL
 from .expressions import SafeExpression
-from .model import _end, _history, _material, _materials, _rod, _rod_index, read_csv_columns
+from .model import _end, _history, _material, _materials, _rod, _rod_index, read_csv_columns, read_text_file
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
                      validate_table)
@@ -174,16 +174,7 @@ class SynthesisSpec:
 def load_spec(path: str | Path) -> SynthesisSpec:
     """Read a synthesis spec file (relative file names are resolved against its folder)."""
     p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ModelError(f"{p}: no such spec file") from None
-    except IsADirectoryError:
-        raise ModelError(f"{p}: is a folder, not a spec file") from None
-    except PermissionError:
-        raise ModelError(f"{p}: no permission to read the spec file") from None
-    except UnicodeDecodeError as exc:
-        raise ModelError(f"{p}: not a text file ({exc.reason})") from None
+    text = read_text_file(p, str(p), "spec file")
     spec = loads_spec(text, p.parent, str(p))
     object.__setattr__(spec, "source", p)
     return spec

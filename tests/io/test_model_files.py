@@ -316,7 +316,7 @@ def test_table_file_errors_name_file_and_row(tmp_path):
     with pytest.raises(ModelError, match=r"rods\[0\].segments\[0\].file: .*bad.csv, data row 2, column 'diameter': "
                                          r"expected a number, got 'abc'"):
         load(text, base_dir=tmp_path)
-    with pytest.raises(ModelError, match=r"rods\[0\].segments\[0\].file: no such file"):
+    with pytest.raises(ModelError, match=r"rods\[0\].segments\[0\].file: no such CSV file .*missing.csv"):
         load(text.replace("bad.csv", "missing.csv"), base_dir=tmp_path)
 
 
