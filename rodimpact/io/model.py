@@ -39,6 +39,7 @@ from ..rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, Ex
                              QuadraticHorn, Segment, TabulatedProfile, Tube)
 from ..rods.system import InitialState, System
 from . import _toml
+from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression, expression_area
 from .quantities import DIMENSIONS, ModelError, parse_quantity
 from .schema import MODEL, PLOT_NAMES, validate_table
@@ -171,7 +172,7 @@ def loads_model(text: str, base_dir: str | Path | None = None, name: str = "mode
 def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
     """Build a :class:`Model` from parsed TOML data (validated against :data:`rodimpact.io.schema.MODEL`)."""
     d = validate_table(MODEL, raw, "")
-    params = d["parameters"] or {}
+    params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
     rods, velocities, initial = [], [], []
     sim = d["simulation"]
@@ -305,8 +306,8 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
     st = None
     if r["initial"] is not None and (r["initial"]["force"] is not None or r["initial"]["velocity"] is not None):
         ini = r["initial"]
-        st = InitialState(force=_field_value(ini["force"], f"{path}.initial.force", params),
-                          velocity=_field_value(ini["velocity"], f"{path}.initial.velocity", params))
+        st = InitialState(force=_field_value(ini["force"], f"{path}.initial.force", params, "force"),
+                          velocity=_field_value(ini["velocity"], f"{path}.initial.velocity", params, "velocity"))
     return rod, st
 
 
@@ -334,6 +335,7 @@ def _segment(s: dict, path: str, materials: dict[str, Material], params: dict[st
         return _wrap(path, lambda: cls(s["length"], s["area_start"], s["xi"], material=mat))
     if shape == "expression":
         func = expression_area(s["area"], s["length"], params, path=f"{path}.area")
+        check_dimension(func, "area", {"s": "length", "L": "length"}, params)
         return _wrap(path, lambda: AreaFunction(s["length"], func, material=mat, name=s["area"]))
     # table
     inline = s["x"] is not None
@@ -424,11 +426,12 @@ def _history(h: dict, path: str, params: dict[str, float], base_dir: Path, dimen
         cols = read_csv_columns(base_dir / h["file"], f"{path}.file", None, positional=("time", dimension))
         return (cols["time"], cols[dimension])
     expr = SafeExpression(h["source"], ("t",), params, path=f"{path}.expression")
+    check_dimension(expr, dimension, {"t": "time"}, params)
     expr(np.linspace(0.0, 1e-3, 5))        # surface evaluation errors now, with the key path
     return expr
 
 
-def _field_value(v: Optional[dict], path: str, params: dict[str, float]) -> Any:
+def _field_value(v: Optional[dict], path: str, params: dict[str, float], dimension: str) -> Any:
     if v is None:
         return None
     if v["kind"] == "constant":
@@ -436,6 +439,7 @@ def _field_value(v: Optional[dict], path: str, params: dict[str, float]) -> Any:
     if v["kind"] == "values":
         return np.array(v["values"])
     expr = SafeExpression(v["source"], ("x",), params, path=f"{path}.expression")
+    check_dimension(expr, dimension, {"x": "length"}, params)
     expr(np.linspace(0.0, 1.0, 5))
     return expr
 

@@ -270,7 +270,9 @@ MODEL = Table("model file", "Top level of a model file.", (
     Field("title", "string", "Short title (shown in summaries and plots)."),
     Field("description", "string", "Free text."),
     Field("parameters", "parameters", "Named constants for expressions (`A0 = \"1.26e-3 m^2\"`), converted "
-                                      "to SI."),
+                                      "to SI. Expressions are checked against the units written here (an area "
+                                      "expression `A0` with `A0 = \"1260 mm\"` is refused); bare numbers carry "
+                                      "no unit and are not checked."),
     Field("materials", "mapping", "Named materials.", table=MATERIAL),
     Field("rods", "tables", "The rods, left to right.", required=True, table=ROD, minimum=1),
     Field("junctions", "tables", "One per neighbouring pair of rods; default contact.",

@@ -23,6 +23,7 @@ import numpy as np
 from ..rods.conditions import Bonded, Contact
 from ..rods.loads import Bearings, NodalForce
 from ..rods.material import STEEL
+from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression
 from .model import _end, _history, _material, _materials, _rod, _rod_index, read_csv_columns, read_text_file
 from .quantities import ModelError
@@ -188,7 +189,7 @@ def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> Syn
         raise ModelError(f"{name}: not valid TOML: {exc}") from None
     base = Path(base_dir)
     d = validate_table(SPEC, raw, "")
-    params = d["parameters"] or {}
+    params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
     syn = d["synthesis"] or {"dt": None, "backend": "numba", "verify": True}
     rods, vel, initial = [], [], []
@@ -242,6 +243,7 @@ def _target(t: dict, params: dict[str, float], base: Path) -> Any:
         return ExponentialGrowth(t["initial"], t["rate"])
     if kind == "expression":
         f = SafeExpression(t["force"], ("t",), params, path="target.force")
+        check_dimension(f, "force", {"t": "time"}, params)
         f(np.linspace(0.0, 1e-3, 5))
         if t["duration"] is not None:
             return ForceTarget.from_callable(f, t["rule"], duration=t["duration"])
