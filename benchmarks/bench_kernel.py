@@ -126,9 +126,8 @@ def main() -> None:
         f"events are still taken at every step. Fields are kept only at the requested snapshots, energy at a "
         f"bounded number of samples, and prescribed histories are evaluated per chunk.",
         "",
-        "Batches (parameter sweeps): the compiled kernel `rodimpact.direct._kernels.run_numba` takes only "
-        "arrays and scalars (no Python objects), the shape needed to run a sweep over many designs in one compiled "
-        "loop with the batch as the outer loop; such a batch API is not packaged or tested yet.",
+        "Parameter sweeps: the compiled kernel releases the GIL, and `rodimpact.sweep` runs independent "
+        "simulations in parallel threads (section below).",
     ]
     write_section("kernel", "\n".join(lines))
 

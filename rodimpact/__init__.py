@@ -19,6 +19,7 @@ from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
 from .direct.result import EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory, SimulationResult
 from .direct.simulate import simulate
+from .direct.sweep import sweep
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
                       impedance_to_shape, synthesize, transform_force)
@@ -45,7 +46,8 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
-    "simulate", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory", "JunctionEvents",
+    "simulate", "sweep", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory",
+    "JunctionEvents",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",

@@ -283,7 +283,8 @@ def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_sta
         v[j] = (g[j] - f[j]) / Z[j]
 
 
-run_numba = njit(cache=True, error_model="numpy")(_run_waves)
+# nogil: independent runs (rodimpact.sweep) advance in parallel threads
+run_numba = njit(cache=True, error_model="numpy", nogil=True)(_run_waves)
 
 
 def run_numpy(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value, junction_code,

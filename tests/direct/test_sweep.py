@@ -1,0 +1,82 @@
+"""rodimpact.sweep: a grid of simulate() runs in parallel threads, collected into an xarray Dataset."""
+
+import numpy as np
+import pytest
+
+import rodimpact as ri
+
+C = ri.STEEL.wave_speed
+DT = 0.001 / C                       # 1 mm elements
+AREA = np.pi * 0.02**2
+Z = ri.STEEL.impedance(AREA)
+
+
+def equal_bars(length, velocity):
+    """A striker of the bar's section on a long bar with a non-reflecting end: closed form -Z v / 2 for 2 L / c."""
+    return dict(rods=[ri.Rod([ri.Cylinder(length, 0.04)]), ri.Rod([ri.Cylinder(1.0, 0.04)])],
+                velocities=[velocity, 0.0], duration=1e-3, dt=DT, right="nonreflecting")
+
+
+GRID = {"length": [0.1, 0.2, 0.3], "velocity": [3.0, 5.0]}
+
+
+def test_sweep_against_the_closed_form():
+    ds = ri.sweep(equal_bars, GRID, workers=2)
+    assert ds["peak_contact_force"].dims == ("length", "velocity")
+    length, velocity = np.meshgrid(GRID["length"], GRID["velocity"], indexing="ij")
+    np.testing.assert_allclose(ds["peak_contact_force"], -Z * velocity / 2, rtol=1e-12)
+    np.testing.assert_allclose(ds["contact_time"], 2 * length / C, rtol=1e-12)
+    np.testing.assert_allclose(ds["energy_transfer"], 1.0, rtol=1e-12)
+    np.testing.assert_allclose(ds["striker_final_velocity"], 0.0, atol=1e-12)
+    assert ds["peak_contact_force"].attrs["units"] == "N" and ds.attrs["points"] == 6
+
+
+def test_each_point_is_the_run_simulate_would_do_alone():
+    metrics = {"peak": lambda r: r.contact_force.min(), "last_force": lambda r: r.contact_force[-1],
+               "velocity_sum": lambda r: r.final_velocity.sum()}
+    serial = ri.sweep(equal_bars, GRID, metrics, workers=1)
+    threaded = ri.sweep(equal_bars, GRID, metrics, workers=2)
+    for i, length in enumerate(GRID["length"]):
+        for j, velocity in enumerate(GRID["velocity"]):
+            res = ri.simulate(**equal_bars(length, velocity))
+            for name, f in metrics.items():
+                assert serial[name].values[i, j] == f(res) == threaded[name].values[i, j]
+
+
+def test_build_may_return_a_model():
+    from rodimpact.examples import load_example
+
+    ds = ri.sweep(lambda scale: load_example("first-example"), {"scale": [1]}, workers=1)
+    alone = load_example("first-example").simulate()
+    assert ds["peak_contact_force"].values[0] == alone.junction_events[0].min_force
+
+
+@pytest.mark.parametrize("kwargs, error, match", [
+    (dict(build="bars", grid=GRID), TypeError, "build: must be a function"),
+    (dict(grid={}), ValueError, "grid: must be a non-empty mapping"),
+    (dict(grid={"length": []}), ValueError, r"grid\['length'\]: must be a non-empty 1-d list"),
+    (dict(grid={"length": 0.2}), ValueError, r"grid\['length'\]: must be a non-empty 1-d list"),
+    (dict(grid={"length": [0.1, float("nan")]}), ValueError, r"grid\['length'\]: values must be finite"),
+    (dict(grid={"length": [0.1, 0.1]}), ValueError, "must not repeat"),
+    (dict(grid={"length": [None]}), TypeError, "values must be numbers or strings"),
+    (dict(grid={"not a name": [1]}), ValueError, "parameter names must be identifiers"),
+    (dict(grid=GRID, metrics={"x": 3}), TypeError, r"metrics\['x'\]: must be a function"),
+    (dict(grid=GRID, workers=0), ValueError, "workers: must be an integer >= 1"),
+])
+def test_bad_arguments(kwargs, error, match):
+    kwargs = {"build": equal_bars, **kwargs}
+    with pytest.raises(error, match=match):
+        ri.sweep(kwargs.pop("build"), kwargs.pop("grid"), **kwargs)
+
+
+def test_failures_name_the_grid_point():
+    with pytest.raises(ValueError, match=r"sweep at length = 0.1, velocity = 3.0: .*metrics\['f'\]: must return "
+                                         r"one real number"):
+        ri.sweep(equal_bars, GRID, {"f": lambda r: r.contact_force}, workers=1)
+    with pytest.raises(ValueError, match=r"sweep at length = -0.1: ValueError: Cylinder.length: must be > 0"):
+        ri.sweep(lambda length: equal_bars(length, 1.0), {"length": [-0.1]}, workers=1)
+    with pytest.raises(ValueError, match="build: must return the keyword arguments"):
+        ri.sweep(lambda length: [length], {"length": [0.1]}, workers=1)
+    single = dict(rods=[ri.Rod([ri.Cylinder(0.2, 0.04)])], velocities=[1.0], duration=1e-4)
+    with pytest.raises(ValueError, match="the default metrics need a junction"):
+        ri.sweep(lambda k: single, {"k": [1]}, workers=1)
