@@ -240,7 +240,7 @@ class SimulationResult:
                  f"{self.n_steps} steps of dt = {self.dt:.4g} s"
                  + (f", every {self.record_every}th recorded)" if self.record_every > 1 else ")")]
         for j in range(self.junction_force.shape[0]):
-            lines.append(f"  junction {j}: peak force {self.junction_force[j].min():.6g} N, contact "
+            lines.append(f"  junction {j}: peak force {self.junction_events[j].min_force:.6g} N, contact "
                          f"{self.contact_duration(j):.6g} s, separations at {np.round(self.separation_times(j), 12)} s")
         lines.append(f"  rigid-body velocities at the end: {np.round(self.rigid_body_velocity, 6)} m/s; "
                      f"energy balance error {self.energy.balance_error:.2g}")

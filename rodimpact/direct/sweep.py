@@ -9,6 +9,7 @@ run :func:`~rodimpact.simulate` would do alone; the sweep only collects scalar m
 from __future__ import annotations
 
 import itertools
+import json
 import math
 import os
 import sys
@@ -34,6 +35,11 @@ def _contact_time(res: SimulationResult) -> float:
     return res.contact_duration(0)
 
 
+def _energy_transfer(res: SimulationResult) -> float:
+    e0 = res.energy.kinetic[0, 0] + res.energy.strain[0, 0]
+    return res.efficiency if e0 > 0.0 else math.nan       # rod 0 at rest: no transfer to speak of
+
+
 def _first_junction(res: SimulationResult):
     if not res.junction_events:
         raise ValueError("metrics: the default metrics need a junction (two or more rods); give metrics= for a "
@@ -46,14 +52,14 @@ def _first_junction(res: SimulationResult):
 DEFAULT_METRICS: dict[str, tuple[Metric, str]] = {
     "peak_contact_force": (_peak_contact_force, "N"),
     "contact_time": (_contact_time, "s"),
-    "energy_transfer": (lambda r: r.efficiency, "1"),
+    "energy_transfer": (_energy_transfer, "1"),
     "striker_final_velocity": (lambda r: float(r.rigid_body_velocity[0]), "m/s"),
 }
 
 
 def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
           metrics: Optional[Mapping[str, Metric]] = None, *, workers: Optional[int] = None,
-          progress: Optional[bool] = None):
+          progress: Optional[bool] = None, errors: str = "raise"):
     """Simulate every combination of the ``grid`` values and collect scalar ``metrics`` of each result.
 
     Parameters
@@ -67,12 +73,15 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
     metrics:
         Name -> function of the :class:`~rodimpact.SimulationResult` returning one real number. Default
         :data:`DEFAULT_METRICS`: the peak (most compressive) contact force and the total contact time at
-        junction 0, the energy transfer (:attr:`~rodimpact.SimulationResult.efficiency`) and the striker's final
-        rigid-body velocity.
+        junction 0, the energy transfer (:attr:`~rodimpact.SimulationResult.efficiency`; NaN when rod 0 starts
+        without energy) and the striker's final rigid-body velocity.
     workers:
         Parallel threads (default: the number of CPUs, at most the number of points).
     progress:
         Show a progress bar over the points (default: on a terminal for more than 10 points).
+    errors:
+        ``"raise"`` (default): the first failing point stops the sweep with an error naming it. ``"nan"``: a
+        failing point gets NaN metrics and is listed (with its error) in the ``failures`` attribute (JSON).
 
     Returns
     -------
@@ -85,6 +94,11 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
         raise TypeError(f"build: must be a function of the grid parameters, got {type(build).__name__}")
     names, values = _grid(grid)
     chosen, units = _metrics(metrics)
+    clash = sorted(set(chosen) & set(names))
+    if clash:
+        raise ValueError(f"metrics: the names {clash} are also grid parameters; rename the metrics")
+    if errors not in ("raise", "nan"):
+        raise ValueError(f"errors: must be 'raise' or 'nan', got {errors!r}")
     shape = tuple(len(v) for v in values)
     points = list(itertools.product(*(range(n) for n in shape)))
     if workers is None:
@@ -92,6 +106,7 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers: must be an integer >= 1, got {workers!r}")
     out = {name: np.full(shape, np.nan) for name in chosen}
+    failures: list[dict[str, Any]] = []
     wall0 = _time.perf_counter()
 
     def run(index: tuple[int, ...]) -> dict[str, float]:
@@ -100,7 +115,11 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
             result = _simulate(build(**point))
             return {name: _scalar(name, f(result)) for name, f in chosen.items()}
         except Exception as exc:
-            raise ValueError(f"sweep at {_show(point)}: {type(exc).__name__}: {exc}") from exc
+            message = f"sweep at {_show(point)}: {type(exc).__name__}: {exc}"
+            if errors == "raise":
+                raise ValueError(message) from exc
+            failures.append({"point": point, "error": message})
+            return {}
 
     bar = _progress_bar(progress, len(points))
     with ThreadPoolExecutor(max_workers=min(int(workers), len(points))) as pool:
@@ -122,7 +141,8 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
     data = {name: (names, out[name], {"units": units[name]} if units[name] else {}) for name in chosen}
     return xr.Dataset(data, coords=coords, attrs={
         "title": "rodimpact parameter sweep", "rodimpact_version": __version__, "points": len(points),
-        "workers": int(min(workers, len(points))), "wall_time_s": _time.perf_counter() - wall0})
+        "workers": int(min(workers, len(points))), "wall_time_s": _time.perf_counter() - wall0,
+        "failures": json.dumps(failures, default=str)})
 
 
 def _grid(grid: Any) -> tuple[list[str], list[list[Any]]]:
@@ -154,8 +174,9 @@ def _metrics(metrics: Any) -> tuple[dict[str, Metric], dict[str, str]]:
     if not isinstance(metrics, Mapping) or not metrics:
         raise ValueError("metrics: must be a non-empty mapping name -> function of the result")
     for name, f in metrics.items():
-        if not isinstance(name, str) or not name:
-            raise ValueError(f"metrics: names must be non-empty strings, got {name!r}")
+        if not isinstance(name, str) or not name or "/" in name:
+            raise ValueError(f"metrics: names must be non-empty strings without '/' (NetCDF variable names), got "
+                             f"{name!r}")
         if not callable(f):
             raise TypeError(f"metrics[{name!r}]: must be a function of the SimulationResult, got "
                             f"{type(f).__name__}")

@@ -34,6 +34,11 @@ FUNCTIONS: dict[str, Callable[..., Any]] = {
     "min": np.minimum, "max": np.maximum, "minimum": np.minimum, "maximum": np.maximum,
     "where": np.where, "clip": np.clip, "heaviside": lambda x: np.heaviside(x, 1.0),
 }
+#: Number of arguments of each function (numpy would take a surplus argument as its ``out=`` array).
+ARITY: dict[str, int] = {name: 1 for name in FUNCTIONS}
+ARITY.update({"arctan2": 2, "atan2": 2, "min": 2, "max": 2, "minimum": 2, "maximum": 2, "where": 3, "clip": 3})
+_SIGNATURES = {"where": "where(condition, a, b)", "clip": "clip(x, low, high)", "arctan2": "arctan2(y, x)",
+               "atan2": "atan2(y, x)", **{f: f"{f}(a, b)" for f in ("min", "max", "minimum", "maximum")}}
 #: Constants available in every expression.
 CONSTANTS: dict[str, float] = {"pi": math.pi, "e": math.e}
 
@@ -127,6 +132,11 @@ class SafeExpression:
                 if isinstance(a, ast.Starred):
                     self._fail(a, "starred arguments are not allowed")
                 self._check(a)
+            name, n = node.func.id, ARITY[node.func.id]
+            if len(node.args) != n:
+                raise ModelError(f"{self.path}: {name}() takes {n} argument{'s' if n > 1 else ''}: "
+                                 f"{_SIGNATURES.get(name, name + '(x)')}, got {len(node.args)} in the expression "
+                                 f"{self.source!r}")
         else:
             self._fail(node, f"{type(node).__name__} is not allowed")
 

@@ -132,9 +132,9 @@ class Model:
 
 
 # ============================================================================================ reading
-def read_text_file(path: Path, label: str, kind: str, encoding: str = "utf-8") -> str:
+def read_text_file(path: Path, label: str, kind: str, encoding: str = "utf-8-sig") -> str:
     """The text of ``path``; every way of failing becomes a :class:`ModelError` that starts with ``label`` (the
-    key path, or the file itself) and says what kind of file was expected."""
+    key path, or the file itself) and says what kind of file was expected. A UTF-8 byte-order mark is dropped."""
     name = repr(str(path))
     try:
         return path.read_text(encoding=encoding)
@@ -427,7 +427,7 @@ def _history(h: dict, path: str, params: dict[str, float], base_dir: Path, dimen
         return (cols["time"], cols[dimension])
     expr = SafeExpression(h["source"], ("t",), params, path=f"{path}.expression")
     check_dimension(expr, dimension, {"t": "time"}, params)
-    expr(np.linspace(0.0, 1e-3, 5))        # surface evaluation errors now, with the key path
+    expr(np.zeros(1))    # surface evaluation errors now, with the key path (the run checks its whole span)
     return expr
 
 
@@ -440,7 +440,7 @@ def _field_value(v: Optional[dict], path: str, params: dict[str, float], dimensi
         return np.array(v["values"])
     expr = SafeExpression(v["source"], ("x",), params, path=f"{path}.expression")
     check_dimension(expr, dimension, {"x": "length"}, params)
-    expr(np.linspace(0.0, 1.0, 5))
+    expr(np.zeros(1))    # at the left end; the run checks the whole rod
     return expr
 
 
@@ -484,7 +484,7 @@ def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, ne
     ``dims`` maps the recognised column names to dimensions (other columns are ignored); with ``positional``
     the columns are taken in order instead and named accordingly (``("time", "force")``).
     """
-    text = read_text_file(Path(path), key, "CSV file", encoding="utf-8-sig")
+    text = read_text_file(Path(path), key, "CSV file")
     rows = [r for r in csv.reader(text.splitlines()) if r and any(c.strip() for c in r)]
     rows = [r for r in rows if not r[0].lstrip().startswith("#")]
     if len(rows) < 2:

@@ -176,3 +176,9 @@ def test_results_of_format_1_still_load(tmp_path):
     back = load(tmp_path / "out")
     assert (back.record_every, back.n_steps) == (1, 400)
     assert_same_events(res, back)
+
+
+def test_the_printed_summary_uses_the_full_resolution_peak():
+    full, strided = recontact_run(), recontact_run(record_every=1000)
+    assert strided.junction_force.min() != full.contact_force.min()        # the samples miss the peak
+    assert f"peak force {full.contact_force.min():.6g} N" in repr(strided)

@@ -80,3 +80,31 @@ def test_failures_name_the_grid_point():
     single = dict(rods=[ri.Rod([ri.Cylinder(0.2, 0.04)])], velocities=[1.0], duration=1e-4)
     with pytest.raises(ValueError, match="the default metrics need a junction"):
         ri.sweep(lambda k: single, {"k": [1]}, workers=1)
+
+
+def test_metric_names_are_checked_before_any_run():
+    calls = []
+
+    def counting(length, velocity):
+        calls.append(length)
+        return equal_bars(length, velocity)
+
+    with pytest.raises(ValueError, match=r"metrics: the names \['velocity'\] are also grid parameters"):
+        ri.sweep(counting, GRID, {"velocity": lambda r: 1.0})
+    with pytest.raises(ValueError, match="without '/'"):
+        ri.sweep(counting, GRID, {"force/area": lambda r: 1.0})
+    assert calls == []
+
+
+def test_a_striker_at_rest_and_failing_points():
+    ds = ri.sweep(equal_bars, {"length": [0.2], "velocity": [0.0, 2.0]}, workers=1)
+    assert np.isnan(ds["energy_transfer"].values[0, 0]) and ds["energy_transfer"].values[0, 1] == pytest.approx(1.0)
+    assert ds["peak_contact_force"].values[0, 0] == 0.0
+    import json
+
+    ds = ri.sweep(lambda length: equal_bars(length, 3.0), {"length": [0.2, -0.1, 0.3]}, errors="nan", workers=2)
+    assert np.isnan(ds["contact_time"].values[1]) and not np.isnan(ds["contact_time"].values[[0, 2]]).any()
+    (failure,) = json.loads(ds.attrs["failures"])
+    assert failure["point"] == {"length": -0.1} and "Cylinder.length: must be > 0" in failure["error"]
+    with pytest.raises(ValueError, match="errors: must be 'raise' or 'nan'"):
+        ri.sweep(equal_bars, GRID, errors="skip")

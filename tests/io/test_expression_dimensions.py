@@ -98,3 +98,22 @@ verify = false
     loads_spec(spec)
     with pytest.raises(ModelError, match=r"target\.force: .*has dimension \[time\], but a force"):
         loads_spec(spec.replace("F0 * exp(-t / tau)", "tau * exp(-t / tau)"))
+
+
+@pytest.mark.parametrize("source, match", [
+    ("A0 * where(s < 0.1)", r"where\(\) takes 3 arguments: where\(condition, a, b\), got 1"),
+    ("min(A0, A0, A0)", r"min\(\) takes 2 arguments: min\(a, b\), got 3"),   # numpy would take A0 as out=
+    ("A0 * sin(s, s)", r"sin\(\) takes 1 argument: sin\(x\), got 2"),
+    ("A0 * clip(s, 0)", r"clip\(\) takes 3 arguments"),
+])
+def test_function_argument_counts_are_checked_when_read(source, match):
+    with pytest.raises(ModelError, match=r"rods\[0\]\.segments\[0\]\.area: " + match):
+        model('A0 = "1260 mm^2"', source)
+
+
+def test_a_byte_order_mark_is_accepted(tmp_path):
+    from rodimpact.io import load_model
+
+    text = ROD.format(params='A0 = "1260 mm^2"', area="A0")
+    (tmp_path / "bom.toml").write_bytes(b"\xef\xbb\xbf" + text.encode())
+    assert load_model(tmp_path / "bom.toml").system.rods[0].length == 0.5
