@@ -433,7 +433,9 @@ Coordinates: striker (Rod 1) on [-l1, 0], struck rod on [0, l2], impact face x =
   the characteristic function (for Setup 3 exactly `exp(-xi l2/2)/2` times eq. 3.35 divided by alpha beta).
 * **Counting proof.** (U, E A U') define a Pruefer angle that increases through every zero of U and of E A U'
   (Sturm-Liouville problem with p = E A > 0, weight rho A > 0). The number of eigenfrequencies in (0, omega] is
-  therefore exactly the number of zeros of the shot U in the open rod plus an end-state sign correction; the
+  therefore exactly the number of zeros of the shot U in the open rod plus an end-state sign correction (free
+  right end: minus one if U(end) = 0 or U and E A U' have the same sign, i.e. the Pruefer angle mod pi lies in
+  [0, pi/2); the shot U can round to exactly 0 between two roots, which the correction must include); the
   zeros are counted in closed form per piece (`ModalChain.mode_count`). The search brackets on a grid of a quarter
   of the asymptotic spacing pi/T (T = total travel time), subdivides every cell whose count jump is not 0 or 1
   (clustered roots), and refines single-root cells with `scipy.optimize.brentq`. Setup 3: 2500 roots in
@@ -441,7 +443,8 @@ Coordinates: striker (Rod 1) on [-l1, 0], struck rod on [0, l2], impact face x =
   1, 2, 3, ... for all 20000 (check: {perf['count_ok']}). Tests compare the count with an argument-principle winding
   number of eq. 3.35 in the complex plane, with a brute-force sign scan, with the asymptotics
   alpha l1 + beta l2 = (n - 1/2) pi for 5000 roots, and with closed-form spectra (uniform rods, all end-condition
-  pairs; a 1:10^4 impedance step whose roots come in pairs 0.02 rad apart).
+  pairs; uniform rods cut into 2-3 equal-area pieces such as 0.5 + 1, 1/3 + 2/3, 0.3 + 0.7, all end pairs, up
+  to 20000 modes; a 1:10^4 impedance step whose roots come in pairs 0.02 rad apart).
 * **Below the cutoff.** For Tab. 3.3 the oscillation count at the cutoff is {perf['count_below_cutoff']}: no
   eigenfrequency lies below {perf['cutoff']:.1f} rad/s (the first is {w[0]:.2f} rad/s). For a longer striker there are
   such modes (e.g. l1 = 10 m; tested), and they are found by the same code.

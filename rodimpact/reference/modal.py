@@ -17,10 +17,13 @@ product); the characteristic function is the residual of the right-end condition
 Counting (proof that no root is missed or duplicated). ``(U, N_U)`` defines a Pruefer angle theta(x) that
 increases through every zero of U and of N_U (Sturm-Liouville problem with p = E A > 0, weight rho A > 0,
 omega^2 > 0). The number of eigenfrequencies in (0, omega] therefore follows exactly from the number of zeros of
-U in (left, right] plus the signs of the end state (Sturm oscillation theorem); zeros of ``P cos + (Q/k) sin`` are
-counted in closed form per segment. :meth:`ModalChain.eigenfrequencies` brackets on a grid with a quarter of the
-asymptotic spacing ``pi / T`` (T: total travel time), subdivides every cell whose count jump is not 0 or 1, and
-refines each single-root cell with ``scipy.optimize.brentq``.
+U in (left, right] plus the signs of the end state (Sturm oscillation theorem): for a fixed right end it is that
+number; for a free right end one less if theta(right) mod pi lies in [0, pi/2), i.e. if U(right) = 0 (the shot
+U can round to exactly 0.0, e.g. halfway between two roots of a cut uniform bar) or U(right), N_U(right) have the
+same sign, and one more if the left end is fixed. Zeros of ``P cos + (Q/k) sin`` are counted in closed form per
+segment, a zero on an interface exactly once. :meth:`ModalChain.eigenfrequencies` brackets on a grid with a
+quarter of the asymptotic spacing ``pi / T`` (T: total travel time), subdivides every cell whose count jump is not
+0 or 1, and refines each single-root cell with ``scipy.optimize.brentq``.
 
 Orthogonality (3.41-3.43): ``int rho A U_j U_k dx = B_k delta_jk`` with ``rho A U^2 = rho A_ref w^2`` (the shape
 factor cancels), integrated in closed form. Initial velocities (3.45-3.46): for a uniform velocity V on a
@@ -248,10 +251,12 @@ class ModalChain:
         st = self._shoot(w)
         z = st["zeros"]
         u_end, n_end = st["u"][-1], st["n"][-1]
-        if self.right == "fixed":
+        if self.right == "fixed":  # roots: theta(right) = n pi, n >= 1; count = zeros of U in (left, right]
             count, residual = z, u_end
-        else:
-            count, residual = z - (n_end * u_end > 0.0) + (0 if self.left == "free" else 1), n_end
+        else:  # roots: theta(right) = pi/2 + n pi; subtract the last zero if theta(right) mod pi is in [0, pi/2),
+            # i.e. U(right) = 0 (exactly: the zero at the end was counted in z) or U, N of the same strict sign
+            past_zero = (u_end == 0.0) | (np.sign(u_end) * np.sign(n_end) > 0.0)
+            count, residual = z - past_zero + (0 if self.left == "free" else 1), n_end
         return np.where(w > 0.0, np.maximum(count, 0), 0).astype(np.int64), residual
 
     # ------------------------------------------------------------------ eigenfrequencies
