@@ -7,6 +7,7 @@ so that bad input never reaches the numerical kernels as NaN.
 from __future__ import annotations
 
 import math
+import numbers
 import os
 from typing import Any
 
@@ -84,3 +85,32 @@ def fits_in_memory(name: str, n_bytes: float, what: str, hint: str = "") -> None
     if total is not None and n_bytes > 0.8 * total:
         raise ValueError(f"{name}: {what} would need {n_bytes / 2**30:.3g} GiB, more than this machine's memory "
                          f"({total / 2**30:.3g} GiB)" + (f"; {hint}" if hint else ""))
+
+
+def finite_values(name: str, values: Any, what: str, max_ndim: int | None = None) -> np.ndarray:
+    """``values`` (a number or an array of any shape, or at most ``max_ndim`` dimensions) as a float array of the
+    same shape after checking that it holds at least one value, all real and finite; ``what`` describes them
+    (e.g. "times (s)") for the error messages, which name ``name``."""
+    try:
+        arr = np.asarray(values)
+        if arr.dtype.kind == "O":  # e.g. a list of Fractions (None would become nan: refused)
+            if not all(isinstance(v, numbers.Real) and not isinstance(v, bool) for v in arr.ravel()):
+                raise TypeError
+            arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        arr = None
+    if arr is None or arr.dtype.kind not in "iuf":
+        text = repr(values)
+        text = text if len(text) <= 60 else text[:57] + "..."
+        raise TypeError(f"{name}: {what} must be real numbers, got {type(values).__name__} {text}")
+    if max_ndim is not None and arr.ndim > max_ndim:
+        raise ValueError(f"{name}: {what} must be a number or a {max_ndim}-d array, got shape {arr.shape}")
+    if arr.size == 0:
+        raise ValueError(f"{name}: got an empty array of shape {arr.shape}; give at least one value ({what})")
+    arr = arr.astype(float)
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        i = int(np.flatnonzero(bad.ravel())[0])
+        where = f", entry {i} is" if arr.ndim else ", got"
+        raise ValueError(f"{name}: {what} must be finite{where} {float(arr.ravel()[i])!r}")
+    return arr

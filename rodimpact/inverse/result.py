@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional
@@ -189,8 +190,9 @@ class SynthesisResult:
 
     def table(self, elements: Optional[Any] = None) -> list[dict[str, float]]:
         """Rows like thesis tables 4.3/4.4: q, theta (s), s (m), Z_q, K_q, Delta N_q, |K_q N_0|, margin;
-        ``elements`` selects q values (default: all), the failing element is appended with Z = nan."""
-        qs = self.element if elements is None else np.atleast_1d(np.asarray(elements, dtype=int))
+        ``elements`` selects q values (default: all): a whole number or a 1-d sequence of them, each in 1..m or
+        the failing element m + 1 (when there is one), which is shown with Z = nan (appended by default)."""
+        qs = self.element if elements is None else self._element_numbers(elements)
         rows = []
         for q in qs:
             if 1 <= q <= self.n_feasible:
@@ -204,12 +206,58 @@ class SynthesisResult:
                 rows.append(dict(q=int(q), theta=f.theta, s=self.material.wave_speed * f.theta,
                                  impedance=float("nan"), K=f.transmission_factor, dN=f.force_difference,
                                  reserve=f.force_reserve, margin=f.force_reserve - abs(f.force_difference)))
-            else:
-                raise ValueError(f"elements: q = {q} was not computed (1..{self.n_feasible}"
-                                 f"{'' if self.failure is None else f' and {self.failure.element}'})")
+            else:  # unreachable after _element_numbers; kept as a guard
+                raise ValueError(f"elements: q = {q} was not computed; {self._elements_allowed()}")
         if elements is None and self.failure is not None:
             rows.append(self.table([self.failure.element])[0])
         return rows
+
+    def _elements_allowed(self) -> str:
+        m = self.n_feasible
+        f = self.failure
+        if m == 0:
+            return ("no element exists, nothing to select" if f is None
+                    else f"the only element that can be shown is the failing element {f.element}")
+        return f"must be whole numbers 1..{m}" + ("" if f is None else f" (plus the failing element {f.element})")
+
+    def _element_numbers(self, elements: Any) -> np.ndarray:
+        """``elements`` of :meth:`table`/:meth:`report` checked and returned as a 1-d int array: a whole number
+        or a 1-d sequence of them, each an existing element 1..m or the failing element."""
+        allowed = self._elements_allowed()
+
+        def shown(v: Any) -> str:
+            text = repr(v)
+            return text if len(text) <= 60 else text[:57] + "..."
+
+        if isinstance(elements, (str, bytes, bool, np.bool_)):
+            raise TypeError(f"elements: {allowed}, got {type(elements).__name__} {shown(elements)}")
+        try:
+            arr = np.asarray(elements)
+            if arr.dtype.kind == "O":       # e.g. Python ints beyond int64, or a mix of types
+                if not all(isinstance(v, numbers.Real) and not isinstance(v, bool) for v in arr.ravel()):
+                    raise TypeError
+                arr = np.asarray(elements, dtype=float)
+        except (TypeError, ValueError):
+            raise TypeError(f"elements: {allowed}, got {type(elements).__name__} {shown(elements)}") from None
+        if arr.dtype.kind not in "iuf":
+            raise TypeError(f"elements: {allowed}, got {type(elements).__name__} {shown(elements)} "
+                            f"(entries of type {arr.dtype})")
+        if arr.ndim > 1:
+            raise ValueError(f"elements: a single element number or a 1-d sequence of them, got shape {arr.shape}")
+        arr = np.atleast_1d(arr)
+        if arr.size == 0:
+            raise ValueError(f"elements: got an empty selection; {allowed}, or None for all")
+        x = arr.astype(float)
+        bad = ~np.isfinite(x) | (x != np.round(x))
+        if bad.any():
+            raise ValueError(f"elements: {allowed}, got {arr[np.flatnonzero(bad)[0]].item()!r}")
+        ok = (x >= 1) & (x <= self.n_feasible)
+        if self.failure is not None:
+            ok |= x == self.failure.element
+        if not ok.all():
+            q = arr[np.flatnonzero(~ok)[0]].item()
+            raise ValueError(f"elements: q = {int(q)} was not computed; {allowed}")
+        return x.astype(int)
 
     def report(self, elements: Optional[Any] = None) -> str:
         """Text version of :meth:`table` plus a summary (existence, length, mass)."""

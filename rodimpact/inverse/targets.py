@@ -35,7 +35,7 @@ from typing import Any, Callable, Literal, Optional, Union
 
 import numpy as np
 
-from .._validate import finite, finite_array, positive
+from .._validate import finite, finite_array, finite_values, positive
 
 Rule = Literal["start", "midpoint", "mean"]
 RULES = ("start", "midpoint", "mean")
@@ -190,11 +190,26 @@ def as_target(target: Any, rule: str = "midpoint") -> ForceTarget:
 
 
 # ---------------------------------------------------------------------------------------------- thesis targets
+def _force(name: str, times: Any, value: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """``value(t)`` for finite times t >= 0 and 0 before the impact (t < 0), checked to be finite (an overflow
+    for a too late time is reported, not returned as inf)."""
+    t = finite_values("t", times, "times (s)")
+    tp = np.maximum(t, 0.0)
+    with np.errstate(over="ignore", invalid="ignore"):
+        f = np.where(t >= 0.0, value(tp), 0.0)
+    if not np.all(np.isfinite(f)):
+        i = int(np.flatnonzero(~np.isfinite(f).ravel())[0])
+        raise ValueError(f"t: {name} overflows the floating-point range at t = {float(t.ravel()[i])!r} s; evaluate it "
+                         f"at earlier times")
+    return f[()]  # a number for a number t
+
+
 @dataclass(frozen=True)
 class ExponentialDecay:
     """N(t) = -peak * exp(-t / time_constant) (thesis eq. 4.24; Lundberg-Lesser's exact case, eq. 4.26).
 
-    ``peak`` N > 0 is the magnitude at t = 0, ``time_constant`` s > 0.
+    ``peak`` N > 0 is the magnitude at t = 0, ``time_constant`` s > 0. Called with times t (s, finite) it
+    returns N(t), and 0 before the impact (t < 0).
     """
 
     peak: float
@@ -205,12 +220,13 @@ class ExponentialDecay:
         object.__setattr__(self, "time_constant", positive("ExponentialDecay.time_constant", self.time_constant, "s"))
 
     def __call__(self, t: np.ndarray) -> np.ndarray:
-        return -self.peak * np.exp(-np.asarray(t, dtype=float) / self.time_constant)
+        return _force("ExponentialDecay", t, lambda tp: -self.peak * np.exp(-tp / self.time_constant))
 
 
 @dataclass(frozen=True)
 class LinearRamp:
-    """N(t) = -peak * (1 + 2 t / time_constant) (thesis eq. 4.28): a compressive force growing linearly."""
+    """N(t) = -peak * (1 + 2 t / time_constant) (thesis eq. 4.28): a compressive force growing linearly
+    (0 before the impact, t < 0)."""
 
     peak: float
     time_constant: float
@@ -220,13 +236,14 @@ class LinearRamp:
         object.__setattr__(self, "time_constant", positive("LinearRamp.time_constant", self.time_constant, "s"))
 
     def __call__(self, t: np.ndarray) -> np.ndarray:
-        return -self.peak * (1.0 + 2.0 * np.asarray(t, dtype=float) / self.time_constant)
+        return _force("LinearRamp", t, lambda tp: -self.peak * (1.0 + 2.0 * tp / self.time_constant))
 
 
 @dataclass(frozen=True)
 class ExponentialGrowth:
     """N(t) = -initial * exp(rate * t) (thesis eq. 4.29): the incident force that maximises the efficiency of
-    percussive drilling (Lundberg and Collet), ``initial`` N > 0, ``rate`` 1/s (C in the thesis)."""
+    percussive drilling (Lundberg and Collet), ``initial`` N > 0, ``rate`` 1/s (C in the thesis); 0 before the
+    impact (t < 0)."""
 
     initial: float
     rate: float
@@ -236,7 +253,7 @@ class ExponentialGrowth:
         object.__setattr__(self, "rate", finite("ExponentialGrowth.rate", self.rate, "1/s"))
 
     def __call__(self, t: np.ndarray) -> np.ndarray:
-        return -self.initial * np.exp(self.rate * np.asarray(t, dtype=float))
+        return _force("ExponentialGrowth", t, lambda tp: -self.initial * np.exp(self.rate * tp))
 
 
 def lundberg_lesser_impedance(theta: np.ndarray, peak: float, time_constant: float, struck_impedance: float,
@@ -244,9 +261,16 @@ def lundberg_lesser_impedance(theta: np.ndarray, peak: float, time_constant: flo
     """Exact striker impedance Z(theta) (N s/m) for the force -peak exp(-t/t0) on a semi-infinite uniform bar
     of impedance Z~ at rest (Lundberg and Lesser; thesis eq. 4.26), theta = travel time from the impact face:
     Z(theta) = Z0 / (1 + (Z~ + Z0) theta / (Z~ t0))^2 with Z0 = 1 / (v_in/peak - 1/Z~)."""
-    z0 = 1.0 / (striker_velocity / peak - 1.0 / struck_impedance)
-    if not z0 > 0:
+    th = finite_values("theta", theta, "travel times into the striker (s)")
+    if np.any(th < 0.0):
+        raise ValueError(f"theta: travel times into the striker must be >= 0 s, got {float(th[th < 0.0].ravel()[0])!r}")
+    peak = positive("peak", peak, "N")
+    time_constant = positive("time_constant", time_constant, "s")
+    struck_impedance = positive("struck_impedance", struck_impedance, "N s/m")
+    striker_velocity = positive("striker_velocity", striker_velocity, "m/s")
+    inverse_z0 = striker_velocity / peak - 1.0 / struck_impedance
+    if not inverse_z0 > 0:
         raise ValueError(f"striker_velocity: {striker_velocity} m/s is too slow for the peak force {peak} N on "
                          f"impedance {struck_impedance} N s/m (need v_in > peak / Z~)")
-    th = np.asarray(theta, dtype=float)
+    z0 = 1.0 / inverse_z0
     return z0 / (1.0 + (struck_impedance + z0) * th / (struck_impedance * time_constant)) ** 2

@@ -17,7 +17,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rodimpact._validate import finite, positive, positive_array
+from rodimpact._validate import finite, finite_values, positive, positive_array
 from rodimpact.reference.wavetrains import UniformPiece, solve_wave_trains
 
 __all__ = [
@@ -33,10 +33,8 @@ __all__ = [
 
 
 def _times(t: ArrayLike) -> NDArray[np.float64]:
-    ta = np.asarray(t, dtype=float)
-    if not np.all(np.isfinite(ta)):
-        raise ValueError("t: times must be finite (s)")
-    return ta
+    """Times t (s): a number or a non-empty array of finite real numbers (any shape; the result has it)."""
+    return finite_values("t", t, "times (s)")
 
 
 def uniform_striker_force(
@@ -112,7 +110,7 @@ def rod_against_wall_fields(
     moves with v; between the fronts (``s <= c t < 2L - s``) it is at rest under ``N = -Z v``; behind the
     unloading front (``c t >= 2L - s``) it is unloaded and moves with ``-v`` (see :func:`rod_against_wall_force`).
     """
-    xa = np.asarray(x, dtype=float)
+    xa = finite_values("x", x, "positions (m)")
     tt = finite("t", t, "s")
     z = positive("impedance", impedance, "N s/m")
     ll = positive("length", length, "m")
@@ -121,7 +119,8 @@ def rod_against_wall_fields(
     if tt < 0:
         raise ValueError(f"t: must be >= 0 s, got {t!r}")
     if np.any(xa < -ll * (1 + 1e-12)) or np.any(xa > 0.0):
-        raise ValueError(f"x: positions must lie in [-{ll:.6g}, 0] m")
+        bad = float(xa[(xa < -ll * (1 + 1e-12)) | (xa > 0.0)].ravel()[0])
+        raise ValueError(f"x: positions must lie in [-{ll:.6g}, 0] m (the rod, wall at x = 0), got {bad!r}")
     s = -xa
     ct = c * tt
     loaded = (ct >= s) & (ct < 2 * ll - s)
@@ -150,7 +149,7 @@ def stepped_striker_force(
     """
     ta = _times(t)
     z = positive_array("impedances", impedances)
-    tt = np.asarray(travel_times, dtype=float)
+    tt = finite_values("travel_times", travel_times, "travel times (s)")
     if tt.ndim > 1 or (tt.ndim == 1 and tt.size != z.size):
         raise ValueError(f"travel_times: one per impedance ({z.size}) or a single value, got shape {tt.shape}")
     tt = positive_array("travel_times", np.broadcast_to(tt, z.shape))
@@ -194,9 +193,9 @@ def lundberg_lesser_impedance(
     ``N(t) = -N_hat exp(-t/t0)`` with ``1/t0 = a Z_rod/(Z0 + Z_rod)``: this is eq. (4.26). A finite striker of
     total travel time Theta reproduces it for ``t < 2 Theta`` (until its free-end reflection returns).
     """
-    th = np.asarray(theta, dtype=float)
-    if not np.all(np.isfinite(th)) or np.any(th < 0.0):
-        raise ValueError("theta: travel times into the striker must be finite and >= 0 (s)")
+    th = finite_values("theta", theta, "travel times into the striker (s)")
+    if np.any(th < 0.0):
+        raise ValueError(f"theta: travel times into the striker must be >= 0 s, got {float(th[th < 0.0].ravel()[0])!r}")
     zr = positive("rod_impedance", rod_impedance, "N s/m")
     t0 = positive("time_constant", time_constant, "s")
     z0 = lundberg_lesser_face_impedance(zr, peak_force, impact_velocity)

@@ -33,7 +33,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rodimpact._validate import finite, positive
+from rodimpact._validate import finite, finite_values, positive
 from rodimpact.reference.families import STEEL_BAR_SPEED
 
 __all__ = ["UniformPiece", "WaveTrainSolution", "solve_wave_trains"]
@@ -78,8 +78,8 @@ class WaveTrainSolution:
     recontacts: NDArray[np.float64]  # times of (re-)contact, including the impact at t = 0
 
     def contact_force(self, t: ArrayLike) -> NDArray[np.float64]:
-        """Contact force N(0, t) in N (right-continuous in t; 0 before the impact)."""
-        ta = np.asarray(t, dtype=float)
+        """Contact force N(0, t) in N (right-continuous in t; 0 before the impact); t finite, up to ``duration``."""
+        ta = finite_values("t", t, "times (s)")
         if np.any(ta > self.duration * (1 + 1e-12)):
             raise ValueError(f"t: the wave-train solution was computed up to duration = {self.duration:.6g} s")
         i = np.searchsorted(self.contact_times, ta, side="right") - 1
@@ -90,7 +90,7 @@ class WaveTrainSolution:
         tt = finite("t", t, "s")
         if tt > self.duration * (1 + 1e-12) or tt < 0:
             raise ValueError(f"t: must lie in [0, {self.duration:.6g}] s")
-        xa = np.atleast_1d(np.asarray(x, dtype=float))
+        xa = np.atleast_1d(finite_values("x", x, "positions (m)", max_ndim=1))
         edges = np.append(self.x_left, self.x_left[-1] + self.pieces[-1].length)
         if np.any(xa < edges[0] - 1e-12) or np.any(xa > edges[-1] + 1e-12):
             raise ValueError(f"x: positions must lie in [{edges[0]:.6g}, {edges[-1]:.6g}] m")
@@ -149,11 +149,22 @@ def solve_wave_trains(
         Conditions at the striker's left end and the rod's right end; ``"nonreflecting"`` makes the end piece
         semi-infinite (matched impedance). ``right`` is ignored for a wall.
     """
-    pieces_s = tuple(striker)
+    def as_pieces(name: str, value: object) -> tuple:
+        hint = " or 'wall'" if name == "rod" else ""
+        if isinstance(value, (UniformPiece, str)):
+            raise TypeError(f"{name}: a sequence of UniformPiece (left to right, e.g. [UniformPiece(Z, tau)]){hint}, "
+                            f"got {type(value).__name__} {value!r}")
+        try:
+            return tuple(value)  # type: ignore[call-overload]
+        except TypeError:
+            raise TypeError(f"{name}: a sequence of UniformPiece (left to right, e.g. [UniformPiece(Z, tau)]){hint}, "
+                            f"got {type(value).__name__}") from None
+
+    pieces_s = as_pieces("striker", striker)
     wall = isinstance(rod, str)
     if wall and rod != "wall":
         raise ValueError(f"rod: a sequence of UniformPiece or 'wall', got {rod!r}")
-    pieces_r = () if wall else tuple(rod)  # type: ignore[arg-type]
+    pieces_r = () if wall else as_pieces("rod", rod)
     if not pieces_s or (not wall and not pieces_r):
         raise ValueError("striker/rod: need at least one UniformPiece each")
     pieces = pieces_s + pieces_r
@@ -164,6 +175,10 @@ def solve_wave_trains(
     dur = finite("duration", duration, "s")
     if dur < 0:
         raise ValueError(f"duration: must be >= 0 s, got {duration!r}")
+    if isinstance(max_fronts, (bool, np.bool_)) or not isinstance(max_fronts, (int, np.integer)):
+        raise TypeError(f"max_fronts: must be a whole number >= 1, got {type(max_fronts).__name__} {max_fronts!r}")
+    if max_fronts < 1:
+        raise ValueError(f"max_fronts: must be a whole number >= 1, got {max_fronts!r}")
     if contact not in ("unilateral", "bonded"):
         raise ValueError(f"contact: 'unilateral' or 'bonded', got {contact!r}")
     for name, val in (("left", left), ("right", right)):
