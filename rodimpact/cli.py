@@ -128,22 +128,10 @@ def cmd_init(args: argparse.Namespace) -> int:
 
 
 def _templates() -> dict[str, tuple[str, str]]:
+    from .io import synthesis_spec
     from .io.templates import TEMPLATES
 
-    out = dict(TEMPLATES)
-    syn = _synthesis_module()
-    if syn is not None:
-        out["synthesize"] = (syn.TEMPLATE, "synthesis.toml")
-    return out
-
-
-def _synthesis_module():
-    """The synthesis-spec module when the inverse problem is installed, else ``None``."""
-    try:
-        from .io import synthesis_spec
-    except ImportError:
-        return None
-    return synthesis_spec if synthesis_spec.available() else None
+    return {**TEMPLATES, "synthesize": (synthesis_spec.TEMPLATE, "synthesis.toml")}
 
 
 # ============================================================================================ examples
@@ -204,9 +192,8 @@ def cmd_examples(args: argparse.Namespace) -> int:
 
 # ============================================================================================ synthesize
 def cmd_synthesize(args: argparse.Namespace) -> int:
-    syn = _synthesis_module()
-    if syn is None:
-        raise InputError("synthesize: the inverse problem (rodimpact.inverse) is not available in this installation")
+    from .io import synthesis_spec as syn
+
     spec_path = Path(args.spec)
     out = Path(args.output) if args.output else Path("results") / spec_path.stem
     _check_out(out, args.force)

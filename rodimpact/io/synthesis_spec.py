@@ -31,16 +31,6 @@ from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field
                      validate_table)
 
 
-def available() -> bool:
-    """True when the inverse problem (:mod:`rodimpact.inverse`) is installed."""
-    import importlib
-
-    try:
-        return hasattr(importlib.import_module("rodimpact.inverse"), "synthesize")
-    except ImportError:
-        return False
-
-
 # ============================================================================================ schema
 _COMMON = (
     Field("rule", "string", "How a continuous target becomes the window values X_j on [2(j-1)dt, 2j dt): "

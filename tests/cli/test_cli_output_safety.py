@@ -84,11 +84,10 @@ def test_examples_run_and_synthesize_respect_the_rule(tmp_path, capsys, monkeypa
     code, _, err = main_in_process(["examples", "run", "first-example", "-o", ".", "--force", "--quiet"],
                                    tmp_path, capsys, monkeypatch)
     assert code == 2 and "current working folder" in err
-    if cli._synthesis_module() is not None:
-        main_in_process(["init", "synthesize", "--quiet"], tmp_path, capsys, monkeypatch)
-        code, _, err = main_in_process(["synthesize", "synthesis.toml", "-o", "mine", "--force", "--quiet"],
-                                       tmp_path, capsys, monkeypatch)
-        assert code == 2 and "mine: holds files rodimpact did not write" in err
+    main_in_process(["init", "synthesize", "--quiet"], tmp_path, capsys, monkeypatch)
+    code, _, err = main_in_process(["synthesize", "synthesis.toml", "-o", "mine", "--force", "--quiet"],
+                                   tmp_path, capsys, monkeypatch)
+    assert code == 2 and "mine: holds files rodimpact did not write" in err
     assert os.listdir(tmp_path / "mine") == ["keep.txt"]
 
 
@@ -131,14 +130,13 @@ def test_written_files_have_normal_permissions(tmp_path, capsys, monkeypatch, um
     main_in_process(["examples", "copy", "test-rig", "--quiet"], tmp_path, capsys, monkeypatch)
     for f in ("model.toml", "test-rig.toml"):
         assert stat.S_IMODE(os.stat(tmp_path / f).st_mode) == 0o644, f
-    if cli._synthesis_module() is not None:
-        main_in_process(["init", "synthesize", "--quiet"], tmp_path, capsys, monkeypatch)
-        code, _, err = main_in_process(["synthesize", "synthesis.toml", "-o", "syn", "--quiet", "--no-plots"],
-                                       tmp_path, capsys, monkeypatch)
-        assert code == 0, err
-        assert stat.S_IMODE(os.stat(tmp_path / "syn").st_mode) == 0o755
-        for f in ("striker.csv", "synthesis.nc", "summary.json", "verification/result.nc"):
-            assert stat.S_IMODE(os.stat(tmp_path / "syn" / f).st_mode) == 0o644, f
+    main_in_process(["init", "synthesize", "--quiet"], tmp_path, capsys, monkeypatch)
+    code, _, err = main_in_process(["synthesize", "synthesis.toml", "-o", "syn", "--quiet", "--no-plots"],
+                                   tmp_path, capsys, monkeypatch)
+    assert code == 0, err
+    assert stat.S_IMODE(os.stat(tmp_path / "syn").st_mode) == 0o755
+    for f in ("striker.csv", "synthesis.nc", "summary.json", "verification/result.nc"):
+        assert stat.S_IMODE(os.stat(tmp_path / "syn" / f).st_mode) == 0o644, f
 
 
 # ------------------------------------------------------------------------------------------- synthesis specs
@@ -158,7 +156,6 @@ diameter = "50 mm"
 """
 
 
-@pytest.mark.skipif(cli._synthesis_module() is None, reason="inverse problem not installed")
 @pytest.mark.parametrize("target, message", [
     ('type = "samples"', "target.time: missing"),
     ('type = "samples"\ntime = ["0 ms", "1 ms"]', "target.force: missing"),
