@@ -1,0 +1,258 @@
+"""Forward model and exact gradient (adjoint, reverse mode) of one striker impact, for striker design.
+
+:class:`ImpactProblem` fixes everything except the striker: the struck system (left end = impact face), the
+element travel time dt, the number n of striker elements and the number of steps. :meth:`ImpactProblem.forward`
+runs the impact of a striker given by its element impedances Z_1..Z_n (counted from the impact face, as in
+:func:`~rodimpact.synthesize`) and velocity; :meth:`ImpactProblem.gradient` returns dJ/dZ_q and dJ/dv for any
+scalar J of the outputs, given the seeds dJ/d(output). The derivation is in docs/adjoint.md.
+
+The forward run is the lattice of :func:`rodimpact.simulate` (same arrays, same boundary code, same operation
+order) on the system ``with_striker(struck, Rod.from_impedance(Z[::-1], dt=dt), velocity)``: its outputs are
+bit-identical to ``simulate``'s. The gradient is exact for the branches taken (contact or separated, friction
+stick or slip, bit-rock loading, unloading or released): the responses are piecewise smooth in (Z, v).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+import numpy as np
+
+from .._validate import finite, positive_array
+from ..direct.simulate import _MAX_CHUNK, _energy_stride, _initial_state, _kernel_arrays, _wave_arrays
+from ..lattice.lattice import build_lattice
+from ..rods.rod import Rod
+from ..rods.system import System
+from ..inverse.struck import Location, as_struck_system, position_probe, with_striker
+from . import _adjoint_kernels as K
+
+QUANTITIES = ("force", "incident")
+
+
+@dataclass(frozen=True, eq=False)
+class Forward:
+    """Outputs of one impact, one value per step (the step's start time is k dt).
+
+    ``face_force`` (N, compressive < 0) is the contact force at the impact face, ``observed`` the chosen quantity
+    at the location (the face force without a location), ``end_force`` / ``end_velocity`` the normal force (N)
+    and outward velocity (m/s) at the struck system's far end, ``contact`` whether the striker touches.
+    """
+
+    face_force: np.ndarray
+    observed: np.ndarray
+    end_force: np.ndarray
+    end_velocity: np.ndarray
+    contact: np.ndarray
+    striker_mass: float
+    impedance: np.ndarray
+    velocity: float
+    _tape: dict = field(repr=False)
+
+
+class ImpactProblem:
+    """The impact of a striker of n elements (travel time ``dt`` each) on ``struck`` during ``steps`` steps.
+
+    Parameters
+    ----------
+    struck:
+        The struck system, its left end the impact face (from :func:`~rodimpact.inverse.struck.as_struck_system`).
+    dt:
+        Element travel time, s.
+    n:
+        Number of striker elements.
+    steps:
+        Number of time steps simulated.
+    location:
+        ``None`` (observe the impact face) or a :class:`~rodimpact.inverse.struck.Location` in ``struck``.
+    quantity:
+        ``"force"`` (normal force, tension positive) or ``"incident"`` (force wave arriving from the impact side,
+        relative to the initial state of the element left of the node; see
+        :func:`~rodimpact.inverse.struck.position_quantity`) at the location.
+    backend:
+        ``"numba"`` (compiled) or ``"numpy"`` (readable reference path; slow).
+    checkpoint_every:
+        The reverse sweep stores the full state every C steps and recomputes each segment of C steps once
+        (memory ~ (steps / C + C) states); default C = ceil(sqrt(steps)).
+    """
+
+    def __init__(self, struck: System, dt: float, n: int, steps: int, *, location: Optional[Location] = None,
+                 quantity: str = "force", backend: str = "numba", checkpoint_every: Optional[int] = None) -> None:
+        if not isinstance(struck, System):
+            raise TypeError(f"struck: must be a System (see rodimpact.inverse.struck.as_struck_system), "
+                            f"got {type(struck).__name__}")
+        struck = as_struck_system(struck)
+        self.n = _count("n", n, "striker elements")
+        self.steps = _count("steps", steps, "time steps")
+        if quantity not in QUANTITIES:
+            raise ValueError(f"quantity: must be one of {QUANTITIES}, got {quantity!r}")
+        if location is not None and not isinstance(location, Location):
+            raise TypeError(f"location: must be None or a Location (rodimpact.inverse.struck.locate), "
+                            f"got {type(location).__name__}")
+        if backend not in ("numba", "numpy"):
+            raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
+        c = math.ceil(math.sqrt(self.steps)) if checkpoint_every is None else _count(
+            "checkpoint_every", checkpoint_every, "steps")
+        self.checkpoint_every = min(c, self.steps)
+        self.struck, self.location, self.quantity, self.backend = struck, location, quantity, backend
+        # the complete system with a placeholder striker: only the striker's impedances and velocity change
+        template = with_striker(struck, Rod.from_impedance(np.ones(self.n), dt=dt), 1.0)
+        lat = build_lattice(template, dt)
+        self.dt = lat.dt
+        if int(lat.rod_start[1]) != self.n:   # pragma: no cover - impedance-level rods are exact
+            raise ValueError(f"dt: the striker lattice has {lat.rod_start[1]} elements instead of n = {self.n}")
+        self._state = _initial_state(template, lat)
+        probes = [position_probe(location, 1)] if location is not None else []
+        arrays = _kernel_arrays(template, lat, self._state, probes)
+        _, self._touch = _wave_arrays(lat, arrays)
+        self._arrays = arrays
+        self._end_value, self._sp_force = (np.ascontiguousarray(x) for x in arrays["step_inputs"](0, self.steps))
+        self._z = lat.impedance.copy()
+        self._event = _call_starts(self.steps)
+        if location is not None:   # element left of the observed node (the striker's face element at the face)
+            self._k_left = self.n + location.element_left
+
+    # ------------------------------------------------------------------ forward
+    def forward(self, impedance: Any, velocity: Any) -> Forward:
+        """Run the impact of the striker with element impedances ``impedance`` (N s/m, Z_1 at the impact face)
+        and initial velocity ``velocity`` (m/s, positive towards the struck system)."""
+        zq = positive_array("impedance", impedance)
+        if zq.shape != (self.n,):
+            raise ValueError(f"impedance: need one value per striker element, shape ({self.n},), got {zq.shape}")
+        v_striker = finite("velocity", velocity, "m/s")
+        Z = self._z.copy()
+        Z[:self.n] = zq[::-1]
+        R = (Z[1:] - Z[:-1]) / (Z[1:] + Z[:-1])            # eq. 2.40, as rodimpact.direct.simulate._wave_arrays
+        N0 = self._state["N"]
+        v0 = self._state["v"].copy()
+        v0[:self.n] = v_striker
+        f = 0.5 * (N0 - Z * v0)
+        g = 0.5 * (N0 + Z * v0)
+        C = self.checkpoint_every
+        n_ck = -(-self.steps // C)
+        ck = _state_store(n_ck, Z.size, self._arrays["junction_code"].size)
+        out = self._run(0, self.steps, C, f, g, Z, R, ck)
+        jn, jc, en, ev, pn, pv = out
+        face = jn[0]
+        if self.location is None:
+            observed = face
+        elif self.quantity == "force":
+            observed = pn[0]
+        else:
+            z_left = Z[self._k_left]
+            observed = 0.5 * ((pn[0] - N0[self._k_left]) - z_left * (pv[0] - v0[self._k_left]))
+        tape = {"Z": Z, "R": R, "v0": v0, "checkpoints": ck, "contact": jc, "probe_velocity": pv,
+                "problem": self}
+        return Forward(face, observed, en[1], ev[1], jc[0].astype(bool), float(self.dt * zq.sum()), zq.copy(),
+                       v_striker, tape)
+
+    def _run(self, k0: int, k1: int, stride: int, f: np.ndarray, g: np.ndarray, Z: np.ndarray, R: np.ndarray,
+             hist: tuple, start: Optional[tuple] = None) -> tuple:
+        """Advance (f, g) over steps k0..k1-1 from the initial boundary state (or ``start`` = (end_state,
+        junction_state, gap)), storing the state every ``stride`` steps into ``hist``; returns the per-step
+        outputs (junction force, contact, end force, end velocity, probe force, probe velocity)."""
+        a = self._arrays
+        n_rods = a["rod_start"].size - 1
+        n_j, n_p, n_sp, steps = n_rods - 1, a["pr_rod"].size, a["sp_elem"].size, self.steps
+        if start is None:
+            end_state, junction_state, gap = np.zeros((2, 2)), np.zeros(n_j, dtype=np.int64), a["gap"].copy()
+        else:
+            end_state, junction_state, gap = (x.copy() for x in start)
+        outputs = (np.zeros((n_j, steps)), np.zeros((n_j, steps)), np.zeros((2, steps)), np.zeros((2, steps)))
+        pr = (np.zeros((n_p, steps)), np.zeros((n_p, steps)), np.zeros((n_p, steps)))
+        ends = (a["end_code"], a["end_par"], end_state, self._end_value)
+        junctions = (a["junction_code"], junction_state, gap, a["gap_tol"], np.zeros((n_rods, 2)))
+        specials = (a["sp_elem"], a["sp_cap"], self._sp_force, np.zeros(n_sp), np.zeros(n_sp))
+        probes = (a["pr_rod"], a["pr_local"], a["pr_sp"], pr[0], pr[1], pr[2], np.zeros(n_p))
+        rod_nodes = tuple(np.empty(n_rods) for _ in range(4))
+        run = K.advance_numba if self.backend == "numba" else K.advance_numpy
+        run(k0, k1, stride, f, g, Z, R, self._touch, a["rod_start"], ends, junctions, specials, probes, outputs,
+            np.zeros(8), rod_nodes, self.dt, self._event, *hist)
+        return outputs + pr[:2]
+
+    # ------------------------------------------------------------------ gradient
+    def gradient(self, fw: Forward, face_force: Any = None, observed: Any = None, end_force: Any = None,
+                 end_velocity: Any = None) -> tuple[np.ndarray, float]:
+        """dJ/dZ_q (shape (n,), Z_1 at the impact face) and dJ/dv for the scalar J whose derivatives with respect
+        to the per-step outputs of ``fw`` are the given seeds (each ``None`` or shape (steps,))."""
+        if not isinstance(fw, Forward) or fw._tape.get("problem") is not self:
+            raise ValueError("fw: must be the result of forward() of this ImpactProblem")
+        steps, n = self.steps, self.n
+        seed = np.zeros((5, steps))
+        for name, val, row in (("face_force", face_force, K.SEED_FACE), ("end_force", end_force, K.SEED_END_FORCE),
+                               ("end_velocity", end_velocity, K.SEED_END_VELOCITY)):
+            if val is not None:
+                seed[row] += _seed(name, val, steps)
+        tape = fw._tape
+        Z, R, v0 = tape["Z"], tape["R"], tape["v0"]
+        dZ = np.zeros(Z.size)
+        dv = 0.0
+        if observed is not None:
+            s = _seed("observed", observed, steps)
+            if self.location is None:
+                seed[K.SEED_FACE] += s
+            elif self.quantity == "force":
+                seed[K.SEED_PROBE_FORCE] += s
+            else:   # N_i = ((N - N0) - Z_left (V - v0)) / 2
+                kl = self._k_left
+                seed[K.SEED_PROBE_FORCE] += 0.5 * s
+                seed[K.SEED_PROBE_VELOCITY] -= 0.5 * Z[kl] * s
+                dZ[kl] -= 0.5 * float(np.dot(tape["probe_velocity"][0] - v0[kl], s))
+                if kl < n:
+                    dv += 0.5 * Z[kl] * float(s.sum())
+        lf, lg, les, dR = np.zeros(Z.size), np.zeros(Z.size), np.zeros((2, 2)), np.zeros(R.size)
+        a = self._arrays
+        ck = tape["checkpoints"]
+        C = self.checkpoint_every
+        seg = _state_store(C, Z.size, a["junction_code"].size)
+        reverse = K.reverse_numba if self.backend == "numba" else K.reverse_numpy
+        for i in range(len(ck[0]) - 1, -1, -1):
+            k0, k1 = i * C, min(steps, (i + 1) * C)
+            f, g = ck[0][i].copy(), ck[1][i].copy()
+            self._run(k0, k1, 1, f, g, Z, R, seg, start=(ck[2][i], ck[3][i], ck[4][i]))
+            reverse(k0, k1, seg[0], seg[1], seg[2], Z, R, a["rod_start"], a["end_code"], a["end_par"],
+                    self._end_value, tape["contact"], a["sp_elem"], a["sp_cap"], self._sp_force, a["pr_rod"],
+                    a["pr_local"], a["pr_sp"], seed, lf, lg, les, dZ, dR, self.dt)
+        # initial waves f = (N0 - Z v0)/2, g = (N0 + Z v0)/2; the striker's v0 is the velocity
+        dZ += 0.5 * v0 * (lg - lf)
+        dv += float(np.sum(0.5 * Z[:n] * (lg[:n] - lf[:n])))
+        # R_j = (Z_{j+1} - Z_j) / (Z_{j+1} + Z_j)
+        s2 = (Z[1:] + Z[:-1]) ** 2
+        dZ[1:] += dR * 2.0 * Z[:-1] / s2
+        dZ[:-1] -= dR * 2.0 * Z[1:] / s2
+        return dZ[:n][::-1].copy(), dv
+
+
+def _count(name: str, value: Any, what: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ValueError(f"{name}: must be an integer number of {what} >= 1, got {value!r}")
+    return int(value)
+
+
+def _seed(name: str, value: Any, steps: int) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}: must be an array of dJ/d({name}) per step, got {type(value).__name__}") from None
+    if arr.shape != (steps,):
+        raise ValueError(f"{name}: the seed needs one value per step, shape ({steps},), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name}: the seed must be finite")
+    return arr
+
+
+def _state_store(slots: int, n_el: int, n_j: int) -> tuple[np.ndarray, ...]:
+    """Room for ``slots`` lattice states: waves f, g, end state, junction state, gap."""
+    return (np.empty((slots, n_el)), np.empty((slots, n_el)), np.empty((slots, 2, 2)),
+            np.empty((slots, n_j), dtype=np.int64), np.empty((slots, n_j)))
+
+
+def _call_starts(steps: int) -> np.ndarray:
+    """Steps at which :func:`rodimpact.simulate` (no snapshots, default energy stride) begins a new compiled
+    call: there the state passes through (N, v), which the forward run repeats to stay bit-identical."""
+    every = _energy_stride(None, steps)
+    marks = np.zeros(steps, dtype=np.bool_)
+    marks[every::every] = True
+    marks[_MAX_CHUNK::_MAX_CHUNK] = True
+    return marks

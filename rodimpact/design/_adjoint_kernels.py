@@ -1,0 +1,444 @@
+"""Array kernels of the exact gradient (reverse mode) of the wave propagation method; see docs/adjoint.md.
+
+Symbols as in :mod:`rodimpact.direct._kernels`: Z impedance (N s/m), f / g the right- / left-going force waves
+of an element (N = f + g, v = (g - f) / Z, thesis Sec. 2.3.2), R_j = (Z_{j+1} - Z_j)/(Z_{j+1} + Z_j) the
+reflection factor of the node between elements j and j+1 (eq. 2.40). Adjoint variables carry the prefix ``l``
+(lambda = dJ/d(variable)); ``mf``/``mg`` are the adjoints of the waves *before* a step.
+
+Forward (:func:`advance_numba`, :func:`advance_numpy`): the lattice step of :func:`~rodimpact.direct._kernels.run_numba`
+(the shared :func:`~rodimpact.direct._kernels.boundaries` solves ends, junctions, loaded nodes and probes),
+bit-identical to it, with the state (f, g, end state, junction state, gap) stored before every ``stride``-th
+step: checkpoints (stride C) or the full history of a segment (stride 1). ``event[k]`` marks the steps at
+which :func:`rodimpact.simulate` starts a new compiled call (the state passes through (N, v) between the
+calls); repeating that round trip at the end of step k-1 keeps the results bit-identical to ``simulate`` and
+the stored states are those the next step starts from.
+
+Reverse (:func:`reverse_numba`, :func:`reverse_numpy`): the transpose of one step, applied from the last step
+of a segment to its first with the branches (contact/separated, stick/slip, bit-rock loading/unloading/released)
+taken as in the forward run. ``seed[:, k]`` = dJ/d(output at step k) for the rows: 0 force at junction 0 (the
+impact face), 1 right end force, 2 right end outward velocity, 3 probe force, 4 probe velocity.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..direct._kernels import BITROCK, FIXED, FORCE, FREE, NONREFLECTING, SPRING, VELOCITY, boundaries
+
+SEED_FACE, SEED_END_FORCE, SEED_END_VELOCITY, SEED_PROBE_FORCE, SEED_PROBE_VELOCITY = range(5)
+
+
+# ---------------------------------------------------------------------------------------------- forward
+def _save(slot, f, g, end_state, junction_state, gap, hist_f, hist_g, hist_es, hist_js, hist_gap):
+    hist_f[slot] = f
+    hist_g[slot] = g
+    hist_es[slot] = end_state
+    hist_js[slot] = junction_state
+    hist_gap[slot] = gap
+
+
+_save_nb = njit(inline="always", cache=True)(_save)
+
+
+def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
+             rod_nodes, dt, event, hist_f, hist_g, hist_es, hist_js, hist_gap):
+    """Steps k0 .. k1-1 in place on the waves (f, g), exactly as :func:`~rodimpact.direct._kernels.run_numba`;
+    before step k with (k - k0) % stride == 0 the state goes to slot (k - k0) // stride of the ``hist_*`` arrays."""
+    n_rods = rod_start.size - 1
+    n_el = Z.size
+    N = np.empty(n_el)
+    v = np.empty(n_el)
+    sp_elem = specials[0]
+    sp_F = specials[3]
+    sp_V = specials[4]
+    rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes
+    n_sp = sp_elem.size
+    for k in range(k0, k1):
+        if (k - k0) % stride == 0:
+            _save_nb((k - k0) // stride, f, g, ends[2], junctions[1], junctions[2], hist_f, hist_g, hist_es,
+                     hist_js, hist_gap)
+        for t in touch:
+            N[t] = f[t] + g[t]
+            v[t] = (g[t] - f[t]) / Z[t]
+        boundaries(k, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        ptr = 0
+        for r in range(n_rods):
+            s = rod_start[r]
+            e = rod_start[r + 1]
+            f_first = rod_NL[r] - g[s]
+            g_last = rod_NR[r] - f[e - 1]
+            fa = f[s]
+            j = s
+            while j < e - 1:
+                stop = e - 1
+                if ptr < n_sp and sp_elem[ptr] < e - 1:
+                    stop = sp_elem[ptr]
+                for jj in range(j, stop):
+                    gb = g[jj + 1]
+                    fb = f[jj + 1]
+                    sc = R[jj] * (fa - gb)
+                    g[jj] = gb + sc
+                    f[jj + 1] = fa + sc
+                    fa = fb
+                if stop < e - 1:
+                    gb = g[stop + 1]
+                    fb = f[stop + 1]
+                    n_plus = N[stop] + Z[stop] * (sp_V[ptr] - v[stop])
+                    g[stop] = n_plus - fa
+                    f[stop + 1] = n_plus - sp_F[ptr] - gb
+                    fa = fb
+                    ptr += 1
+                j = stop + 1
+            f[s] = f_first
+            g[e - 1] = g_last
+        if k + 1 < event.size and event[k + 1]:   # simulate() ends a compiled call: (f, g) -> (N, v) -> (f, g)
+            for j in range(n_el):
+                nj = f[j] + g[j]
+                vj = (g[j] - f[j]) / Z[j]
+                f[j] = 0.5 * (nj - Z[j] * vj)
+                g[j] = 0.5 * (nj + Z[j] * vj)
+
+
+advance_numba = njit(cache=True, error_model="numpy", nogil=True)(_advance)
+
+
+def interior_nodes(rod_start: np.ndarray, sp_elem: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Elements left of the plain interior nodes (no rod end, no load) and of the loaded/frictional ones."""
+    n_el = int(rod_start[-1])
+    plain = np.ones(max(n_el - 1, 0), dtype=bool)
+    plain[rod_start[1:-1] - 1] = False
+    plain[sp_elem] = False
+    return np.flatnonzero(plain), sp_elem
+
+
+def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
+                  rod_nodes, dt, event, hist_f, hist_g, hist_es, hist_js, hist_gap):
+    """Readable reference of :func:`advance_numba`: per step, the scattering of every plain interior node as
+    one vectorised expression (g_a' = g_b + R (f_a - g_b), f_b' = f_a + R (f_a - g_b), eq. 2.39) and the loaded
+    nodes and rod ends from their node forces (g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b)."""
+    a, sp = interior_nodes(rod_start, specials[0])
+    first, last = rod_start[:-1], rod_start[1:] - 1
+    rod_NL, _, rod_NR, _ = rod_nodes
+    sp_F, sp_V = specials[3], specials[4]
+    N = np.empty(Z.size)
+    v = np.empty(Z.size)
+    for k in range(k0, k1):
+        if (k - k0) % stride == 0:
+            _save((k - k0) // stride, f, g, ends[2], junctions[1], junctions[2], hist_f, hist_g, hist_es,
+                  hist_js, hist_gap)
+        N[touch] = f[touch] + g[touch]
+        v[touch] = (g[touch] - f[touch]) / Z[touch]
+        boundaries.py_func(k, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        f_new = np.empty_like(f)
+        g_new = np.empty_like(g)
+        sc = R[a] * (f[a] - g[a + 1])
+        g_new[a] = g[a + 1] + sc
+        f_new[a + 1] = f[a] + sc
+        n_plus = N[sp] + Z[sp] * (sp_V - v[sp])
+        g_new[sp] = n_plus - f[sp]
+        f_new[sp + 1] = n_plus - sp_F - g[sp + 1]
+        f_new[first] = rod_NL - g[first]
+        g_new[last] = rod_NR - f[last]
+        f[:] = f_new
+        g[:] = g_new
+        if k + 1 < event.size and event[k + 1]:
+            n_ = f + g
+            v_ = (g - f) / Z
+            f[:] = 0.5 * (n_ - Z * v_)
+            g[:] = 0.5 * (n_ + Z * v_)
+
+
+# ---------------------------------------------------------------------------------------------- reverse
+@njit(inline="always", error_model="numpy", cache=True)
+def end_vjp(code, a, z, value, p0, p1, delta, delta_max, dt, ln, lw, ldelta_new, ldmax_new):
+    """Transpose of one outer end (:func:`~rodimpact.direct._kernels.end_solve`) in the branch it takes.
+
+    Forward: w = W(a, z, delta, delta_max) per branch, N = a + z w, delta' = delta + w dt, delta_max' =
+    max(delta_max, delta + w dt/2) (bit-rock only). Given dJ/dN, dJ/dw and the adjoints of delta', delta_max',
+    returns dJ/da, dJ/dz, dJ/ddelta, dJ/ddelta_max. The device parameters (p0, p1) are held constant.
+    """
+    h = 0.5 * dt
+    w, _, _ = _end_w(code, a, z, value, p0, p1, delta, delta_max, dt)
+    lw = lw + ldelta_new * dt
+    ldelta = ldelta_new
+    ldmax = ldmax_new
+    if code == BITROCK and delta + w * h > delta_max:
+        lw += ldmax_new * h
+        ldelta += ldmax_new
+        ldmax = 0.0
+    la = ln                                   # N = a + z w
+    lz = ln * w
+    lw += ln * z
+    if code == FREE or code == FORCE:         # w = (value - a) / z
+        la -= lw / z
+        lz -= lw * w / z
+    elif code == NONREFLECTING:               # w = (p1 - a) / (z + p0)
+        la -= lw / (z + p0)
+        lz -= lw * w / (z + p0)
+    elif code == SPRING:                      # w = -(a + k delta) / (z + c + k h)
+        den = z + p1 + p0 * h
+        la -= lw / den
+        ldelta -= lw * p0 / den
+        lz -= lw * w / den
+    elif code == BITROCK:
+        k1 = p0
+        k2 = p1
+        branch = _bitrock_branch(a, z, k1, k2, delta, delta_max, h)
+        if branch == 0:                       # released: w = -a / z
+            la -= lw / z
+            lz -= lw * w / z
+        elif branch == 1:                     # unloading: w = -(a + k1 pm - k2 (pm - delta)) / (z + k2 h)
+            den = z + k2 * h
+            la -= lw / den
+            ldmax -= lw * (k1 - k2) / den
+            ldelta -= lw * k2 / den
+            lz -= lw * w / den
+        else:                                 # loading: w = -(a + k1 delta) / (z + k1 h)
+            den = z + k1 * h
+            la -= lw / den
+            ldelta -= lw * k1 / den
+            lz -= lw * w / den
+    # FIXED and VELOCITY: w does not depend on the state of the rod
+    return la, lz, ldelta, ldmax
+
+
+@njit(inline="always", error_model="numpy", cache=True)
+def _bitrock_branch(a, z, k1, k2, delta, delta_max, h):
+    """0 released, 1 unloading/reloading, 2 loading: the test of end_solve, with the same arithmetic."""
+    pm = delta_max
+    p_release = pm - k1 * pm / k2
+    w_release = (p_release - delta) / h
+    w_max = (pm - delta) / h
+    if a + z * w_release >= 0.0:
+        return 0
+    if a + z * w_max + k1 * pm >= 0.0:
+        return 1
+    return 2
+
+
+@njit(inline="always", error_model="numpy", cache=True)
+def _end_w(code, a, z, value, p0, p1, delta, delta_max, dt):
+    """Outward end velocity w of :func:`end_solve` (its first return value), recomputed for the transpose."""
+    h = 0.5 * dt
+    if code == FREE or code == FORCE:
+        w = (value - a) / z
+    elif code == FIXED:
+        w = 0.0
+    elif code == VELOCITY:
+        w = value
+    elif code == NONREFLECTING:
+        w = (p1 - a) / (z + p0)
+    elif code == SPRING:
+        w = -(a + p0 * delta) / (z + p1 + p0 * h)
+    else:
+        b = _bitrock_branch(a, z, p0, p1, delta, delta_max, h)
+        pm = delta_max
+        if b == 0:
+            w = -a / z
+        elif b == 1:
+            w = -(a + p0 * pm - p1 * (pm - delta)) / (z + p1 * h)
+        else:
+            w = -(a + p0 * delta) / (z + p0 * h)
+    return w, a + z * w, delta_max
+
+
+@njit(inline="always", error_model="numpy", cache=True)
+def node_vjp(fa, gb, za, zb, ln, lv):
+    """Transpose of a bonded node between elements a and b: V = 2 (g_b - f_a)/(Z_a + Z_b), N = 2 f_a + Z_a V
+    (eqs. 3.5-3.7 in wave variables). Returns dJ/df_a, dJ/dg_b, dJ/dZ_a, dJ/dZ_b."""
+    s = za + zb
+    vn = 2.0 * (gb - fa) / s
+    lvt = lv + za * ln
+    return 2.0 * ln - 2.0 * lvt / s, 2.0 * lvt / s, ln * vn - lvt * vn / s, -lvt * vn / s
+
+
+def _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, es, les, contact, sp_elem, sp_cap, sp_force,
+                  pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF, lspV, mf, mg, dZ, dt):
+    """Transpose of :func:`~rodimpact.direct._kernels.boundaries` at step k: from the adjoints of the node values
+    (lNL, lNR, lVL, lVR per rod; lnp = dJ/dN^+, lspF, lspV per loaded node) and the output seeds, add dJ/df,
+    dJ/dg of the waves before the step into mf, mg and dJ/dZ into dZ; les (2, 2) holds the adjoint of the end
+    state after the step on entry and before it on return. Branches: junction contact flags of the forward
+    run; friction and bit-rock branches recomputed with the forward arithmetic from the stored waves."""
+    n_rods = rod_start.size - 1
+    n_el = Z.size
+    # ---- probes (outputs read from node values)
+    for p in range(pr_rod.size):
+        r = pr_rod[p]
+        m = pr_local[p]
+        sn = seed[3, k]
+        sv = seed[4, k]
+        if m == 0:
+            lNL[r] += sn
+            lVL[r] += sv
+        elif m == rod_start[r + 1] - rod_start[r]:
+            lNR[r] += sn
+            lVR[r] += sv
+        elif pr_sp[p] >= 0:
+            lnp[pr_sp[p]] += sn
+            lspV[pr_sp[p]] += sv
+        else:
+            a = rod_start[r] + m - 1
+            dfa, dgb, dza, dzb = node_vjp(f[a], g[a + 1], Z[a], Z[a + 1], sn, sv)
+            mf[a] += dfa
+            mg[a + 1] += dgb
+            dZ[a] += dza
+            dZ[a + 1] += dzb
+    # ---- loaded / frictional nodes: N^+ = 2 f_a + Z_a V, V and the node force F by branch
+    for i in range(sp_elem.size):
+        a = sp_elem[i]
+        b = a + 1
+        Na = f[a] + g[a]
+        va = (g[a] - f[a]) / Z[a]
+        Nb = f[b] + g[b]
+        vb = (g[b] - f[b]) / Z[b]
+        zs = Z[a] + Z[b]
+        f_load = sp_force[i, k]
+        v0 = (f_load + Nb - Na + Z[a] * va + Z[b] * vb) / zs
+        cap = sp_cap[i]
+        stick = cap > 0.0 and abs(v0) * zs <= cap
+        f_fric = 0.0
+        if cap > 0.0 and not stick:
+            f_fric = -cap if v0 > 0.0 else cap
+        vn = 0.0 if stick else v0 + f_fric / zs
+        lvn = lspV[i] + Z[a] * lnp[i]
+        mf[a] += 2.0 * lnp[i]
+        dZ[a] += vn * lnp[i]
+        if stick:                              # F = f_load - v0 zs = 2 f_a - 2 g_b, V = 0
+            mf[a] += 2.0 * lspF[i]
+            mg[b] -= 2.0 * lspF[i]
+        else:                                  # F constant, V = (F + 2 g_b - 2 f_a) / zs
+            mg[b] += 2.0 * lvn / zs
+            mf[a] -= 2.0 * lvn / zs
+            dZ[a] -= vn / zs * lvn
+            dZ[b] -= vn / zs * lvn
+    # ---- junctions
+    for r in range(n_rods - 1):
+        a = rod_start[r + 1] - 1
+        b = a + 1
+        ln = lNR[r] + lNL[r + 1]
+        if r == 0:
+            ln += seed[0, k]
+        if contact[r, k] != 0.0:
+            dfa, dgb, dza, dzb = node_vjp(f[a], g[b], Z[a], Z[b], ln, lVR[r] + lVL[r + 1])
+            mf[a] += dfa
+            mg[b] += dgb
+            dZ[a] += dza
+            dZ[b] += dzb
+        else:                                  # N = 0; free node velocities -2 f_a / Z_a and 2 g_b / Z_b
+            mf[a] -= 2.0 * lVR[r] / Z[a]
+            dZ[a] += 2.0 * f[a] / (Z[a] * Z[a]) * lVR[r]
+            mg[b] += 2.0 * lVL[r + 1] / Z[b]
+            dZ[b] -= 2.0 * g[b] / (Z[b] * Z[b]) * lVL[r + 1]
+    # ---- outer ends: a = N + Z v = 2 g_0 (left), a = N - Z v = 2 f_e (right)
+    for side in range(2):
+        e = 0 if side == 0 else n_el - 1
+        Ne = f[e] + g[e]
+        ve = (g[e] - f[e]) / Z[e]
+        if side == 0:
+            a_in = Ne + Z[e] * ve
+            ln = lNL[0]
+            lw = -lVL[0]
+        else:
+            a_in = Ne - Z[e] * ve
+            ln = lNR[n_rods - 1] + seed[1, k]
+            lw = lVR[n_rods - 1] + seed[2, k]
+        la, lz, ld, lm = end_vjp(end_code[side], a_in, Z[e], end_value[side, k], end_par[side, 0],
+                                 end_par[side, 1], es[side, 0], es[side, 1], dt, ln, lw, les[side, 0], les[side, 1])
+        if side == 0:
+            mg[e] += 2.0 * la
+        else:
+            mf[e] += 2.0 * la
+        dZ[e] += lz
+        les[side, 0] = ld
+        les[side, 1] = lm
+
+
+boundary_vjp = njit(inline="always", error_model="numpy", cache=True)(_boundary_vjp)
+
+
+def _reverse(k0, k1, hist_f, hist_g, hist_es, Z, R, rod_start, end_code, end_par, end_value, contact, sp_elem,
+             sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt):
+    """Transpose of steps k1-1 .. k0 (compiled): on entry lf, lg, les are dJ/d(state after step k1-1), on
+    return dJ/d(state before step k0); dJ/dZ (boundaries) and dJ/dR (interior scattering) are accumulated.
+    ``hist_*[k - k0]`` is the state before step k."""
+    n_rods = rod_start.size - 1
+    n_el = Z.size
+    n_sp = sp_elem.size
+    mf = np.empty(n_el)
+    mg = np.empty(n_el)
+    lNL = np.empty(n_rods)
+    lNR = np.empty(n_rods)
+    lVL = np.empty(n_rods)
+    lVR = np.empty(n_rods)
+    lnp = np.empty(n_sp)
+    lspF = np.empty(n_sp)
+    lspV = np.empty(n_sp)
+    for k in range(k1 - 1, k0 - 1, -1):
+        f = hist_f[k - k0]
+        g = hist_g[k - k0]
+        lVL[:] = 0.0
+        lVR[:] = 0.0
+        lspV[:] = 0.0
+        ptr = 0
+        for r in range(n_rods):
+            s = rod_start[r]
+            e = rod_start[r + 1]
+            for j in range(s, e - 1):
+                if ptr < n_sp and sp_elem[ptr] == j:      # loaded node: g_a' = N^+ - f_a, f_b' = N^+ - F - g_b
+                    lnp[ptr] = lg[j] + lf[j + 1]
+                    lspF[ptr] = -lf[j + 1]
+                    mf[j] = -lg[j]
+                    mg[j + 1] = -lf[j + 1]
+                    ptr += 1
+                else:                                     # plain node: transpose of the scattering
+                    sc = lg[j] + lf[j + 1]
+                    dR[j] += sc * (f[j] - g[j + 1])
+                    mf[j] = lf[j + 1] + R[j] * sc
+                    mg[j + 1] = lg[j] - R[j] * sc
+            lNL[r] = lf[s]                                # f_s' = N^- - g_s
+            mg[s] = -lf[s]
+            lNR[r] = lg[e - 1]                            # g_last' = N^+ - f_last
+            mf[e - 1] = -lg[e - 1]
+        boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, hist_es[k - k0], les, contact, sp_elem,
+                     sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF, lspV, mf, mg,
+                     dZ, dt)
+        lf[:] = mf
+        lg[:] = mg
+
+
+reverse_numba = njit(cache=True, error_model="numpy", nogil=True)(_reverse)
+
+
+def reverse_numpy(k0, k1, hist_f, hist_g, hist_es, Z, R, rod_start, end_code, end_par, end_value, contact, sp_elem,
+                  sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt):
+    """Readable reference of :func:`reverse_numba`: the transpose of the interior scattering as one vectorised
+    expression per step (with s = l_{g_a'} + l_{f_b'}: l_{f_a} = l_{f_b'} + R s, l_{g_b} = l_{g_a'} - R s,
+    dJ/dR += s (f_a - g_b)), then the transposed boundaries."""
+    a, sp = interior_nodes(rod_start, sp_elem)
+    first, last = rod_start[:-1], rod_start[1:] - 1
+    n_rods = rod_start.size - 1
+    for k in range(k1 - 1, k0 - 1, -1):
+        f = hist_f[k - k0]
+        g = hist_g[k - k0]
+        mf = np.zeros_like(lf)
+        mg = np.zeros_like(lg)
+        s = lg[a] + lf[a + 1]
+        dR[a] += s * (f[a] - g[a + 1])
+        mf[a] = lf[a + 1] + R[a] * s
+        mg[a + 1] = lg[a] - R[a] * s
+        lnp = lg[sp] + lf[sp + 1]
+        lspF = -lf[sp + 1]
+        mf[sp] = -lg[sp]
+        mg[sp + 1] = -lf[sp + 1]
+        lNL = lf[first].copy()
+        lNR = lg[last].copy()
+        mg[first] = -lf[first]
+        mf[last] = -lg[last]
+        lVL = np.zeros(n_rods)
+        lVR = np.zeros(n_rods)
+        _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, hist_es[k - k0], les, contact, sp_elem,
+                      sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF,
+                      np.zeros(sp.size), mf, mg, dZ, dt)
+        lf[:] = mf
+        lg[:] = mg
