@@ -130,10 +130,12 @@ class ImpactProblem:
         f = 0.5 * (N0 - Z * v0)
         g = 0.5 * (N0 + Z * v0)
         C = self.checkpoint_every
-        n_ck = -(-self.steps // C)
-        ck = _state_store(n_ck, Z.size, self._arrays["junction_code"].size)
-        out = self._run(0, self.steps, C, f, g, Z, R, ck)
-        jn, jc, en, ev, pn, pv = out
+        ck = _state_store(-(-self.steps // C), Z.size, self._arrays["junction_code"].size)
+        buffers = self._buffers()
+        run = K.advance_numba if self.backend == "numba" else K.advance_numpy
+        run(0, self.steps, C, f, g, Z, R, self._touch, self._arrays["rod_start"], *buffers, self.dt, self._event,
+            ck, False, _record(1, Z.size, self._touch.size))
+        (jn, jc, en, ev), (pn, pv) = buffers[4], buffers[3][3:5]
         face = jn[0]
         if self.location is None:
             observed = face
@@ -142,34 +144,25 @@ class ImpactProblem:
         else:
             z_left = Z[self._k_left]
             observed = 0.5 * ((pn[0] - N0[self._k_left]) - z_left * (pv[0] - v0[self._k_left]))
-        tape = {"Z": Z, "R": R, "v0": v0, "checkpoints": ck, "contact": jc, "probe_velocity": pv,
-                "problem": self}
+        tape = {"Z": Z, "R": R, "v0": v0, "checkpoints": ck, "probe_velocity": pv, "problem": self}
         return Forward(face, observed, en[1], ev[1], jc[0].astype(bool), float(self.dt * zq.sum()), zq.copy(),
                        v_striker, tape)
 
-    def _run(self, k0: int, k1: int, stride: int, f: np.ndarray, g: np.ndarray, Z: np.ndarray, R: np.ndarray,
-             hist: tuple, start: Optional[tuple] = None) -> tuple:
-        """Advance (f, g) over steps k0..k1-1 from the initial boundary state (or ``start`` = (end_state,
-        junction_state, gap)), storing the state every ``stride`` steps into ``hist``; returns the per-step
-        outputs (junction force, contact, end force, end velocity, probe force, probe velocity)."""
+    def _buffers(self) -> tuple:
+        """The grouped arrays of :func:`~rodimpact.direct._kernels.boundaries` for a run from the initial state:
+        ends, junctions, specials, probes, per-step outputs (junction force, contact, end force, end velocity),
+        work accumulator, rod-end node values."""
         a = self._arrays
         n_rods = a["rod_start"].size - 1
         n_j, n_p, n_sp, steps = n_rods - 1, a["pr_rod"].size, a["sp_elem"].size, self.steps
-        if start is None:
-            end_state, junction_state, gap = np.zeros((2, 2)), np.zeros(n_j, dtype=np.int64), a["gap"].copy()
-        else:
-            end_state, junction_state, gap = (x.copy() for x in start)
-        outputs = (np.zeros((n_j, steps)), np.zeros((n_j, steps)), np.zeros((2, steps)), np.zeros((2, steps)))
-        pr = (np.zeros((n_p, steps)), np.zeros((n_p, steps)), np.zeros((n_p, steps)))
-        ends = (a["end_code"], a["end_par"], end_state, self._end_value)
-        junctions = (a["junction_code"], junction_state, gap, a["gap_tol"], np.zeros((n_rods, 2)))
+        ends = (a["end_code"], a["end_par"], np.zeros((2, 2)), self._end_value)
+        junctions = (a["junction_code"], np.zeros(n_j, dtype=np.int64), a["gap"].copy(), a["gap_tol"],
+                     np.zeros((n_rods, 2)))
         specials = (a["sp_elem"], a["sp_cap"], self._sp_force, np.zeros(n_sp), np.zeros(n_sp))
-        probes = (a["pr_rod"], a["pr_local"], a["pr_sp"], pr[0], pr[1], pr[2], np.zeros(n_p))
-        rod_nodes = tuple(np.empty(n_rods) for _ in range(4))
-        run = K.advance_numba if self.backend == "numba" else K.advance_numpy
-        run(k0, k1, stride, f, g, Z, R, self._touch, a["rod_start"], ends, junctions, specials, probes, outputs,
-            np.zeros(8), rod_nodes, self.dt, self._event, *hist)
-        return outputs + pr[:2]
+        probes = (a["pr_rod"], a["pr_local"], a["pr_sp"], np.zeros((n_p, steps)), np.zeros((n_p, steps)),
+                  np.zeros((n_p, steps)), np.zeros(n_p))
+        outputs = (np.zeros((n_j, steps)), np.zeros((n_j, steps)), np.zeros((2, steps)), np.zeros((2, steps)))
+        return ends, junctions, specials, probes, outputs, np.zeros(8), tuple(np.empty(n_rods) for _ in range(4))
 
     # ------------------------------------------------------------------ gradient
     def gradient(self, fw: Forward, face_force: Any = None, observed: Any = None, end_force: Any = None,
@@ -202,18 +195,14 @@ class ImpactProblem:
                 if kl < n:
                     dv += 0.5 * Z[kl] * float(s.sum())
         lf, lg, les, dR = np.zeros(Z.size), np.zeros(Z.size), np.zeros((2, 2)), np.zeros(R.size)
-        a = self._arrays
-        ck = tape["checkpoints"]
-        C = self.checkpoint_every
-        seg = _state_store(C, Z.size, a["junction_code"].size)
-        reverse = K.reverse_numba if self.backend == "numba" else K.reverse_numpy
-        for i in range(len(ck[0]) - 1, -1, -1):
-            k0, k1 = i * C, min(steps, (i + 1) * C)
-            f, g = ck[0][i].copy(), ck[1][i].copy()
-            self._run(k0, k1, 1, f, g, Z, R, seg, start=(ck[2][i], ck[3][i], ck[4][i]))
-            reverse(k0, k1, seg[0], seg[1], seg[2], Z, R, a["rod_start"], a["end_code"], a["end_par"],
-                    self._end_value, tape["contact"], a["sp_elem"], a["sp_cap"], self._sp_force, a["pr_rod"],
-                    a["pr_local"], a["pr_sp"], seed, lf, lg, les, dZ, dR, self.dt)
+        segment = _record(self.checkpoint_every, Z.size, self._touch.size)
+        args = (tape["checkpoints"], _state_store(0, Z.size, self._arrays["junction_code"].size), segment,
+                np.empty(Z.size), np.empty(Z.size), Z, R, self._touch,
+                self._arrays["rod_start"], *self._buffers(), self.dt, self._event, seed, lf, lg, les, dZ, dR)
+        if self.backend == "numba":
+            K.sweep_numba(K.advance_numba, K.reverse_numba, *args)
+        else:
+            K.sweep_numpy(K.advance_numpy, K.reverse_numpy, *args)
         # initial waves f = (N0 - Z v0)/2, g = (N0 + Z v0)/2; the striker's v0 is the velocity
         dZ += 0.5 * v0 * (lg - lf)
         dv += float(np.sum(0.5 * Z[:n] * (lg[:n] - lf[:n])))
@@ -246,6 +235,12 @@ def _state_store(slots: int, n_el: int, n_j: int) -> tuple[np.ndarray, ...]:
     """Room for ``slots`` lattice states: waves f, g, end state, junction state, gap."""
     return (np.empty((slots, n_el)), np.empty((slots, n_el)), np.empty((slots, 2, 2)),
             np.empty((slots, n_j), dtype=np.int64), np.empty((slots, n_j)))
+
+
+def _record(slots: int, n_el: int, n_touch: int) -> tuple[np.ndarray, ...]:
+    """Room for what the transpose of ``slots`` steps needs: f_j - g_{j+1} of every node, the waves of the
+    elements next to ends, joints, loads and probes, the end state."""
+    return np.zeros((slots, n_el)), np.empty((slots, n_touch)), np.empty((slots, n_touch)), np.empty((slots, 2, 2))
 
 
 def _call_starts(steps: int) -> np.ndarray:

@@ -30,21 +30,26 @@ SEED_FACE, SEED_END_FORCE, SEED_END_VELOCITY, SEED_PROBE_FORCE, SEED_PROBE_VELOC
 
 
 # ---------------------------------------------------------------------------------------------- forward
-def _save(slot, f, g, end_state, junction_state, gap, hist_f, hist_g, hist_es, hist_js, hist_gap):
-    hist_f[slot] = f
-    hist_g[slot] = g
-    hist_es[slot] = end_state
-    hist_js[slot] = junction_state
-    hist_gap[slot] = gap
+def _save(slot, f, g, end_state, junction_state, gap, ck):
+    """Checkpoint: the complete state (waves, end state, junction state, gap) into slot ``slot``."""
+    ck[0][slot] = f
+    ck[1][slot] = g
+    ck[2][slot] = end_state
+    ck[3][slot] = junction_state
+    ck[4][slot] = gap
 
 
 _save_nb = njit(inline="always", cache=True)(_save)
 
 
 def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-             rod_nodes, dt, event, hist_f, hist_g, hist_es, hist_js, hist_gap):
-    """Steps k0 .. k1-1 in place on the waves (f, g), exactly as :func:`~rodimpact.direct._kernels.run_numba`;
-    before step k with (k - k0) % stride == 0 the state goes to slot (k - k0) // stride of the ``hist_*`` arrays."""
+             rod_nodes, dt, event, ck, record, rec):
+    """Steps k0 .. k1-1 in place on the waves (f, g), exactly as :func:`~rodimpact.direct._kernels.run_numba`.
+
+    ``ck`` (f, g, end state, junction state, gap; one slot per checkpoint, or none): the state before every
+    ``stride``-th step. With ``record``, ``rec`` = (d, f_touch, g_touch, end state) receives in row k - k0 what
+    the transpose of step k needs: d_j = f_j - g_{j+1} at the plain interior nodes, the waves of the ``touch``
+    elements and the end state (without ``record`` its row 0 is scratch)."""
     n_rods = rod_start.size - 1
     n_el = Z.size
     N = np.empty(n_el)
@@ -54,10 +59,18 @@ def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, spec
     sp_V = specials[4]
     rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes
     n_sp = sp_elem.size
+    rec_d, rec_ft, rec_gt, rec_es = rec
+    checkpoints = ck[0].shape[0] > 0
     for k in range(k0, k1):
-        if (k - k0) % stride == 0:
-            _save_nb((k - k0) // stride, f, g, ends[2], junctions[1], junctions[2], hist_f, hist_g, hist_es,
-                     hist_js, hist_gap)
+        i = k - k0
+        if checkpoints and i % stride == 0:
+            _save_nb(i // stride, f, g, ends[2], junctions[1], junctions[2], ck)
+        row = i if record else 0
+        d = rec_d[row]
+        if record:
+            rec_ft[row] = f[touch]
+            rec_gt[row] = g[touch]
+            rec_es[row] = ends[2]
         for t in touch:
             N[t] = f[t] + g[t]
             v[t] = (g[t] - f[t]) / Z[t]
@@ -77,7 +90,10 @@ def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, spec
                 for jj in range(j, stop):
                     gb = g[jj + 1]
                     fb = f[jj + 1]
-                    sc = R[jj] * (fa - gb)
+                    dd = fa - gb
+                    if record:
+                        d[jj] = dd
+                    sc = R[jj] * dd
                     g[jj] = gb + sc
                     f[jj + 1] = fa + sc
                     fa = fb
@@ -113,7 +129,7 @@ def interior_nodes(rod_start: np.ndarray, sp_elem: np.ndarray) -> tuple[np.ndarr
 
 
 def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-                  rod_nodes, dt, event, hist_f, hist_g, hist_es, hist_js, hist_gap):
+                  rod_nodes, dt, event, ck, record, rec):
     """Readable reference of :func:`advance_numba`: per step, the scattering of every plain interior node as
     one vectorised expression (g_a' = g_b + R (f_a - g_b), f_b' = f_a + R (f_a - g_b), eq. 2.39) and the loaded
     nodes and rod ends from their node forces (g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b)."""
@@ -124,9 +140,14 @@ def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions,
     N = np.empty(Z.size)
     v = np.empty(Z.size)
     for k in range(k0, k1):
-        if (k - k0) % stride == 0:
-            _save((k - k0) // stride, f, g, ends[2], junctions[1], junctions[2], hist_f, hist_g, hist_es,
-                  hist_js, hist_gap)
+        i = k - k0
+        if ck[0].shape[0] > 0 and i % stride == 0:
+            _save(i // stride, f, g, ends[2], junctions[1], junctions[2], ck)
+        if record:
+            rec[0][i, a] = f[a] - g[a + 1]
+            rec[1][i] = f[touch]
+            rec[2][i] = g[touch]
+            rec[3][i] = ends[2]
         N[touch] = f[touch] + g[touch]
         v[touch] = (g[touch] - f[touch]) / Z[touch]
         boundaries.py_func(k, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
@@ -357,15 +378,15 @@ def _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, es, les, 
 boundary_vjp = njit(inline="always", error_model="numpy", cache=True)(_boundary_vjp)
 
 
-def _reverse(k0, k1, hist_f, hist_g, hist_es, Z, R, rod_start, end_code, end_par, end_value, contact, sp_elem,
-             sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt):
+def _reverse(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_value, contact, sp_elem, sp_cap, sp_force,
+             pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt):
     """Transpose of steps k1-1 .. k0 (compiled): on entry lf, lg, les are dJ/d(state after step k1-1), on
     return dJ/d(state before step k0); dJ/dZ (boundaries) and dJ/dR (interior scattering) are accumulated.
-    ``hist_*[k - k0]`` is the state before step k."""
+    ``rec`` is the record of the steps written by :func:`advance_numba` (row k - k0 for step k)."""
     n_rods = rod_start.size - 1
     n_el = Z.size
     n_sp = sp_elem.size
-    mf = np.empty(n_el)
+    mf = np.empty(n_el)                                   # adjoint before the step (ping-pong with lf, lg)
     mg = np.empty(n_el)
     lNL = np.empty(n_rods)
     lNR = np.empty(n_rods)
@@ -374,9 +395,15 @@ def _reverse(k0, k1, hist_f, hist_g, hist_es, Z, R, rod_start, end_code, end_par
     lnp = np.empty(n_sp)
     lspF = np.empty(n_sp)
     lspV = np.empty(n_sp)
+    rec_d, rec_ft, rec_gt, rec_es = rec
+    f = np.zeros(n_el)                                    # waves before the step, at the touch elements only
+    g = np.zeros(n_el)
+    lf_in = lf
+    lg_in = lg
     for k in range(k1 - 1, k0 - 1, -1):
-        f = hist_f[k - k0]
-        g = hist_g[k - k0]
+        d = rec_d[k - k0]
+        f[touch] = rec_ft[k - k0]
+        g[touch] = rec_gt[k - k0]
         lVL[:] = 0.0
         lVR[:] = 0.0
         lspV[:] = 0.0
@@ -384,47 +411,58 @@ def _reverse(k0, k1, hist_f, hist_g, hist_es, Z, R, rod_start, end_code, end_par
         for r in range(n_rods):
             s = rod_start[r]
             e = rod_start[r + 1]
-            for j in range(s, e - 1):
-                if ptr < n_sp and sp_elem[ptr] == j:      # loaded node: g_a' = N^+ - f_a, f_b' = N^+ - F - g_b
-                    lnp[ptr] = lg[j] + lf[j + 1]
-                    lspF[ptr] = -lf[j + 1]
-                    mf[j] = -lg[j]
-                    mg[j + 1] = -lf[j + 1]
+            j = s
+            while j < e - 1:
+                stop = e - 1
+                if ptr < n_sp and sp_elem[ptr] < e - 1:
+                    stop = sp_elem[ptr]
+                for jj in range(j, stop):                 # plain nodes: transpose of the scattering
+                    sc = lg[jj] + lf[jj + 1]
+                    dR[jj] += sc * d[jj]
+                    mf[jj] = lf[jj + 1] + R[jj] * sc
+                    mg[jj + 1] = lg[jj] - R[jj] * sc
+                if stop < e - 1:                          # loaded node: g_a' = N^+ - f_a, f_b' = N^+ - F - g_b
+                    lnp[ptr] = lg[stop] + lf[stop + 1]
+                    lspF[ptr] = -lf[stop + 1]
+                    mf[stop] = -lg[stop]
+                    mg[stop + 1] = -lf[stop + 1]
                     ptr += 1
-                else:                                     # plain node: transpose of the scattering
-                    sc = lg[j] + lf[j + 1]
-                    dR[j] += sc * (f[j] - g[j + 1])
-                    mf[j] = lf[j + 1] + R[j] * sc
-                    mg[j + 1] = lg[j] - R[j] * sc
+                j = stop + 1
             lNL[r] = lf[s]                                # f_s' = N^- - g_s
             mg[s] = -lf[s]
             lNR[r] = lg[e - 1]                            # g_last' = N^+ - f_last
             mf[e - 1] = -lg[e - 1]
-        boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, hist_es[k - k0], les, contact, sp_elem,
+        boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, rec_es[k - k0], les, contact, sp_elem,
                      sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF, lspV, mf, mg,
                      dZ, dt)
-        lf[:] = mf
-        lg[:] = mg
+        lf, mf = mf, lf                                   # the new adjoint becomes the current one
+        lg, mg = mg, lg
+    if (k1 - k0) % 2 == 1:
+        lf_in[:] = lf
+        lg_in[:] = lg
 
 
 reverse_numba = njit(cache=True, error_model="numpy", nogil=True)(_reverse)
 
 
-def reverse_numpy(k0, k1, hist_f, hist_g, hist_es, Z, R, rod_start, end_code, end_par, end_value, contact, sp_elem,
-                  sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt):
+def reverse_numpy(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_value, contact, sp_elem, sp_cap,
+                  sp_force, pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt):
     """Readable reference of :func:`reverse_numba`: the transpose of the interior scattering as one vectorised
     expression per step (with s = l_{g_a'} + l_{f_b'}: l_{f_a} = l_{f_b'} + R s, l_{g_b} = l_{g_a'} - R s,
     dJ/dR += s (f_a - g_b)), then the transposed boundaries."""
     a, sp = interior_nodes(rod_start, sp_elem)
     first, last = rod_start[:-1], rod_start[1:] - 1
     n_rods = rod_start.size - 1
+    f = np.zeros(Z.size)
+    g = np.zeros(Z.size)
     for k in range(k1 - 1, k0 - 1, -1):
-        f = hist_f[k - k0]
-        g = hist_g[k - k0]
+        d = rec[0][k - k0]
+        f[touch] = rec[1][k - k0]
+        g[touch] = rec[2][k - k0]
         mf = np.zeros_like(lf)
         mg = np.zeros_like(lg)
         s = lg[a] + lf[a + 1]
-        dR[a] += s * (f[a] - g[a + 1])
+        dR[a] += s * d[a]
         mf[a] = lf[a + 1] + R[a] * s
         mg[a + 1] = lg[a] - R[a] * s
         lnp = lg[sp] + lf[sp + 1]
@@ -437,8 +475,39 @@ def reverse_numpy(k0, k1, hist_f, hist_g, hist_es, Z, R, rod_start, end_code, en
         mf[last] = -lg[last]
         lVL = np.zeros(n_rods)
         lVR = np.zeros(n_rods)
-        _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, hist_es[k - k0], les, contact, sp_elem,
+        _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, rec[3][k - k0], les, contact, sp_elem,
                       sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF,
                       np.zeros(sp.size), mf, mg, dZ, dt)
         lf[:] = mf
         lg[:] = mg
+
+
+def _sweep(advance, reverse, checkpoints, no_checkpoints, segment, f, g, Z, R, touch, rod_start, ends, junctions,
+           specials, probes, outputs, acc, rod_nodes, dt, event, seed, lf, lg, les, dZ, dR):
+    """The whole reverse pass: for the segments between checkpoints, last first, recompute the segment forward
+    from its checkpoint (recording every step into ``segment``), then transpose its steps. On return lf, lg
+    hold dJ/d(initial waves); dZ, dR are accumulated. ``no_checkpoints``: empty checkpoint stores."""
+    ck_f, ck_g, ck_es, ck_js, ck_gap = checkpoints
+    stride = segment[0].shape[0]
+    steps = event.size
+    n_seg = ck_f.shape[0]
+    end_state = ends[2]
+    junction_state = junctions[1]
+    gap = junctions[2]
+    for i in range(n_seg - 1, -1, -1):
+        k0 = i * stride
+        k1 = min(steps, k0 + stride)
+        f[:] = ck_f[i]
+        g[:] = ck_g[i]
+        end_state[:] = ck_es[i]
+        junction_state[:] = ck_js[i]
+        gap[:] = ck_gap[i]
+        advance(k0, k1, 1, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
+                rod_nodes, dt, event, no_checkpoints, True, segment)
+        reverse(k0, k1, segment, touch, Z, R, rod_start, ends[0], ends[1], ends[3],
+                outputs[1], specials[0], specials[1], specials[2], probes[0], probes[1], probes[2], seed, lf, lg,
+                les, dZ, dR, dt)
+
+
+sweep_numba = njit(cache=True, error_model="numpy", nogil=True)(_sweep)
+sweep_numpy = _sweep
