@@ -1,7 +1,7 @@
 """Cost of one exact gradient (adjoint of the lattice, docs/adjoint.md) relative to one forward run.
 
 Case: a percussive-drilling blow. A striker of n elements (random impedances between 40 and 120 kN s/m,
-10 m/s) hits a uniform drill rod of 4n elements (Z = 80 kN s/m) ending on a BitRockEnd (k1 = 2 Z / dt,
+10 m/s) hits a uniform drill rod of 4n elements (Z = 80 kN s/m) ending on a BitRockEnd (k1 = 0.6 Z / (n dt),
 k2 = 4 k1); the run lasts 2 (n + 4n) steps, long enough for the blow to reach the rock and come back. The
 objective is the rock efficiency (seeds for the end force and velocity).
 
@@ -50,7 +50,7 @@ def measure(n: int) -> dict:
     rng = np.random.default_rng(n)
     z_rod = 80e3
     struck = as_struck_system(ri.Rod.from_impedance([z_rod] * (4 * n), dt=DT),
-                              far_end=ri.BitRockEnd(2 * z_rod / DT, 8 * z_rod / DT))
+                              far_end=ri.BitRockEnd(0.6 * z_rod / (n * DT), 2.4 * z_rod / (n * DT)))
     steps = 2 * (n + 4 * n)
     problem = ImpactProblem(struck, DT, n, steps)
     z = rng.uniform(40e3, 120e3, size=n)

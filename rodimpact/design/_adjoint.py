@@ -69,7 +69,8 @@ class ImpactProblem:
     quantity:
         ``"force"`` (normal force, tension positive) or ``"incident"`` (force wave arriving from the impact side,
         relative to the initial state of the element left of the node; see
-        :func:`~rodimpact.inverse.struck.position_quantity`) at the location.
+        :func:`~rodimpact.inverse.struck.position_quantity`) at the location; without a location the observed
+        quantity is the face force.
     backend:
         ``"numba"`` (compiled) or ``"numpy"`` (readable reference path; slow).
     checkpoint_every:
