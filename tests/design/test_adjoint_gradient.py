@@ -27,7 +27,7 @@ def make_end(kind, rng):
 
 
 def random_case(seed, end_kind, observe, loads=False):
-    """Random struck impedances (one or two bonded parts), random striker with a strong impedance step (it
+    """Random struck impedances (one part, or two parts bonded or in contact), random striker with a strong impedance step (it
     separates and hits again), a problem of 5 * (striker + struck) steps."""
     rng = np.random.default_rng(seed)
     parts = [ri.Rod.from_impedance(rng.uniform(1e4, 6e4, size=int(rng.integers(4, 12))), dt=DT)
@@ -37,8 +37,9 @@ def random_case(seed, end_kind, observe, loads=False):
         extra["loads"] = [ri.NodalForce(0, parts[0].length / 2, lambda t: -3e3 * np.cos(1e5 * t)),
                           ri.Bearings(len(parts) - 1, [(0.0, parts[-1].length)], friction_coefficient=0.3,
                                       normal_load=2e3)]
+    junctions = [ri.Contact() if rng.uniform() < 0.5 else ri.Bonded()] * (len(parts) - 1)
     struck = as_struck_system(parts, struck_velocity=float(rng.uniform(-0.5, 0.5)),
-                              far_end=make_end(end_kind, rng), **extra)
+                              far_end=make_end(end_kind, rng), junctions=junctions, **extra)
     n = int(rng.integers(3, 9))
     z = rng.uniform(1e4, 6e4, size=n)
     z[int(rng.integers(1, n)):] *= rng.uniform(2.0, 6.0)
