@@ -68,8 +68,9 @@ def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, spec
         row = i if record else 0
         d = rec_d[row]
         if record:
-            rec_ft[row] = f[touch]
-            rec_gt[row] = g[touch]
+            for m in range(touch.size):
+                rec_ft[row, m] = f[touch[m]]
+                rec_gt[row, m] = g[touch[m]]
             rec_es[row] = ends[2]
         for t in touch:
             N[t] = f[t] + g[t]
@@ -402,8 +403,9 @@ def _reverse(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_value, 
     lg_in = lg
     for k in range(k1 - 1, k0 - 1, -1):
         d = rec_d[k - k0]
-        f[touch] = rec_ft[k - k0]
-        g[touch] = rec_gt[k - k0]
+        for m in range(touch.size):
+            f[touch[m]] = rec_ft[k - k0, m]
+            g[touch[m]] = rec_gt[k - k0, m]
         lVL[:] = 0.0
         lVR[:] = 0.0
         lspV[:] = 0.0
