@@ -27,8 +27,8 @@ def make_end(kind, rng):
 
 
 def random_case(seed, end_kind, observe, loads=False):
-    """Random struck impedances (one part, or two parts bonded or in contact), random striker with a strong impedance step (it
-    separates and hits again), a problem of 5 * (striker + struck) steps."""
+    """Random struck impedances (one part, or two parts bonded or in contact), random striker with a strong
+    impedance step (it separates and hits again), a problem of 5 * (striker + struck) steps."""
     rng = np.random.default_rng(seed)
     parts = [ri.Rod.from_impedance(rng.uniform(1e4, 6e4, size=int(rng.integers(4, 12))), dt=DT)
              for _ in range(int(rng.integers(1, 3)))]
