@@ -20,7 +20,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._validate import finite, positive_array
+from .._validate import finite, fits_in_memory, positive_array
 from ..direct.simulate import _MAX_CHUNK, _energy_stride, _initial_state, _kernel_arrays, _wave_arrays
 from ..lattice.lattice import build_lattice
 from ..rods.rod import Rod
@@ -103,6 +103,11 @@ class ImpactProblem:
         self.dt = lat.dt
         if int(lat.rod_start[1]) != self.n:   # pragma: no cover - impedance-level rods are exact
             raise ValueError(f"dt: the striker lattice has {lat.rod_start[1]} elements instead of n = {self.n}")
+        n_el, n_ck = lat.n_elements, -(-self.steps // self.checkpoint_every)
+        # checkpoints (2 waves) + one recorded segment (~1 wave per step) + per-step inputs and outputs
+        fits_in_memory("steps", 8.0 * (n_el * (2 * n_ck + self.checkpoint_every) + 16 * self.steps),
+                       f"the checkpoints of {self.steps} steps of {n_el} elements",
+                       "use fewer steps or fewer, longer elements")
         self._state = _initial_state(template, lat)
         probes = [position_probe(location, 1)] if location is not None else []
         arrays = _kernel_arrays(template, lat, self._state, probes)
