@@ -37,7 +37,9 @@ class Forward:
 
     ``face_force`` (N, compressive < 0) is the contact force at the impact face, ``observed`` the chosen quantity
     at the location (the face force without a location), ``end_force`` / ``end_velocity`` the normal force (N)
-    and outward velocity (m/s) at the struck system's far end, ``contact`` whether the striker touches.
+    and outward velocity (m/s) at the struck system's far end, ``contact`` whether the striker touches;
+    ``striker_mass`` = dt sum Z (kg), ``impedance`` (Z_1 at the face) and ``velocity`` the striker that was run.
+    ``_tape`` holds what :meth:`ImpactProblem.gradient` needs (lattice impedances, checkpoints).
     """
 
     face_force: np.ndarray
