@@ -13,6 +13,8 @@ from typing import Any
 
 import numpy as np
 
+from ._units import array_to_si, to_si
+
 
 def positive(name: str, value: Any, unit: str = "") -> float:
     """Return ``value`` as a float after checking it is a finite number > 0."""
@@ -31,7 +33,11 @@ def non_negative(name: str, value: Any, unit: str = "") -> float:
 
 
 def finite(name: str, value: Any, unit: str = "") -> float:
-    """Return ``value`` as a float after checking it is a finite real number."""
+    """Return ``value`` as a float after checking it is a finite real number; with a ``unit`` (SI), a unit
+    string (``"300 mm"``) or a pint Quantity is converted to it (:func:`rodimpact._units.to_si`)."""
+    converted = to_si(name, value, unit)
+    if converted is not None:
+        value = converted
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise TypeError(f"{name}: must be a real number{_unit(unit, ' in ')}, got {type(value).__name__} {value!r}")
     x = float(value)
@@ -40,8 +46,10 @@ def finite(name: str, value: Any, unit: str = "") -> float:
     return x
 
 
-def finite_array(name: str, values: Any, *, ndim: int = 1, min_size: int = 1) -> np.ndarray:
-    """Return ``values`` as a float array after checking shape and finiteness."""
+def finite_array(name: str, values: Any, *, ndim: int = 1, min_size: int = 1, unit: str = "") -> np.ndarray:
+    """Return ``values`` as a float array after checking shape and finiteness; with a ``unit`` (SI), a pint
+    Quantity array or entries given as unit strings / Quantities are converted to it."""
+    values = array_to_si(name, values, unit)
     try:
         arr = np.asarray(values, dtype=float)
     except (TypeError, ValueError) as exc:
@@ -57,9 +65,9 @@ def finite_array(name: str, values: Any, *, ndim: int = 1, min_size: int = 1) ->
     return arr
 
 
-def positive_array(name: str, values: Any, *, min_size: int = 1) -> np.ndarray:
-    """Return a 1-d float array after checking every entry is finite and > 0."""
-    arr = finite_array(name, values, min_size=min_size)
+def positive_array(name: str, values: Any, *, min_size: int = 1, unit: str = "") -> np.ndarray:
+    """Return a 1-d float array after checking every entry is finite and > 0 (``unit``: as :func:`finite_array`)."""
+    arr = finite_array(name, values, min_size=min_size, unit=unit)
     if (arr <= 0).any():
         i = int(np.flatnonzero(arr <= 0)[0])
         raise ValueError(f"{name}: every entry must be > 0, entry {i} is {arr[i]!r}")

@@ -224,7 +224,7 @@ def _step_count(duration: Optional[float], steps: Optional[int], dt: float) -> i
 def _snapshot_steps(times, every, n_steps: int, dt: float) -> list[int]:
     out: set[int] = set()
     if times is not None:
-        t = finite_array("snapshot_times", np.atleast_1d(times))
+        t = finite_array("snapshot_times", times if np.ndim(times) else [times], unit="s")
         if np.any(t < 0) or np.any(t > n_steps * dt * (1 + 1e-12)):
             raise ValueError(f"snapshot_times: must lie in [0, {n_steps * dt:.6g}] s, got {t.min():.6g}..{t.max():.6g}")
         out |= set(np.round(t / dt).astype(int).tolist())

@@ -70,6 +70,7 @@ class Variants:
     options: dict[str, Table]
     default: Optional[str] = None
     doc: str = ""
+    aliases: tuple[tuple[str, str], ...] = ()    # (other spelling, option name)
 
 
 # ============================================================================================ the schema
@@ -196,7 +197,7 @@ END_TYPES = {
     "free": Table("free", "Stress-free end (N = 0).", ()),
     "fixed": Table("fixed", "Fixed end (u = 0).", ()),
     "nonreflecting": Table("nonreflecting", "Impedance-matched semi-infinite continuation (outgoing waves "
-                                            "leave).", (
+                                            "leave); also spelled `non-reflecting`.", (
         _q("impedance", "impedance", "Impedance of the continuation; default that of the end element.",
            required=False),)),
     "force": Table("force", "Prescribed normal force at the end face (tension positive).", (
@@ -211,10 +212,12 @@ END_TYPES = {
         _q("unloading_stiffness", "stiffness", "Unloading stiffness k2; default k1.", required=False))),
 }
 
+_END_VARIANTS = Variants("type", END_TYPES, aliases=(("non-reflecting", "nonreflecting"),))
+
 ENDS = Table("ends", "Conditions at the outer left end of the first rod and the outer right end of the last rod. "
                      "A name (`\"free\"`) or an inline table with a `type` and its parameters.", (
-    Field("left", "variant", "Left end.", default="free", variants=Variants("type", END_TYPES)),
-    Field("right", "variant", "Right end.", default="free", variants=Variants("type", END_TYPES)),
+    Field("left", "variant", "Left end.", default="free", variants=_END_VARIANTS),
+    Field("right", "variant", "Right end.", default="free", variants=_END_VARIANTS),
 ), '[ends]\nleft = "free"\nright = { type = "bit-rock", loading_stiffness = "300 MN/m" }')
 
 _ROD_REF = Field("rod", "rod", "The rod: its name or its index (0 = first rod).", required=True)
@@ -431,6 +434,7 @@ def validate_variant(variants: Variants, raw: Any, path: str) -> dict[str, Any]:
     kind = raw.get(variants.key, variants.default)
     if kind is None:
         raise ModelError(f"{_p(path, variants.key)}: missing; one of {names}")
+    kind = dict(variants.aliases).get(kind, kind) if isinstance(kind, str) else kind
     if kind not in variants.options:
         near = difflib.get_close_matches(str(kind), list(variants.options), n=1)
         hint = f" (did you mean {near[0]!r}?)" if near else ""

@@ -75,7 +75,7 @@ class Rod:
         positions; the density (default steel) only sets the equivalent cross-section area A = Z/(rho c).
         Dynamics, energies and momenta depend on Z and dt alone.
         """
-        z = positive_array("impedances", impedances)
+        z = positive_array("impedances", impedances, unit="N s/m")
         dt = positive("dt", dt, "s")
         c = STEEL.wave_speed if wave_speed is None else positive("wave_speed", wave_speed, "m/s")
         rho = STEEL.density if density is None else positive("density", density, "kg/m^3")

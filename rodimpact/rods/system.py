@@ -7,6 +7,7 @@ from typing import Callable, Optional, Sequence
 
 import numpy as np
 
+from .._units import array_to_si
 from .._validate import finite
 from .conditions import Contact, EndCondition, Junction, as_end_condition, as_junction
 from .loads import Bearings, NodalForce
@@ -65,7 +66,7 @@ class System:
         for i, r in enumerate(rods):
             if not isinstance(r, Rod):
                 raise TypeError(f"rods[{i}]: must be a Rod, got {type(r).__name__}")
-        vel = np.atleast_1d(np.asarray(self.velocities, dtype=object))
+        vel = np.atleast_1d(np.asarray(array_to_si("velocities", self.velocities, "m/s"), dtype=object))
         if vel.size != len(rods):
             raise ValueError(f"velocities: need one initial velocity per rod ({len(rods)}), got {vel.size}")
         vel = tuple(finite(f"velocities[{i}]", v, "m/s") for i, v in enumerate(vel))

@@ -70,8 +70,8 @@ def test_runs_too_large_for_the_memory_are_refused_before_allocating():
 
 
 def test_probe_fields_are_checked_and_rods_may_be_named():
-    with pytest.raises(TypeError, match="Probe.position: must be a real number in m, got str '110 mm'"):
-        ri.Probe("p", 1, "110 mm")
+    with pytest.raises(ValueError, match="Probe.position: expected a quantity in m, got \"110 ms\" \\(a time\\)"):
+        ri.Probe("p", 1, "110 ms")
     with pytest.raises(TypeError, match="Probe.position"):
         ri.Probe("p", 1, None)
     with pytest.raises(ValueError, match="Probe.rod: must be a rod index >= 0 or a rod name"):
