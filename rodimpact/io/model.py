@@ -34,6 +34,7 @@ from ..rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedE
 from ..rods.history import History
 from ..rods.loads import Bearings, NodalForce
 from ..rods.material import MATERIALS, STEEL, Material
+from ..rods.plausibility import KeyPath
 from ..rods.rod import Rod
 from ..rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, ExponentialHorn, LinearAreaTaper,
                              QuadraticHorn, Segment, TabulatedProfile, Tube)
@@ -238,8 +239,9 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
                                  f"(simulation.duration = {sim['duration']:.6g} s)")
     output = OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"], out["snapshot_count"],
                         tuple(out["plots"]), out["csv"], out["fields"], out["record_every"])
-    system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
-                                           initial if any(s is not None for s in initial) else None))
+    with KeyPath("model"):
+        system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
+                                               initial if any(s is not None for s in initial) else None))
     return Model(system, sim["duration"], sim["steps"], sim["dt"], tuple(probes), output, sim["backend"],
                  sim["energy_every"], d["title"] or "", d["description"] or "", dict(params))
 
@@ -297,7 +299,8 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
             raise ModelError(f"{path}.segments: needs at least one segment")
         mat = _material(r["material"], materials, f"{path}.material") or STEEL
         segs = [_segment(s, f"{path}.segments[{j}]", materials, params, base_dir) for j, s in enumerate(r["segments"])]
-        rod = _wrap(path, lambda: Rod(segs, mat, r["name"]))
+        with KeyPath(path):
+            rod = _wrap(path, lambda: Rod(segs, mat, r["name"]))
     else:
         if r["material"] is not None:
             raise ModelError(f"{path}.material: an impedance-level rod has no material; give "

@@ -11,6 +11,7 @@ import numpy as np
 
 from .._validate import positive, positive_array
 from .material import STEEL, Material
+from .plausibility import check_rod
 from .segments import Cylinder, Segment
 
 
@@ -63,6 +64,7 @@ class Rod:
         object.__setattr__(self, "segments", segs)
         ends = np.concatenate([[0.0], np.cumsum([s.length for s in segs])])
         object.__setattr__(self, "_ends", ends)
+        object.__setattr__(self, "_implausible", check_rod(self))
 
     # ------------------------------------------------------------------ constructors
     @classmethod

@@ -11,6 +11,7 @@ from .._units import array_to_si
 from .._validate import finite
 from .conditions import Contact, EndCondition, Junction, as_end_condition, as_junction
 from .loads import Bearings, NodalForce
+from .plausibility import check_strikers
 from .rod import Rod
 
 #: Initial field of a rod: a number, a callable of x (m from the rod's left end) or per-element values.
@@ -106,6 +107,7 @@ class System:
         object.__setattr__(self, "right", as_end_condition(self.right, "right"))
         object.__setattr__(self, "loads", loads)
         object.__setattr__(self, "initial", tuple(initial))
+        check_strikers(self.rods, self.velocities)
 
     @property
     def n_rods(self) -> int:
