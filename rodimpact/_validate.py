@@ -9,11 +9,14 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import sys
 from typing import Any
 
 import numpy as np
 
 from ._units import array_to_si, to_si
+
+_PACKAGE = os.path.dirname(os.path.abspath(__file__))
 
 
 def positive(name: str, value: Any, unit: str = "") -> float:
@@ -122,3 +125,13 @@ def finite_values(name: str, values: Any, what: str, max_ndim: int | None = None
         where = f", entry {i} is" if arr.ndim else ", got"
         raise ValueError(f"{name}: {what} must be finite{where} {float(arr.ravel()[i])!r}")
     return arr
+
+
+def caller_stacklevel() -> int:
+    """The ``stacklevel`` for a ``warnings.warn`` in the function that calls this one: that of the first frame
+    outside rodimpact, skipping dataclass-generated ``__init__`` methods, so that warnings point at the user's line."""
+    frame, level = sys._getframe(2), 2
+    while frame is not None and (frame.f_code.co_filename.startswith(_PACKAGE)
+                                 or (frame.f_code.co_filename == "<string>" and frame.f_code.co_name == "__init__")):
+        frame, level = frame.f_back, level + 1
+    return level

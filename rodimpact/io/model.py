@@ -91,6 +91,7 @@ class Model:
     description: str = ""
     parameters: dict[str, float] = field(default_factory=dict)
     source: Optional[Path] = None
+    allow_discretization_error: bool = False
 
     def __post_init__(self) -> None:
         if not isinstance(self.system, System):
@@ -129,7 +130,8 @@ class Model:
         return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
                         snapshot_times=list(self.output.snapshot_times) or None,
                         snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
-                        record_every=self.output.record_every, backend=backend or self.backend, progress=progress)
+                        record_every=self.output.record_every, backend=backend or self.backend, progress=progress,
+                        allow_discretization_error=self.allow_discretization_error)
 
 
 # ============================================================================================ reading
@@ -243,7 +245,8 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
         system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
                                                initial if any(s is not None for s in initial) else None))
     return Model(system, sim["duration"], sim["steps"], sim["dt"], tuple(probes), output, sim["backend"],
-                 sim["energy_every"], d["title"] or "", d["description"] or "", dict(params))
+                 sim["energy_every"], d["title"] or "", d["description"] or "", dict(params),
+                 allow_discretization_error=sim["allow_discretization_error"])
 
 
 def _wrap(path: str, build):
@@ -735,6 +738,8 @@ class _Writer:
         sim["backend"] = m.backend
         if m.energy_every is not None:
             sim["energy_every"] = int(m.energy_every)
+        if m.allow_discretization_error:
+            sim["allow_discretization_error"] = True
         doc["simulation"] = sim
         o = m.output
         out: dict[str, Any] = {}

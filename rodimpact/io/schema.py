@@ -245,7 +245,11 @@ SIMULATION = Table("simulation", "How long and how finely to simulate. Give `dur
     _q("duration", "time", "Simulated time.", required=False),
     Field("steps", "integer", "Number of time steps (instead of `duration`).", minimum=1),
     _q("dt", "time", "Time step = travel time of every element; default: that of impedance-level rods, else "
-                     "one giving every segment >= 4 and the longest rod >= 200 elements.", required=False),
+                     "one giving every segment >= 4 and the longest rod >= 200 elements, and every rod's travel "
+                     "time and mass within 1 %.", required=False),
+    Field("allow_discretization_error", "boolean", "Run even if a rod's travel time or mass is represented with "
+          "an error above 1 % or a segment is shorter than one element (else an error naming a dt that "
+          "satisfies it).", default=False),
     Field("backend", "string", "`numba` (compiled) or `numpy` (reference).", default="numba",
           choices=("numba", "numpy")),
     Field("energy_every", "integer", "Energy sampling stride in steps; default about 256 samples per run.",

@@ -15,12 +15,12 @@ can re-issue them under their key path (``rods[0].segments[0].diameter``).
 from __future__ import annotations
 
 import math
-import os
-import sys
 import warnings
 from typing import TYPE_CHECKING
 
 import numpy as np
+
+from .._validate import caller_stacklevel
 
 if TYPE_CHECKING:
     from .rod import Rod
@@ -29,9 +29,6 @@ if TYPE_CHECKING:
 MAX_DIAMETER = 1.0
 MAX_STRIKER_MASS = 1000.0
 
-_PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-
-
 class PlausibilityWarning(UserWarning):
     """Input outside 1D-rod plausibility. ``key`` names the quantity relative to the object that was built
     (``segments[0].diameter``, or ``rods[0]`` for a system), ``text`` says what is wrong and what was likely meant."""
@@ -39,16 +36,6 @@ class PlausibilityWarning(UserWarning):
     def __init__(self, key: str, text: str, owner: str = "") -> None:
         super().__init__(f"{owner}{key} {text}")
         self.key, self.text = key, text
-
-
-def caller_stacklevel() -> int:
-    """The ``stacklevel`` for a ``warnings.warn`` in the function that calls this one: that of the first frame
-    outside rodimpact, skipping dataclass-generated ``__init__`` methods, so that warnings point at the user's line."""
-    frame, level = sys._getframe(2), 2
-    while frame is not None and (frame.f_code.co_filename.startswith(_PACKAGE)
-                                 or (frame.f_code.co_filename == "<string>" and frame.f_code.co_name == "__init__")):
-        frame, level = frame.f_back, level + 1
-    return level
 
 
 def warn(key: str, text: str, owner: str = "") -> None:
