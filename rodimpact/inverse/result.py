@@ -17,6 +17,7 @@ from ..rods.rod import Rod
 from ..rods.system import System
 from .shape import MAX_DIAMETER_RATIO, StrikerShape
 from .struck import Location, position_probe, position_quantity, with_striker
+from .tables import SynthesisTables
 from .transform import ForceTransformation
 
 
@@ -73,7 +74,7 @@ class VerificationReport:
 
 
 @dataclass(frozen=True)
-class SynthesisResult:
+class SynthesisResult(SynthesisTables):
     """Striker synthesized by the recursive method (thesis chapter 4).
 
     Per-element arrays have ``n_feasible`` = m entries, element q = 1..m counted from the impact face
