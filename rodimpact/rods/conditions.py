@@ -64,12 +64,16 @@ class VelocityEnd(EndCondition):
 
 @dataclass(frozen=True)
 class NonReflectingEnd(EndCondition):
-    """Impedance-matched semi-infinite continuation: outgoing waves leave, nothing comes in.
+    """Non-reflecting end ("energy sink", thesis eq. 3.20): outgoing waves leave, nothing comes in.
 
-    The continuation has impedance ``impedance`` (N s/m; default: that of the end element, which makes the
-    end perfectly absorbing) and is in the initial state of the end element, so a rod moving uniformly
-    keeps moving. This differs from the thesis's eq. (3.20), N^- = N, a zero-gradient condition that
-    re-injects the element's own inward-travelling part; see docs/method.md.
+    Eq. (3.20), N^- = N (left) / N^+ = N (right) with v^- = v from eqs. (3.16)/(3.17), makes the boundary's
+    increments in the update of eqs. (3.10)-(3.15) zero: no wave enters the end element from outside. Since
+    left-running increments keep N - Z v of the end element (N + Z v at a right end), that value stays at its
+    initial one; the kernel writes the condition as an impedance-matched semi-infinite continuation in the end
+    element's initial state, N = (N0 - sign Z v0) - Z w, which equals eq. (3.20) step by step (for any initial
+    prestress and velocity; a rod moving uniformly keeps moving). ``impedance`` (N s/m) other than the default
+    (that of the end element) gives a continuation of that impedance, which reflects with
+    R = (Z_ext - Z) / (Z_ext + Z). See docs/method.md.
     """
 
     impedance: Optional[float] = None
