@@ -47,7 +47,7 @@ class ForceEnd(EndCondition):
     code = 2
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "force", as_history(self.force, "ForceEnd.force", self.interpolation))
+        object.__setattr__(self, "force", as_history(self.force, "ForceEnd.force", self.interpolation, "N"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,7 +59,7 @@ class VelocityEnd(EndCondition):
     code = 3
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "velocity", as_history(self.velocity, "VelocityEnd.velocity", self.interpolation))
+        object.__setattr__(self, "velocity", as_history(self.velocity, "VelocityEnd.velocity", self.interpolation, "m/s"))
 
 
 @dataclass(frozen=True)

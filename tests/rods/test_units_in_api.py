@@ -26,6 +26,13 @@ def test_segments_and_materials_take_unit_strings_and_quantities():
     assert ri.Probe("p", 1, "110 mm").position == pytest.approx(0.11, rel=1e-12)
     assert ri.SpringEnd("300 MN/m").stiffness == pytest.approx(3e8, rel=1e-12)
     assert ri.Contact(gap="1 mm").gap == pytest.approx(1e-3, rel=1e-12)
+    assert ri.ForceEnd("-5 kN").force.source == pytest.approx(-5e3, rel=1e-12)
+    assert ri.NodalForce(0, "0.1 m", 2 * U.kN).force.source == pytest.approx(2e3, rel=1e-12)
+    ramp = ri.VelocityEnd((["0 ms", "1 ms"], [0, "2 m/s"])).velocity
+    assert np.allclose(ramp(np.array([0.0, 5e-4, 1e-3])), [0.0, 1.0, 2.0], rtol=1e-12)
+    assert ri.Bearings(1, [("0.1 m", "20 cm")], 0.3, gravity="9.81 N/kg").spans == ((0.1, 0.2),)
+    with pytest.raises(ValueError, match="ForceEnd.force: expected a quantity in N, got \"5 m/s\""):
+        ri.ForceEnd("5 m/s")
 
 
 def test_simulate_takes_units_and_gives_the_same_result_as_si_numbers():
