@@ -94,6 +94,21 @@ def test_the_default_dt_satisfies_its_own_tolerance_for_a_drill_model():
         ri.simulate(system, duration=2e-4)
 
 
+def test_the_default_dt_keeps_an_impedance_level_striker_exact_and_a_short_specimen_within_tolerance():
+    dt_native = 1.93e-6
+    striker = ri.Rod.from_impedance([60e3] * 50, dt_native)
+    assert _error(0.052, dt_native) > 0.01            # a 52 mm specimen: 5.2 elements of 1.93 us
+    system = ri.System([striker, ri.Rod([ri.Cylinder(0.052, 0.02)]), ri.Rod([ri.Cylinder(1.0, 0.02)])],
+                       [5.0, 0.0, 0.0], junctions=["bonded", "contact"])
+    dt = default_time_step(system)
+    k = round(dt_native / dt)
+    assert k >= 2 and dt == dt_native / k                                 # a whole fraction: striker exact
+    for length in (0.052, 1.0):
+        assert _error(length, dt) <= 0.01
+    assert problems(system, build_lattice(system, dt)) == []
+    assert build_lattice(system, dt).rods[0].exact
+
+
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
 def test_every_shipped_example_runs_without_discretization_error_or_warning(path):
     with warnings.catch_warnings():
