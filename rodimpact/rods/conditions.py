@@ -70,8 +70,9 @@ class NonReflectingEnd(EndCondition):
     increments in the update of eqs. (3.10)-(3.15) zero: no wave enters the end element from outside. Since
     left-running increments keep N - Z v of the end element (N + Z v at a right end), that value stays at its
     initial one; the kernel writes the condition as an impedance-matched semi-infinite continuation in the end
-    element's initial state, N = (N0 - sign Z v0) - Z w, which equals eq. (3.20) step by step (for any initial
-    prestress and velocity; a rod moving uniformly keeps moving). ``impedance`` (N s/m) other than the default
+    element's initial state, N = c0 - Z w with the outward velocity w and c0 = N0 - Z v0 at a left end,
+    N0 + Z v0 at a right end, which equals eq. (3.20) step by step (for any initial prestress and velocity; a
+    rod moving uniformly keeps moving). ``impedance`` (N s/m) other than the default
     (that of the end element) gives a continuation of that impedance, which reflects with
     R = (Z_ext - Z) / (Z_ext + Z). See docs/method.md.
     """
