@@ -193,11 +193,10 @@ def _check_discretization(system: System, lattice: Lattice, allow: bool) -> list
     if not found:
         return []
     good = tolerance.resolving_time_step(system, lattice.dt)
-    text = (f"dt: {'; '.join(found)}. dt = {good:.6g} s represents every rod within {tolerance.TOLERANCE:.0%} "
-            f"(or allow the error: allow_discretization_error=True, in a model file "
-            f"simulation.allow_discretization_error = true)")
+    text = f"dt: {'; '.join(found)}. dt = {good:.6g} s represents every rod within {tolerance.TOLERANCE:.0%}"
     if not allow:
-        raise ValueError(text)
+        raise ValueError(text + " (or allow the error: allow_discretization_error=True, in a model file "
+                                "simulation.allow_discretization_error = true)")
     warnings.warn(text, stacklevel=caller_stacklevel())
     return found
 
