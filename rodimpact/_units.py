@@ -2,8 +2,8 @@
 
 Bare numbers stay SI. A string or a pint Quantity is converted to the SI unit the argument expects, with the
 same pint parsing as model files (:mod:`rodimpact.io.quantities`); a quantity of the wrong dimension is a
-``ValueError`` naming the argument, e.g. ``Cylinder.diameter: expected a quantity in m (a length such as
-"50 mm"), got "5 kg" (a mass)``.
+``ValueError`` naming the argument, e.g. ``Cylinder.diameter: expected a quantity in m, got "5 kg" (a mass)``;
+a string that is not a quantity with a unit (``"twenty"``, ``"20"``) is a ``TypeError`` as any non-number is.
 """
 
 from __future__ import annotations
@@ -29,22 +29,19 @@ def to_si(name: str, value: Any, unit: str) -> Optional[float]:
     ureg = _registry()
     try:
         target = ureg.Quantity(1.0, unit.replace("^", "**"))
-    except Exception:  # e.g. "dots per inch": a description, not a unit
+    except Exception:  # the unit is a description pint cannot read: no conversion
         return None
     if isinstance(value, str):
         try:
             q = ureg.Quantity(value.strip())
-        except Exception:
+        except Exception:  # pint's tokenizer raises assorted errors on garbage
+            q = None
+        if not isinstance(q, ureg.Quantity) or (q.dimensionless and not target.dimensionless):
             raise TypeError(f"{name}: must be a real number in {unit} or a quantity such as \"1 {unit}\", got str "
-                            f"{value!r}") from None
-        if not isinstance(q, ureg.Quantity):      # "3": a bare number in a string, SI as numbers are
-            q = ureg.Quantity(float(q))
+                            f"{value!r}")
         shown = f"\"{value.strip()}\""
     else:
         q, shown = value, f"{value:~P}"
-    if isinstance(value, str) and q.dimensionless and not target.dimensionless:
-        raise TypeError(f"{name}: must be a real number in {unit} or a quantity such as \"1 {unit}\", got str "
-                        f"{value!r}")
     try:
         mag = q.to(unit.replace("^", "**")).magnitude
     except pint.errors.DimensionalityError:
