@@ -29,6 +29,7 @@ if TYPE_CHECKING:
 MAX_DIAMETER = 1.0
 MAX_STRIKER_MASS = 1000.0
 
+
 class PlausibilityWarning(UserWarning):
     """Input outside 1D-rod plausibility. ``key`` names the quantity relative to the object that was built
     (``segments[0].diameter``, or ``rods[0]`` for a system), ``text`` says what is wrong and what was likely meant."""

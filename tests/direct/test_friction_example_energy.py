@@ -5,7 +5,6 @@ the example's comments must state the same numbers."""
 
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 import rodimpact as ri
