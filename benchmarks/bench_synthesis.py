@@ -8,8 +8,8 @@ B. A stepped struck bar of 400 elements (impedance rising by half after 200 elem
    whose face response comes from the direct solver (one run of 2n steps), same target.
 C. The percussion-drilling example (force prescribed at the bit-rock interface): two runs of the direct
    solver for the rectangular and the face response through the 2.75 m drill string, the triangular Toeplitz
-   solve, then the peeling. The drill string has 5.5 n elements, so the direct solver's cost grows like n^2
-   with a large constant; n = 30,000 would need ~4e10 element updates and is not run.
+   solve, then the peeling. The drill string has 4 n elements, so the direct solver's cost grows like n^2
+   with a large constant; n = 30,000 would need ~2e10 element updates and is not run.
 
 Baseline: the thesis's recursion with a full re-simulation per element
 (:func:`rodimpact.inverse.synthesize_by_resimulation`, same compiled direct solver), run for small n only;
@@ -122,7 +122,7 @@ def main() -> None:
              "face response). Case B: same target on a stepped 400-element bar (impedance x1.5 after 200 elements, "
              "non-reflecting end; face response from one direct-solver run). Case C: percussion drilling, "
              "force prescribed at the bit-rock interface (two direct-solver runs through a drill string of "
-             "5.5 n elements, Toeplitz solve, peeling; n = 30,000 not run: ~4e10 element updates in the "
+             "4 n elements, Toeplitz solve, peeling; n = 30,000 not run: ~2e10 element updates in the "
              "struck system alone). "
              "`verify` = max relative deviation of the direct solver with the synthesized striker from the "
              "target (n <= 3,000).",

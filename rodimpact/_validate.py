@@ -9,9 +9,14 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import sys
 from typing import Any
 
 import numpy as np
+
+from ._units import array_to_si, to_si
+
+_PACKAGE = os.path.dirname(os.path.abspath(__file__))
 
 
 def positive(name: str, value: Any, unit: str = "") -> float:
@@ -31,7 +36,11 @@ def non_negative(name: str, value: Any, unit: str = "") -> float:
 
 
 def finite(name: str, value: Any, unit: str = "") -> float:
-    """Return ``value`` as a float after checking it is a finite real number."""
+    """Return ``value`` as a float after checking it is a finite real number; with a ``unit`` (SI), a unit
+    string (``"300 mm"``) or a pint Quantity is converted to it (:func:`rodimpact._units.to_si`)."""
+    converted = to_si(name, value, unit)
+    if converted is not None:
+        value = converted
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise TypeError(f"{name}: must be a real number{_unit(unit, ' in ')}, got {type(value).__name__} {value!r}")
     x = float(value)
@@ -40,8 +49,10 @@ def finite(name: str, value: Any, unit: str = "") -> float:
     return x
 
 
-def finite_array(name: str, values: Any, *, ndim: int = 1, min_size: int = 1) -> np.ndarray:
-    """Return ``values`` as a float array after checking shape and finiteness."""
+def finite_array(name: str, values: Any, *, ndim: int = 1, min_size: int = 1, unit: str = "") -> np.ndarray:
+    """Return ``values`` as a float array after checking shape and finiteness; with a ``unit`` (SI), a pint
+    Quantity array or entries given as unit strings / Quantities are converted to it."""
+    values = array_to_si(name, values, unit)
     try:
         arr = np.asarray(values, dtype=float)
     except (TypeError, ValueError) as exc:
@@ -57,9 +68,9 @@ def finite_array(name: str, values: Any, *, ndim: int = 1, min_size: int = 1) ->
     return arr
 
 
-def positive_array(name: str, values: Any, *, min_size: int = 1) -> np.ndarray:
-    """Return a 1-d float array after checking every entry is finite and > 0."""
-    arr = finite_array(name, values, min_size=min_size)
+def positive_array(name: str, values: Any, *, min_size: int = 1, unit: str = "") -> np.ndarray:
+    """Return a 1-d float array after checking every entry is finite and > 0 (``unit``: as :func:`finite_array`)."""
+    arr = finite_array(name, values, min_size=min_size, unit=unit)
     if (arr <= 0).any():
         i = int(np.flatnonzero(arr <= 0)[0])
         raise ValueError(f"{name}: every entry must be > 0, entry {i} is {arr[i]!r}")
@@ -114,3 +125,13 @@ def finite_values(name: str, values: Any, what: str, max_ndim: int | None = None
         where = f", entry {i} is" if arr.ndim else ", got"
         raise ValueError(f"{name}: {what} must be finite{where} {float(arr.ravel()[i])!r}")
     return arr
+
+
+def caller_stacklevel() -> int:
+    """The ``stacklevel`` for a ``warnings.warn`` in the function that calls this one: that of the first frame
+    outside rodimpact, skipping dataclass-generated ``__init__`` methods, so that warnings point at the user's line."""
+    frame, level = sys._getframe(2), 2
+    while frame is not None and (frame.f_code.co_filename.startswith(_PACKAGE)
+                                 or (frame.f_code.co_filename == "<string>" and frame.f_code.co_name == "__init__")):
+        frame, level = frame.f_back, level + 1
+    return level

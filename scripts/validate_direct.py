@@ -93,8 +93,52 @@ def main() -> None:
               "(`tests/direct/test_closed_forms.py::test_recontact_hand_calculation`), free/fixed/non-reflecting "
               "ends, linear scaling and time reversal (hypothesis), friction energy decay over 100 round trips "
               "(thesis Fig. 3.9), closed forms and the modal solution in `validation-reference.md`."]
+    lines += ["", *friction_example_section()]
     OUT.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
+
+
+def _end_energy(system, duration: float) -> tuple[float, float, float]:
+    """Total energy at the start and at the end (J) and the first separation time (s) of a run at dt = 1 us."""
+    res = ri.simulate(system, duration=duration, dt=1e-6)
+    tot = res.energy.kinetic.sum(axis=0) + res.energy.strain.sum(axis=0)
+    return float(tot[0]), float(tot[-1]), float(res.separation_times(0)[0])
+
+
+def friction_example_section() -> list[str]:
+    """The friction example (thesis Fig. 3.9): our end energy vs the thesis's ~128 J, and the two readings."""
+    import dataclasses
+
+    model = ri.load_model(Path(ri.__file__).parent / "examples" / "complex-example-friction.toml")
+    system = model.system
+    e0, shipped, _ = _end_energy(system, 56.8e-3)
+    _, single, _ = _end_energy(system, 28.4e-3)
+    c = ri.STEEL.wave_speed
+
+    def with_rod_1(length):
+        rod = ri.Rod([ri.LinearAreaTaper(length, 1.26e-3, 1.26e-3)], name="rod 1")
+        return dataclasses.replace(system, rods=(rod, system.rods[1]))
+
+    lower = 0.146e-3 * c / 2            # at 0.146 ms rod 1's front is back on its way to the contact face
+    upper = max(x for x in np.arange(0.590, 0.640, 0.002)
+                if _end_energy(with_rod_1(x), 0.3e-3)[2] <= 0.255e-3)   # separated by 0.255 ms
+    e_low = _end_energy(with_rod_1(lower * (1 + 1e-9)), 56.8e-3)[1]
+    e_high = _end_energy(with_rod_1(upper), 56.8e-3)[1]
+    return ["## Friction example (thesis Fig. 3.9): end energy", "",
+            f"`rodimpact/examples/complex-example-friction.toml` starts with {e0:.1f} J and ends after 100 round "
+            f"trips in Rod 2 (56.8 ms) at **{shipped:.1f} J**; the thesis reads \"approximately 128 J\". The run's "
+            "energy change equals the work of the friction forces to rounding, and its initial energy the hand "
+            "value 1/2 (m1 + m2) (3 m/s)^2 (`tests/direct/test_friction_example_energy.py`). Two explanations, "
+            "which the text cannot decide:", "",
+            f"* **Rod 1's length is not stated** (Fig. 3.7a is a drawing; we chose 0.6 m). The text requires that "
+            f"at 0.146 ms rod 1's wave front has been reflected at its free end and runs back to the contact face "
+            f"(L1 > {lower:.3f} m) and that the rods have separated by 0.255 ms (L1 <= {upper:.3f} m at "
+            f"dt = 1 us). Within these bounds the end energy spans {e_low:.1f}-{e_high:.1f} J, growing with L1 "
+            "(our reading; an independent check with another reading of the constraints found 119.6-127.96 J).",
+            f"* **100 single passes instead of 100 round trips**: after 28.4 ms the shipped model holds "
+            f"**{single:.1f} J**, the thesis's value to its printed precision. This contradicts the text's "
+            "definition of an iteration as a round trip (caption of Fig. 3.9) but matches its end value: the "
+            "thesis's run may have covered 100 passes."]
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ import numpy as np
 from .._validate import finite
 from ..lattice.lattice import Lattice
 from ..rods.system import System
+from .tables import SimulationTables
 
 
 @dataclass(frozen=True)
@@ -195,7 +196,7 @@ def junction_events_from_history(force: np.ndarray, contact: np.ndarray) -> tupl
 
 
 @dataclass(frozen=True)
-class SimulationResult:
+class SimulationResult(SimulationTables):
     """Everything :func:`rodimpact.simulate` computed.
 
     Node values (contact force, end values, probes) belong to step k and hold on [k dt, (k+1) dt); they are

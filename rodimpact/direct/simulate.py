@@ -11,7 +11,8 @@ from typing import Any, Callable, Iterable, Literal, Optional, Sequence
 import numpy as np
 
 from .. import __version__
-from .._validate import finite_array, fits_in_memory, positive
+from .._validate import caller_stacklevel, finite_array, fits_in_memory, positive
+from ..lattice import tolerance
 from ..lattice.lattice import Lattice, build_lattice, default_time_step
 from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
                                SpringEnd, VelocityEnd)
@@ -35,7 +36,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
              initial: Optional[Sequence[Optional[InitialState]]] = None, probes: Iterable[Probe] = (),
              snapshot_times: Optional[Sequence[float]] = None, snapshot_every: Optional[int] = None,
              energy_every: Optional[int] = None, record_every: int = 1, backend: Backend = "numba",
-             progress: bool | None = None) -> SimulationResult:
+             progress: bool | None = None, allow_discretization_error: bool = False) -> SimulationResult:
     """Simulate the longitudinal impact of rods with the exact wave propagation method (thesis Sec. 3.1).
 
     Parameters
@@ -76,6 +77,12 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
         "numba" (compiled, default) or "numpy" (readable reference path; slow).
     progress:
         Show a progress bar (default: only on a terminal for runs of more than about 10^8 element updates).
+    allow_discretization_error:
+        Run even if the lattice represents a rod's travel time or mass with an error above 1 % or smears a
+        segment shorter than one element (:mod:`rodimpact.lattice.tolerance`); the error is then a warning.
+        Default ``False``: a ``ValueError`` that names the rod, the error and a dt that would satisfy it.
+
+    Physical quantities may be numbers in SI units, unit strings (``"2 ms"``) or pint Quantities.
     """
     system = rods if isinstance(rods, System) else System(
         rods, velocities if velocities is not None else _missing("velocities"), junctions, left, right,
@@ -85,6 +92,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
     lattice = build_lattice(system, dt)
+    rough = _check_discretization(system, lattice, allow_discretization_error)
     probe_list = [_named_rod(p, i, system) for i, p in enumerate(probes)]
     snap_steps = _snapshot_steps(snapshot_times, snapshot_every, n_steps, dt)
     every = _energy_stride(energy_every, n_steps)
@@ -147,13 +155,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
             element_rod=lattice.element_rod, node_rod=lattice.node_rod,
             force=np.stack([s[1] for s in snaps], axis=-1), velocity=np.stack([s[2] for s in snaps], axis=-1),
             displacement=np.stack([s[3] for s in snaps], axis=-1))
-    warn_list = []
-    for i, r in enumerate(lattice.rods):
-        if not r.exact and abs(r.time_scale - 1.0) > 0.01:
-            msg = (f"rod {i}: its travel time is represented with a {abs(r.time_scale - 1) * 100:.2g} % error "
-                   f"({r.n_elements} elements); use a smaller dt")
-            warn_list.append(msg)
-            warnings.warn(msg, stacklevel=2)
+    warn_list = [f"discretization error allowed: {p}" for p in rough]
     diagnostics = {"version": __version__, "backend": backend, "wall_time_s": wall, "steps": n_steps,
                    "record_every": stride,
                    "elements": lattice.n_elements, "dt": dt, "energy_balance_error": energy.balance_error,
@@ -180,6 +182,23 @@ def _named_rod(probe: Any, i: int, system: System) -> Any:
 
 def _missing(name: str):
     raise ValueError(f"{name}: required when rods are given as a list (one initial velocity per rod, m/s)")
+
+
+def _check_discretization(system: System, lattice: Lattice, allow: bool) -> list[str]:
+    """Raise (or, with ``allow``, warn) if the lattice misrepresents a rod by more than the tolerance
+    (:mod:`rodimpact.lattice.tolerance`); returns the problems that were allowed."""
+    if not isinstance(allow, (bool, np.bool_)):
+        raise TypeError(f"allow_discretization_error: must be True or False, got {allow!r}")
+    found = tolerance.problems(system, lattice)
+    if not found:
+        return []
+    good = tolerance.resolving_time_step(system, lattice.dt)
+    text = f"dt: {'; '.join(found)}. dt = {good:.6g} s represents every rod within {tolerance.TOLERANCE:.0%}"
+    if not allow:
+        raise ValueError(text + " (or allow the error: allow_discretization_error=True, in a model file "
+                                "simulation.allow_discretization_error = true)")
+    warnings.warn(text, stacklevel=caller_stacklevel())
+    return found
 
 
 def _time_step(system: System, dt, elements, resolution) -> float:
@@ -224,7 +243,7 @@ def _step_count(duration: Optional[float], steps: Optional[int], dt: float) -> i
 def _snapshot_steps(times, every, n_steps: int, dt: float) -> list[int]:
     out: set[int] = set()
     if times is not None:
-        t = finite_array("snapshot_times", np.atleast_1d(times))
+        t = finite_array("snapshot_times", times if np.ndim(times) else [times], unit="s")
         if np.any(t < 0) or np.any(t > n_steps * dt * (1 + 1e-12)):
             raise ValueError(f"snapshot_times: must lie in [0, {n_steps * dt:.6g}] s, got {t.min():.6g}..{t.max():.6g}")
         out |= set(np.round(t / dt).astype(int).tolist())

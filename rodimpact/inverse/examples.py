@@ -7,34 +7,40 @@
   sleeve, drill rod and bit ending on rock (bit-rock spring k1 = 300 MN/m); the incident force at the
   bit-rock interface shall be -187 kN exp(5.88 t / ms) (eq. 4.29).
 
-Fig. 4.9 gives the geometry only as a drawing, not in the text. Every impedance and number of Tab. 4.5 is
-kept; the section lengths are our plausible choice, stated here and in docs/inverse.md:
+One model of the drill string, the same as ``rodimpact/examples/percussion-drilling.toml`` (a test checks that
+both build the same lattice). Reading of Tab. 4.5: n~ = 400 is the number of elements of the whole struck system
+(shank adapter + coupling sleeve + drill rod + bit), the thesis's "rod" in the sense of its tilde quantities
+(Rod 2 of ch. 3, eq. 3.21), as is v~_in = 0, the "initial velocity of the rod", which holds for all parts; the
+drill-rod section proper is "the section with constant impedance Z~_3". Fig. 4.9 gives the section lengths only
+as a drawing; every impedance and number of Tab. 4.5 is kept and the split of the 400 elements (5 mm each) is
+our choice:
 
-=====================  ===========  ========  =========================================
-part                   impedance    length    reason for the length
-=====================  ===========  ========  =========================================
-shank adapter          51.0 kN s/m  0.35 m    its double reflection (2 x 70 dt) is the last of the three
-                                              jumps the thesis describes (Fig. 4.10b) within 2 x 100 dt
-coupling sleeve        115 kN s/m   0.15 m    the first jump (2 x 30 dt)
-drill rod              79.7 kN s/m  2.00 m    400 elements (Tab. 4.5: n~ = 400)
-bit, constant part     156 kN s/m   0.05 m    bit round trip (2 x 50 dt) is the second jump
-bit, linear increase   156->248     0.20 m    impedance rising linearly to the rock (Fig. 4.9)
-=====================  ===========  ========  =========================================
+=====================  ===========  ==========  ===============================================
+part                   impedance    elements    reason
+=====================  ===========  ==========  ===============================================
+shank adapter          51.0 kN s/m  70 (0.35m)  its double reflection (2 x 70 dt) is the last of the three
+                                                jumps the thesis describes (Fig. 4.10b) within 2 x 100 dt
+coupling sleeve        115 kN s/m   30 (0.15m)  the first jump (2 x 30 dt)
+drill rod              79.7 kN s/m  250 (1.25m) the rest of the 400 elements
+bit, constant part     156 kN s/m   10 (0.05m)  bit round trip (2 x 50 dt) is the second jump
+bit, linear increase   156->248     40 (0.20m)  impedance rising linearly to the rock (Fig. 4.9), element
+                                                values evenly spaced from 156 to 248 kN s/m
+=====================  ===========  ==========  ===============================================
 
-Material steel (E = 210 GPa, rho = 7840 kg/m^3) throughout; the piston of 0.5 m is cut into n = 100 elements,
-which sets dt = 0.005 m / c = 0.966 us (so the drill rod has exactly 400 elements).
+Impedance level, steel wave speed; the piston of 0.5 m is cut into n = 100 elements, so dt = 0.005 m / c =
+0.966 us and the struck system is 2.0 m long (dead time 400 dt from the impact face to the rock).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any, Optional
+
+import numpy as np
 
 from ..rods.conditions import BitRockEnd
 from ..rods.material import STEEL
 from ..rods.rod import Rod
-from ..rods.segments import Cylinder, LinearAreaTaper
 from .recursive import synthesize
 from .result import SynthesisResult
 from .targets import ExponentialDecay, ExponentialGrowth, LinearRamp
@@ -82,28 +88,26 @@ def academic_example(number: int, n: Optional[int] = None) -> SynthesisProblem:
                             dict(far_end="nonreflecting", rule="start"))
 
 
-#: Tab. 4.5 impedances (N s/m) and loads.
-DRILLING_IMPEDANCES = dict(shank=51.0e3, sleeve=115e3, rod=79.7e3, bit=156e3, bit_end=248e3)
-DRILLING_LENGTHS = dict(shank=0.35, sleeve=0.15, rod=2.0, bit=0.05, bit_taper=0.20)
+#: Tab. 4.5 impedances (N s/m) and the split of the struck system's n~ = 400 elements: (part, impedance at its
+#: first element, impedance at its last element, elements).
+DRILLING_SECTIONS = (("shank adapter", 51.0e3, 51.0e3, 70), ("coupling sleeve", 115e3, 115e3, 30),
+                     ("drill rod", 79.7e3, 79.7e3, 250), ("bit", 156e3, 156e3, 10),
+                     ("bit, linear increase", 156e3, 248e3, 40))
+#: Element travel time of the drilling example: 5 mm of steel (piston 0.5 m in n = 100 elements), s.
+DRILLING_DT = 0.005 / STEEL.wave_speed
 
 
 def drill_string() -> Rod:
-    """Shank adapter, coupling sleeve, drill rod and bit (Fig. 4.9, lengths as stated in this module)."""
-    rc = STEEL.density * STEEL.wave_speed
-    z, ell = DRILLING_IMPEDANCES, DRILLING_LENGTHS
-
-    def dia(imp: float) -> float:
-        return math.sqrt(4.0 * imp / rc / math.pi)
-
-    return Rod([Cylinder(ell["shank"], dia(z["shank"])), Cylinder(ell["sleeve"], dia(z["sleeve"])),
-                Cylinder(ell["rod"], dia(z["rod"])), Cylinder(ell["bit"], dia(z["bit"])),
-                LinearAreaTaper(ell["bit_taper"], z["bit"] / rc, z["bit_end"] / rc)], STEEL, "drill string")
+    """Shank adapter, coupling sleeve, drill rod and bit (Fig. 4.9, Tab. 4.5) at the impedance level:
+    :data:`DRILLING_SECTIONS` with element travel time :data:`DRILLING_DT` (400 elements, 2.0 m of steel)."""
+    z = np.concatenate([np.full(n, a) if a == b else np.linspace(a, b, n) for _, a, b, n in DRILLING_SECTIONS])
+    return Rod.from_impedance(z, DRILLING_DT, name="drill string")
 
 
 def percussion_drilling_example(n: int = 100) -> SynthesisProblem:
     """Thesis Sec. 4.2.2: the piston (0.5 m, v_in = 9 m/s) that gives the incident force -187 kN exp(C t),
     C = 5.88 /ms, at the bit-rock interface (k1 = 300 MN/m), struck system at rest."""
-    dt = 0.5 / 100 / STEEL.wave_speed
+    dt = DRILLING_DT
     struck = drill_string()
     return SynthesisProblem("percussion drilling", ExponentialGrowth(187e3, 5.88e3), struck, 9.0, n, dt,
                             dict(far_end=BitRockEnd(300e6), position=struck.length, quantity="incident",

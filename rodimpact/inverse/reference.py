@@ -59,7 +59,7 @@ def synthesize_by_resimulation(window_values: np.ndarray, struck: System, strike
         trial = np.concatenate([[z[q - 2]], z[q - 2::-1]])      # left to right: Z_q = Z_{q-1}, Z_{q-1}, ..., Z_1
         rod = Rod.from_impedance(trial, dt)
         sim = simulate(with_striker(struck, rod, striker_velocity), steps=2 * q - 1, dt=dt, backend=backend,
-                       energy_every=2 * q)
+                       energy_every=2 * q, allow_discretization_error=True)
         n_bar = float(sim.junction_force[0, 2 * (q - 1)])
         pairs = 4.0 * z[:q - 2] * z[1:q - 1] / (z[:q - 2] + z[1:q - 1]) ** 2     # K_{r,r+1}, r = 1..q-2
         k = k11 * float(np.prod(pairs))                                         # eq. 4.8

@@ -34,6 +34,7 @@ from ..rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedE
 from ..rods.history import History
 from ..rods.loads import Bearings, NodalForce
 from ..rods.material import MATERIALS, STEEL, Material
+from ..rods.plausibility import KeyPath
 from ..rods.rod import Rod
 from ..rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, ExponentialHorn, LinearAreaTaper,
                              QuadraticHorn, Segment, TabulatedProfile, Tube)
@@ -90,6 +91,7 @@ class Model:
     description: str = ""
     parameters: dict[str, float] = field(default_factory=dict)
     source: Optional[Path] = None
+    allow_discretization_error: bool = False
 
     def __post_init__(self) -> None:
         if not isinstance(self.system, System):
@@ -128,7 +130,8 @@ class Model:
         return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
                         snapshot_times=list(self.output.snapshot_times) or None,
                         snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
-                        record_every=self.output.record_every, backend=backend or self.backend, progress=progress)
+                        record_every=self.output.record_every, backend=backend or self.backend, progress=progress,
+                        allow_discretization_error=self.allow_discretization_error)
 
 
 # ============================================================================================ reading
@@ -238,10 +241,12 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
                                  f"(simulation.duration = {sim['duration']:.6g} s)")
     output = OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"], out["snapshot_count"],
                         tuple(out["plots"]), out["csv"], out["fields"], out["record_every"])
-    system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
-                                           initial if any(s is not None for s in initial) else None))
+    with KeyPath("model"):
+        system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
+                                               initial if any(s is not None for s in initial) else None))
     return Model(system, sim["duration"], sim["steps"], sim["dt"], tuple(probes), output, sim["backend"],
-                 sim["energy_every"], d["title"] or "", d["description"] or "", dict(params))
+                 sim["energy_every"], d["title"] or "", d["description"] or "", dict(params),
+                 allow_discretization_error=sim["allow_discretization_error"])
 
 
 def _wrap(path: str, build):
@@ -297,7 +302,8 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
             raise ModelError(f"{path}.segments: needs at least one segment")
         mat = _material(r["material"], materials, f"{path}.material") or STEEL
         segs = [_segment(s, f"{path}.segments[{j}]", materials, params, base_dir) for j, s in enumerate(r["segments"])]
-        rod = _wrap(path, lambda: Rod(segs, mat, r["name"]))
+        with KeyPath(path):
+            rod = _wrap(path, lambda: Rod(segs, mat, r["name"]))
     else:
         if r["material"] is not None:
             raise ModelError(f"{path}.material: an impedance-level rod has no material; give "
@@ -732,6 +738,8 @@ class _Writer:
         sim["backend"] = m.backend
         if m.energy_every is not None:
             sim["energy_every"] = int(m.energy_every)
+        if m.allow_discretization_error:
+            sim["allow_discretization_error"] = True
         doc["simulation"] = sim
         o = m.output
         out: dict[str, Any] = {}

@@ -70,6 +70,7 @@ class Variants:
     options: dict[str, Table]
     default: Optional[str] = None
     doc: str = ""
+    aliases: tuple[tuple[str, str], ...] = ()    # (other spelling, option name)
 
 
 # ============================================================================================ the schema
@@ -196,7 +197,7 @@ END_TYPES = {
     "free": Table("free", "Stress-free end (N = 0).", ()),
     "fixed": Table("fixed", "Fixed end (u = 0).", ()),
     "nonreflecting": Table("nonreflecting", "Impedance-matched semi-infinite continuation (outgoing waves "
-                                            "leave).", (
+                                            "leave); also spelled `non-reflecting`.", (
         _q("impedance", "impedance", "Impedance of the continuation; default that of the end element.",
            required=False),)),
     "force": Table("force", "Prescribed normal force at the end face (tension positive).", (
@@ -211,10 +212,12 @@ END_TYPES = {
         _q("unloading_stiffness", "stiffness", "Unloading stiffness k2; default k1.", required=False))),
 }
 
+_END_VARIANTS = Variants("type", END_TYPES, aliases=(("non-reflecting", "nonreflecting"),))
+
 ENDS = Table("ends", "Conditions at the outer left end of the first rod and the outer right end of the last rod. "
                      "A name (`\"free\"`) or an inline table with a `type` and its parameters.", (
-    Field("left", "variant", "Left end.", default="free", variants=Variants("type", END_TYPES)),
-    Field("right", "variant", "Right end.", default="free", variants=Variants("type", END_TYPES)),
+    Field("left", "variant", "Left end.", default="free", variants=_END_VARIANTS),
+    Field("right", "variant", "Right end.", default="free", variants=_END_VARIANTS),
 ), '[ends]\nleft = "free"\nright = { type = "bit-rock", loading_stiffness = "300 MN/m" }')
 
 _ROD_REF = Field("rod", "rod", "The rod: its name or its index (0 = first rod).", required=True)
@@ -242,7 +245,11 @@ SIMULATION = Table("simulation", "How long and how finely to simulate. Give `dur
     _q("duration", "time", "Simulated time.", required=False),
     Field("steps", "integer", "Number of time steps (instead of `duration`).", minimum=1),
     _q("dt", "time", "Time step = travel time of every element; default: that of impedance-level rods, else "
-                     "one giving every segment >= 4 and the longest rod >= 200 elements.", required=False),
+                     "one giving every segment >= 4 and the longest rod >= 200 elements, and every rod's travel "
+                     "time and mass within 1 %.", required=False),
+    Field("allow_discretization_error", "boolean", "Run even if a rod's travel time or mass is represented with "
+          "an error above 1 % or a segment is shorter than one element (else an error naming a dt that "
+          "satisfies it).", default=False),
     Field("backend", "string", "`numba` (compiled) or `numpy` (reference).", default="numba",
           choices=("numba", "numpy")),
     Field("energy_every", "integer", "Energy sampling stride in steps; default about 256 samples per run.",
@@ -431,6 +438,7 @@ def validate_variant(variants: Variants, raw: Any, path: str) -> dict[str, Any]:
     kind = raw.get(variants.key, variants.default)
     if kind is None:
         raise ModelError(f"{_p(path, variants.key)}: missing; one of {names}")
+    kind = dict(variants.aliases).get(kind, kind) if isinstance(kind, str) else kind
     if kind not in variants.options:
         near = difflib.get_close_matches(str(kind), list(variants.options), n=1)
         hint = f" (did you mean {near[0]!r}?)" if near else ""

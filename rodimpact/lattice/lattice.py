@@ -106,11 +106,17 @@ def build_lattice(system: System, dt: float) -> Lattice:
 
 def default_time_step(system: System, min_elements: int = 200, min_per_segment: int = 4) -> float:
     """A time step for geometry-based rods when the user gives none: every segment gets at least
-    ``min_per_segment`` elements and the rod with the longest travel time at least ``min_elements``.
-    Rods built from impedances impose their own dt (the smallest one is used)."""
+    ``min_per_segment`` elements and the rod with the longest travel time at least ``min_elements``, made
+    smaller where needed so that every rod's travel time and mass are represented within 1 %
+    (:func:`rodimpact.lattice.tolerance.resolving_time_step`). Rods built from impedances impose their own dt
+    (the smallest one), divided by the smallest whole number that represents the other rods within 1 %."""
+    from .tolerance import resolving_time_step, within
+
     natives = [r.native.dt for r in system.rods if r.native is not None]
-    if natives:
-        return min(natives)
+    if natives:   # keep impedance-level rods exact: their dt, or a whole fraction of it that suits the others
+        base = min(natives)
+        return next((base / k for k in range(1, 1001) if within(system, base / k)), base)
+
     longest = max(r.total_travel_time for r in system.rods)
     shortest_segment = min(float(r.segment_travel_times.min()) for r in system.rods)
-    return min(longest / min_elements, shortest_segment / min_per_segment)
+    return resolving_time_step(system, min(longest / min_elements, shortest_segment / min_per_segment))

@@ -47,7 +47,7 @@ class ForceEnd(EndCondition):
     code = 2
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "force", as_history(self.force, "ForceEnd.force", self.interpolation))
+        object.__setattr__(self, "force", as_history(self.force, "ForceEnd.force", self.interpolation, "N"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,17 +59,22 @@ class VelocityEnd(EndCondition):
     code = 3
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "velocity", as_history(self.velocity, "VelocityEnd.velocity", self.interpolation))
+        object.__setattr__(self, "velocity", as_history(self.velocity, "VelocityEnd.velocity", self.interpolation, "m/s"))
 
 
 @dataclass(frozen=True)
 class NonReflectingEnd(EndCondition):
-    """Impedance-matched semi-infinite continuation: outgoing waves leave, nothing comes in.
+    """Non-reflecting end ("energy sink", thesis eq. 3.20): outgoing waves leave, nothing comes in.
 
-    The continuation has impedance ``impedance`` (N s/m; default: that of the end element, which makes the
-    end perfectly absorbing) and is in the initial state of the end element, so a rod moving uniformly
-    keeps moving. This differs from the thesis's eq. (3.20), N^- = N, a zero-gradient condition that
-    re-injects the element's own inward-travelling part; see docs/method.md.
+    Eq. (3.20), N^- = N (left) / N^+ = N (right) with v^- = v from eqs. (3.16)/(3.17), makes the boundary's
+    increments in the update of eqs. (3.10)-(3.15) zero: no wave enters the end element from outside. Since
+    left-running increments keep N - Z v of the end element (N + Z v at a right end), that value stays at its
+    initial one; the kernel writes the condition as an impedance-matched semi-infinite continuation in the end
+    element's initial state, N = c0 - Z w with the outward velocity w and c0 = N0 - Z v0 at a left end,
+    N0 + Z v0 at a right end, which equals eq. (3.20) step by step (for any initial prestress and velocity; a
+    rod moving uniformly keeps moving). ``impedance`` (N s/m) other than the default
+    (that of the end element) gives a continuation of that impedance, which reflects with
+    R = (Z_ext - Z) / (Z_ext + Z). See docs/method.md.
     """
 
     impedance: Optional[float] = None

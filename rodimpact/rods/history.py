@@ -7,6 +7,7 @@ from typing import Any, Callable, Literal, Optional
 
 import numpy as np
 
+from .._units import is_quantity
 from .._validate import finite, finite_array
 
 
@@ -22,25 +23,32 @@ class History:
     Samples are interpolated linearly (``interpolation="linear"``) or held from the last sample at or before
     ``t`` (``"previous"``, a zero-order hold); before the first and after the last sample the end values
     are held.
+
+    With a ``unit`` (the SI unit of the values, e.g. ``"N"``), a constant may also be a unit string or a pint
+    Quantity (``"-5 kN"``), and samples may carry units (times in s).
     """
 
     source: Any
     interpolation: Literal["linear", "previous"] = "linear"
     quantity: str = "history"
+    unit: str = ""
 
     def __post_init__(self) -> None:
         if self.interpolation not in ("linear", "previous"):
             raise ValueError(f"{self.quantity}.interpolation: must be 'linear' or 'previous', "
                              f"got {self.interpolation!r}")
         src = self.source
+        if self.unit and (isinstance(src, str) or is_quantity(src)):
+            src = finite(self.quantity, src, self.unit)
+            object.__setattr__(self, "source", src)
         if callable(src):
             return
         if isinstance(src, (int, float, np.integer, np.floating)) and not isinstance(src, bool):
             finite(self.quantity, src)
             return
         if isinstance(src, (tuple, list)) and len(src) == 2:
-            t = finite_array(f"{self.quantity} time samples", src[0])
-            y = finite_array(f"{self.quantity} values", src[1])
+            t = finite_array(f"{self.quantity} time samples", src[0], unit="s" if self.unit else "")
+            y = finite_array(f"{self.quantity} values", src[1], unit=self.unit)
             if t.shape != y.shape:
                 raise ValueError(f"{self.quantity}: time samples ({t.size}) and values ({y.size}) differ in length")
             if np.any(np.diff(t) < 0):
@@ -76,11 +84,11 @@ class History:
         return self((np.arange(first_step, first_step + n_steps) + 0.5) * dt)
 
 
-def as_history(value: Any, quantity: str, interpolation: str = "linear") -> Optional[History]:
-    """Wrap ``value`` into a :class:`History` (``None`` stays ``None``)."""
+def as_history(value: Any, quantity: str, interpolation: str = "linear", unit: str = "") -> Optional[History]:
+    """Wrap ``value`` into a :class:`History` (``None`` stays ``None``); ``unit``: the SI unit of its values."""
     if value is None or isinstance(value, History):
         return value
-    return History(value, interpolation, quantity)  # type: ignore[arg-type]
+    return History(value, interpolation, quantity, unit)  # type: ignore[arg-type]
 
 
 HistoryLike = History | float | Callable[[np.ndarray], np.ndarray] | tuple

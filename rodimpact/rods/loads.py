@@ -25,7 +25,7 @@ class NodalForce:
         if not isinstance(self.rod, int) or self.rod < 0:
             raise ValueError(f"NodalForce.rod: must be a rod index >= 0, got {self.rod!r}")
         object.__setattr__(self, "position", finite("NodalForce.position", self.position, "m"))
-        object.__setattr__(self, "force", as_history(self.force, "NodalForce.force", self.interpolation))
+        object.__setattr__(self, "force", as_history(self.force, "NodalForce.force", self.interpolation, "N"))
 
 
 @dataclass(frozen=True)

@@ -11,6 +11,7 @@ import numpy as np
 
 from .._validate import positive, positive_array
 from .material import STEEL, Material
+from .plausibility import check_rod
 from .segments import Cylinder, Segment
 
 
@@ -63,6 +64,7 @@ class Rod:
         object.__setattr__(self, "segments", segs)
         ends = np.concatenate([[0.0], np.cumsum([s.length for s in segs])])
         object.__setattr__(self, "_ends", ends)
+        object.__setattr__(self, "_implausible", check_rod(self))
 
     # ------------------------------------------------------------------ constructors
     @classmethod
@@ -75,7 +77,7 @@ class Rod:
         positions; the density (default steel) only sets the equivalent cross-section area A = Z/(rho c).
         Dynamics, energies and momenta depend on Z and dt alone.
         """
-        z = positive_array("impedances", impedances)
+        z = positive_array("impedances", impedances, unit="N s/m")
         dt = positive("dt", dt, "s")
         c = STEEL.wave_speed if wave_speed is None else positive("wave_speed", wave_speed, "m/s")
         rho = STEEL.density if density is None else positive("density", density, "kg/m^3")

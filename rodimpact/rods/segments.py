@@ -61,7 +61,7 @@ class Cylinder(Segment):
     diameter: float
 
     def __post_init__(self) -> None:
-        positive("Cylinder.diameter", self.diameter, "m")
+        object.__setattr__(self, "diameter", positive("Cylinder.diameter", self.diameter, "m"))
         super().__post_init__()
 
     def area(self, s: ArrayLike) -> np.ndarray:
@@ -80,6 +80,8 @@ class Tube(Segment):
         d_in = finite("Tube.inner_diameter", self.inner_diameter, "m")
         if not 0.0 <= d_in < d_out:
             raise ValueError(f"Tube.inner_diameter: must satisfy 0 <= inner < outer = {d_out} m, got {d_in} m")
+        object.__setattr__(self, "outer_diameter", d_out)
+        object.__setattr__(self, "inner_diameter", d_in)
         super().__post_init__()
 
     def area(self, s: ArrayLike) -> np.ndarray:
@@ -94,8 +96,8 @@ class Cone(Segment):
     diameter_end: float
 
     def __post_init__(self) -> None:
-        positive("Cone.diameter_start", self.diameter_start, "m")
-        positive("Cone.diameter_end", self.diameter_end, "m")
+        object.__setattr__(self, "diameter_start", positive("Cone.diameter_start", self.diameter_start, "m"))
+        object.__setattr__(self, "diameter_end", positive("Cone.diameter_end", self.diameter_end, "m"))
         super().__post_init__()
 
     def area(self, s: ArrayLike) -> np.ndarray:
@@ -111,8 +113,8 @@ class LinearAreaTaper(Segment):
     area_end: float
 
     def __post_init__(self) -> None:
-        positive("LinearAreaTaper.area_start", self.area_start, "m^2")
-        positive("LinearAreaTaper.area_end", self.area_end, "m^2")
+        object.__setattr__(self, "area_start", positive("LinearAreaTaper.area_start", self.area_start, "m^2"))
+        object.__setattr__(self, "area_end", positive("LinearAreaTaper.area_end", self.area_end, "m^2"))
         super().__post_init__()
 
     def area(self, s: ArrayLike) -> np.ndarray:
@@ -127,8 +129,9 @@ class _AnalyticHorn(Segment):
     xi: float
 
     def __post_init__(self) -> None:
-        positive(f"{type(self).__name__}.area_start", self.area_start, "m^2")
-        finite(f"{type(self).__name__}.xi", self.xi, "1/m")
+        name = type(self).__name__
+        object.__setattr__(self, "area_start", positive(f"{name}.area_start", self.area_start, "m^2"))
+        object.__setattr__(self, "xi", finite(f"{name}.xi", self.xi, "1/m"))
         super().__post_init__()
 
 
@@ -161,7 +164,9 @@ class CosHorn(_AnalyticHorn):
     """A(s) = A0 cos^2(xi s) (thesis Tab. 2.1); requires |xi| length < pi/2 so the area stays positive."""
 
     def __post_init__(self) -> None:
-        if abs(finite("CosHorn.xi", self.xi, "1/m")) * positive("CosHorn.length", self.length, "m") >= math.pi / 2:
+        object.__setattr__(self, "xi", finite("CosHorn.xi", self.xi, "1/m"))
+        object.__setattr__(self, "length", positive("CosHorn.length", self.length, "m"))
+        if abs(self.xi) * self.length >= math.pi / 2:
             raise ValueError(f"CosHorn.xi: |xi| * length must be < pi/2 so that the area stays > 0, "
                              f"got {abs(self.xi) * self.length:.4g}")
         super().__post_init__()
@@ -178,7 +183,7 @@ class TabulatedProfile(Segment):
     """
 
     def __init__(self, x, diameter=None, area=None, *, material: Optional[Material] = None) -> None:
-        xs = finite_array("TabulatedProfile.x", x, min_size=2)
+        xs = finite_array("TabulatedProfile.x", x, min_size=2, unit="m")
         if np.any(np.diff(xs) <= 0):
             i = int(np.flatnonzero(np.diff(xs) <= 0)[0])
             raise ValueError(f"TabulatedProfile.x: must be strictly increasing; x[{i + 1}] = {xs[i + 1]} <= "
@@ -186,7 +191,8 @@ class TabulatedProfile(Segment):
         if (diameter is None) == (area is None):
             raise ValueError("TabulatedProfile: give exactly one of diameter= or area=")
         name = "diameter" if diameter is not None else "area"
-        vals = finite_array(f"TabulatedProfile.{name}", diameter if diameter is not None else area, min_size=2)
+        vals = finite_array(f"TabulatedProfile.{name}", diameter if diameter is not None else area, min_size=2,
+                            unit="m" if name == "diameter" else "m^2")
         if vals.shape != xs.shape:
             raise ValueError(f"TabulatedProfile.{name}: needs one value per x ({xs.size}), got {vals.size}")
         if np.any(vals <= 0):

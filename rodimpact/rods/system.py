@@ -7,9 +7,11 @@ from typing import Callable, Optional, Sequence
 
 import numpy as np
 
+from .._units import array_to_si
 from .._validate import finite
 from .conditions import Contact, EndCondition, Junction, as_end_condition, as_junction
 from .loads import Bearings, NodalForce
+from .plausibility import check_strikers
 from .rod import Rod
 
 #: Initial field of a rod: a number, a callable of x (m from the rod's left end) or per-element values.
@@ -65,7 +67,7 @@ class System:
         for i, r in enumerate(rods):
             if not isinstance(r, Rod):
                 raise TypeError(f"rods[{i}]: must be a Rod, got {type(r).__name__}")
-        vel = np.atleast_1d(np.asarray(self.velocities, dtype=object))
+        vel = np.atleast_1d(np.asarray(array_to_si("velocities", self.velocities, "m/s"), dtype=object))
         if vel.size != len(rods):
             raise ValueError(f"velocities: need one initial velocity per rod ({len(rods)}), got {vel.size}")
         vel = tuple(finite(f"velocities[{i}]", v, "m/s") for i, v in enumerate(vel))
@@ -105,6 +107,7 @@ class System:
         object.__setattr__(self, "right", as_end_condition(self.right, "right"))
         object.__setattr__(self, "loads", loads)
         object.__setattr__(self, "initial", tuple(initial))
+        check_strikers(self.rods, self.velocities)
 
     @property
     def n_rods(self) -> int:

@@ -33,7 +33,7 @@ def _frozen_array(values: Any, what: str) -> np.ndarray:
     return array
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Recording:
     """Channels sampled on one common, strictly increasing time axis.
 
@@ -98,6 +98,18 @@ class Recording:
         if not isinstance(self.metadata, Mapping):
             raise TypeError(f"metadata: must be a mapping, got {type(self.metadata).__name__}")
         object.__setattr__(self, "metadata", dict(self.metadata))
+
+    def __repr__(self) -> str:
+        """One line: samples, time span and rate, channels with units, metadata keys (not their values: a
+        recording's metadata sheet can run to hundreds of lines; see ``.metadata``) and the source."""
+        chans = ", ".join(f"{n} [{self.units[n]}]" if self.units.get(n) else n for n in self.channels)
+        keys = list(self.metadata)
+        meta = "no metadata" if not keys else (f"metadata: {len(keys)} entr{'y' if len(keys) == 1 else 'ies'} ("
+                                               + ", ".join(map(str, keys[:5])) + (", ..." if len(keys) > 5 else "")
+                                               + ")")
+        src = f", source={self.source!r}" if self.source else ""
+        return (f"Recording({self.n_samples} samples, t = {self.time[0]:.6g} .. {self.time[-1]:.6g} s at "
+                f"{self.sampling_rate:.6g} Hz, channels: {chans}; {meta}{src})")
 
     # -- access -----------------------------------------------------------------------
     def __getitem__(self, name: str) -> np.ndarray:

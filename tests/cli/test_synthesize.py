@@ -92,9 +92,9 @@ def test_percussion_drilling_spec_round_trip_at_machine_precision(tmp_path):
         name = "drill string"
         [struck.elements]
         element_length = "5 mm"
-        runs = [{ impedance = "51.0 kN s/m", count = 60 }, { impedance = "115 kN s/m", count = 40 },
-                { impedance = "79.7 kN s/m", count = 240 }, { impedance = "156 kN s/m", count = 40 },
-                { impedance_start = "156 kN s/m", impedance_end = "248 kN s/m", count = 20 }]
+        runs = [{ impedance = "51.0 kN s/m", count = 70 }, { impedance = "115 kN s/m", count = 30 },
+                { impedance = "79.7 kN s/m", count = 250 }, { impedance = "156 kN s/m", count = 10 },
+                { impedance_start = "156 kN s/m", impedance_end = "248 kN s/m", count = 40 }]
         """.replace("\n        ", "\n"))
     r = run(spec)
     assert r.result.n_feasible == 100 and r.result.feasible

@@ -106,7 +106,7 @@ def test_percussion_drilling_round_trip():
     prob = percussion_drilling_example()
     res = prob.solve()
     assert res.feasible and res.n_feasible == 100
-    assert res.transformation.location.node == 550                   # dead time 550 dt (2.75 m of steel)
+    assert res.transformation.location.node == 400                   # dead time n~ = 400 dt (2.0 m of steel)
     assert res.transformation.residual < 1e-13
     # the impact force lies "above" the incident force (smaller magnitude), thesis Fig. 4.10a
     assert np.all(res.window_values > res.transformation.target)

@@ -141,7 +141,9 @@ def test_bad_input_names_the_quantity():
     with pytest.raises(ValueError, match="theta"):
         rr.lundberg_lesser_impedance(-1.0, Z, 1e3, 1e-4, V)
     with pytest.raises(TypeError, match="mass"):
-        rr.rigid_mass_force(0.0, "2 kg", Z, V)
+        rr.rigid_mass_force(0.0, "two kg", Z, V)
+    with pytest.raises(ValueError, match="mass: expected a quantity in kg"):     # units are accepted, if right
+        rr.rigid_mass_force(0.0, "2 m", Z, V)
 
 
 def test_stepped_striker_needs_one_travel_time_per_step():
