@@ -1,0 +1,215 @@
+"""Superfast layer peeling: the divide-and-conquer Schur recursion, O(n log^2 n) (thesis Sec. 4.1.1).
+
+Same inputs and outputs as :func:`rodimpact.inverse._kernels.peel_numba` / ``peel_numpy`` (the O(n^2) peel;
+symbols and the derivation are in that module and in docs/inverse.md, "Layer peeling"). :func:`peel` chooses
+between the two by the number of elements (:data:`CROSSOVER`, measured by ``benchmarks/bench_synthesis.py``).
+
+The layers as polynomials in the delay
+--------------------------------------
+Write the two wave histories of layer q as power series in the delay x (one sample = two steps):
+Ghat_q(x) = sum_p g_q[p - q] x^p and Fhat_q(x) = sum_p f[p] x^p, p >= q, in the storage of the O(n^2) peel
+(``g`` shifts to the start of its array, ``f`` stays in place). The reflection of layer q is the ratio of their
+coefficients of x^q, R_q = Fhat_q[q] / Ghat_q[q], and crossing interface q is the 2x2 polynomial matrix
+
+    [Ghat_{q+1}; Fhat_{q+1}] = Theta_q [Ghat_q; Fhat_q],   Theta_q = c [[x, -R x], [-R, 1]],  c = 1 / (1 - R).
+
+k layers from q0 on compose to P = Theta_{q0+k-1} ... Theta_{q0}, a matrix of polynomials of degree <= k, and
+R_{q0..q0+k-1} only need the coefficients q0 .. q0+k-1 of the data. Divide and conquer on a block of k layers:
+peel the first h = k/2 (recursively) to get R and P1 (degree <= h), apply P1 to the block's data by FFT
+(cyclic convolution of length >= k: the wrap-around only spoils coefficients below h, which are not needed),
+peel the second half from the result (recursively) to get P2, and return P = P2 P1 (FFT product). Blocks of at
+most :data:`LEAF` layers run the O(n^2) recursion and build their P by the same loop. Cost O(n log^2 n).
+
+Existence and bookkeeping: every leaf checks |R| < 1 and 0 < Z < inf layer by layer exactly as the O(n^2)
+peel does and stops the whole recursion at the first failure, so both paths stop at the same element. The
+trust bookkeeping of the O(n^2) peel (``MG``/``MF``, the same recursion on absolute values from constant
+arrays) stays constant along each array, so it reduces to two scalars per layer, updated in the leaves with
+the same arithmetic: the amplitude growth kappa is the O(n^2) path's to rounding of the R's.
+
+Accuracy: the leaves compute like the O(n^2) peel; an FFT convolution carries errors of about
+eps log2(L) relative to the largest products instead of to each coefficient. docs/inverse.md ("Superfast
+peeling") reports the measured agreement (1e-13 to 1e-14 relative on smooth and struck-system data) and how the
+error estimate of :func:`rodimpact.inverse._kernels.error_estimate` covers it.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Optional
+
+import numpy as np
+from numba import njit
+from scipy import fft as sfft
+
+from . import _kernels as K
+
+#: Largest block peeled by the O(n^2) loops inside the recursion (measured: below it the loops beat the FFTs).
+LEAF = 384
+#: From this number of elements on, ``method="auto"`` uses the superfast peel (measured crossover).
+CROSSOVER = 2000
+METHODS = ("auto", "quadratic", "superfast")
+
+Peeled = tuple[np.ndarray, np.ndarray, np.ndarray, int]
+
+
+def _leaf_loops(g, f, q0, state, z, refl, kappa, want_matrix):
+    """Peel the layers q0 .. q0+k-1 from the block data ``g``, ``f`` (length k, coefficients q0 .. q0+k-1 of
+    Ghat_q0, Fhat_q0; overwritten) exactly as the O(n^2) peel does (same operations in the same order).
+
+    ``state`` = [Z_q0, vg, vf] (impedance of element q0 and the two trust scalars; updated in place); results
+    go to ``z``, ``refl``, ``kappa`` at the global layer index. Returns the number of layers that satisfied
+    the existence condition (k if all) and the composed matrix P, shape (2, 2, k + 1) (zeros unless
+    ``want_matrix``).
+    """
+    k = g.size
+    p = np.zeros((2, 2, k + 1))
+    p[0, 0, 0] = 1.0
+    p[1, 1, 0] = 1.0
+    zq = state[0]
+    vg = state[1]
+    vf = state[2]
+    for j in range(k):
+        q = q0 + j
+        g0 = g[0]
+        r = f[j] / g0
+        refl[q] = r
+        kappa[q] = (vg + vf) / abs(g0)
+        z_next = zq * (1.0 + r) / (1.0 - r)
+        if not (abs(r) < 1.0 and 0.0 < z_next < np.inf):
+            state[0] = zq
+            return j, p
+        zq = z_next
+        z[q] = zq
+        c = 1.0 / (1.0 - r)
+        ac = abs(c)
+        ar = abs(r)
+        vg, vf = (vg + ar * vf) * ac, (vf + ar * vg) * ac
+        for s in range(k - j):
+            gs = g[s]
+            fs = f[s + j]
+            g[s] = (gs - r * fs) * c
+            f[s + j] = (fs - r * gs) * c
+        if want_matrix:
+            for col in range(2):
+                for i in range(j + 1, 0, -1):          # row 0 <- c x (row0 - R row1), row 1 <- c (row1 - R row0)
+                    a = p[0, col, i]
+                    b = p[1, col, i]
+                    p[1, col, i] = (b - r * a) * c
+                    p[0, col, i] = (p[0, col, i - 1] - r * p[1, col, i - 1]) * c
+                p[1, col, 0] = (p[1, col, 0] - r * p[0, col, 0]) * c
+                p[0, col, 0] = 0.0
+    state[0] = zq
+    state[1] = vg
+    state[2] = vf
+    return k, p
+
+
+def _leaf_numpy(g, f, q0, state, z, refl, kappa, want_matrix):
+    """Reference path of :func:`_leaf_loops`: one vectorised numpy expression per layer."""
+    k = g.size
+    p = np.zeros((2, 2, k + 1))
+    p[0, 0, 0] = p[1, 1, 0] = 1.0
+    zq, vg, vf = state
+    for j in range(k):
+        q = q0 + j
+        r = f[j] / g[0]
+        refl[q] = r
+        kappa[q] = (vg + vf) / abs(g[0])
+        z_next = zq * (1.0 + r) / (1.0 - r)
+        if not (abs(r) < 1.0 and 0.0 < z_next < np.inf):
+            state[0] = zq
+            return j, p
+        zq = z_next
+        z[q] = zq
+        c = 1.0 / (1.0 - r)
+        vg, vf = (vg + abs(r) * vf) * abs(c), (vf + abs(r) * vg) * abs(c)
+        gs, fs = g[:k - j].copy(), f[j:].copy()
+        g[:k - j] = (gs - r * fs) * c
+        f[j:] = (fs - r * gs) * c
+        if want_matrix:
+            row0, row1 = p[0].copy(), p[1].copy()
+            p[1] = (row1 - r * row0) * c
+            p[0, :, 1:] = (row0[:, :-1] - r * row1[:, :-1]) * c
+            p[0, :, 0] = 0.0
+    state[:] = (zq, vg, vf)
+    return k, p
+
+
+_leaf_numba = njit(cache=True)(_leaf_loops)
+
+
+def peel_superfast(force: np.ndarray, velocity: np.ndarray, backend: str = "numba",
+                   leaf: Optional[int] = None) -> Peeled:
+    """Peel the striker from its face history by the divide-and-conquer Schur recursion, O(n log^2 n).
+
+    Parameters and returns as :func:`rodimpact.inverse._kernels.peel_numpy` (force N and relative face velocity
+    U = V - v_in at the window starts; impedances z, reflections refl, amplitude growth kappa, number m of
+    elements that satisfy the existence condition). ``backend`` chooses the leaf loops ("numba" compiled,
+    "numpy" reference); ``leaf`` is the largest block peeled by the loops (>= 1; default :data:`LEAF`).
+    """
+    leaf = LEAF if leaf is None else int(leaf)
+    if leaf < 1:
+        raise ValueError(f"leaf: the largest block peeled by the loops must be >= 1 layer, got {leaf}")
+    force = np.ascontiguousarray(force, dtype=float)
+    velocity = np.ascontiguousarray(velocity, dtype=float)
+    n = force.size
+    z = np.zeros(n)
+    refl = np.zeros(n)
+    kappa = np.zeros(n)
+    z1 = force[0] / velocity[0]
+    if not (np.isfinite(z1) and z1 > 0.0):
+        return z, refl, kappa, 0
+    z[0] = z1
+    kappa[0] = 1.0
+    if n == 1:
+        return z, refl, kappa, 1
+    g = 0.5 * (force + z1 * velocity)
+    f = 0.5 * (force - z1 * velocity)
+    scale = float(np.max(0.5 * (np.abs(force) + np.abs(z1 * velocity))))
+    state = np.array([z1, scale, scale])
+    run_leaf = _leaf_numba if backend == "numba" else _leaf_numpy
+
+    def solve(gb: np.ndarray, fb: np.ndarray, q0: int, want_matrix: bool) -> tuple[int, np.ndarray | None]:
+        """Peel the layers q0 .. q0+k-1 (k = gb.size); return the layers done and their matrix P."""
+        k = gb.size
+        if k <= leaf:
+            done, p = run_leaf(gb.copy(), fb.copy(), q0, state, z, refl, kappa, want_matrix)
+            return done, p
+        h = k // 2
+        done, p1 = solve(gb[:h], fb[:h], q0, True)
+        if done < h:
+            return done, None
+        size = sfft.next_fast_len(k + 1, real=True)
+        p1f = sfft.rfft(p1, size, axis=-1)
+        gf, ff = sfft.rfft(np.stack((gb, fb)), size, axis=-1)
+        rest = sfft.irfft(p1f[:, 0] * gf + p1f[:, 1] * ff, size, axis=-1)[:, h:k]
+        done2, p2 = solve(rest[0], rest[1], q0 + h, want_matrix)
+        if done2 < k - h or not want_matrix:
+            return h + done2, None
+        p2f = sfft.rfft(p2, size, axis=-1)
+        prod = p2f[:, :1] * p1f[:1] + p2f[:, 1:] * p1f[1:]          # (P2 P1)_ik = sum_j P2_ij P1_jk
+        return k, sfft.irfft(prod, size, axis=-1)[:, :, :k + 1]
+
+    # layer 1 reads g at sample s and f at sample s + 1 (coefficients 1 .. n-1 of Ghat_1 = x G, Fhat_1 = F)
+    done, _ = solve(g[:n - 1], f[1:], 1, False)
+    return z, refl, kappa, 1 + done
+
+
+def peel(force: np.ndarray, velocity: np.ndarray, backend: str = "numba", method: str = "auto") -> Peeled:
+    """Peel the striker with the O(n^2) loops (``method="quadratic"``), the superfast recursion
+    (``"superfast"``) or whichever is faster for this size (``"auto"``: superfast from :data:`CROSSOVER`
+    elements on)."""
+    if method not in METHODS:
+        raise ValueError(f"method: must be one of {METHODS}, got {method!r}")
+    if backend not in ("numba", "numpy"):
+        raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
+    if chosen_method(np.size(force), method) == "superfast":
+        return peel_superfast(force, velocity, backend)
+    quadratic: Callable[[np.ndarray, np.ndarray], Peeled] = K.peel_numba if backend == "numba" else K.peel_numpy
+    return quadratic(np.ascontiguousarray(force, dtype=float), np.ascontiguousarray(velocity, dtype=float))
+
+
+def chosen_method(n: int, method: str = "auto") -> str:
+    """The peeling path ``method`` resolves to for n elements ("quadratic" or "superfast")."""
+    if method == "auto":
+        return "superfast" if n >= CROSSOVER else "quadratic"
+    return method
