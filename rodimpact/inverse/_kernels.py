@@ -73,14 +73,9 @@ def peel_numpy(force: np.ndarray, velocity: np.ndarray) -> tuple[np.ndarray, np.
         Number of feasible elements (the existence condition held for elements 1..m).
     """
     n = force.size
-    z = np.zeros(n)
-    refl = np.zeros(n)
-    kappa = np.zeros(n)
-    z1 = force[0] / velocity[0]
-    if not (np.isfinite(z1) and z1 > 0.0):
+    z, refl, kappa, z1 = start_arrays(force, velocity)
+    if z1 is None:
         return z, refl, kappa, 0
-    z[0] = z1
-    kappa[0] = 1.0
     g = 0.5 * (force + z1 * velocity)
     f = 0.5 * (force - z1 * velocity)
     mg = np.full(n, 0.5 * np.max(np.abs(force) + np.abs(z1 * velocity)))
@@ -108,6 +103,21 @@ def peel_numpy(force: np.ndarray, velocity: np.ndarray) -> tuple[np.ndarray, np.
         mg[:length] = (mgs + ar * mfs) * ac
         mf[q:q + length] = (mfs + ar * mgs) * ac
     return z, refl, kappa, n
+
+
+def start_arrays(force: np.ndarray, velocity: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float | None]:
+    """Output arrays (z, refl, kappa) of a peel and Z_1 = N/U of the first sample (eq. 4.4), already stored in
+    z[0] (kappa[0] = 1); Z_1 is None, and nothing stored, when it is not a positive finite number."""
+    n = force.size
+    z = np.zeros(n)
+    refl = np.zeros(n)
+    kappa = np.zeros(n)
+    z1 = force[0] / velocity[0]
+    if not (np.isfinite(z1) and z1 > 0.0):
+        return z, refl, kappa, None
+    z[0] = z1
+    kappa[0] = 1.0
+    return z, refl, kappa, float(z1)
 
 
 def _peel_loops(force, velocity):

@@ -152,14 +152,9 @@ def peel_superfast(force: np.ndarray, velocity: np.ndarray, backend: str = "numb
     force = np.ascontiguousarray(force, dtype=float)
     velocity = np.ascontiguousarray(velocity, dtype=float)
     n = force.size
-    z = np.zeros(n)
-    refl = np.zeros(n)
-    kappa = np.zeros(n)
-    z1 = force[0] / velocity[0]
-    if not (np.isfinite(z1) and z1 > 0.0):
+    z, refl, kappa, z1 = K.start_arrays(force, velocity)
+    if z1 is None:
         return z, refl, kappa, 0
-    z[0] = z1
-    kappa[0] = 1.0
     if n == 1:
         return z, refl, kappa, 1
     g = 0.5 * (force + z1 * velocity)
