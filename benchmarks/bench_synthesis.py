@@ -327,7 +327,7 @@ def main_scale(quick: bool) -> None:
     else:
         parts = [bench_peeling((1000, 3000, 10000, 30000, 100000), (1000, 3000, 10000, 30000, 100000, 300000,
                                                                     1000000),
-                               (1000, 1500, 2000, 2500, 3000, 4000), 1000000),
+                               (2000, 3000, 4000, 5000, 6000, 8000), 1000000),
                  bench_from_impedance(1000000), bench_transform(10000)]
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     lines = ["## Inverse problem at scale (`benchmarks/bench_synthesis.py --part scale`)", "",

@@ -39,7 +39,8 @@ wave amplitude of the face data in every sample (data carry errors relative to t
 each sample). The *amplitude growth* kappa_q = (MG[0] + MF[q]) / |G[0]| says how much larger the peeled
 amplitudes that met in the wavefront can be than the wavefront itself; errors of relative size eps in the
 data and in the arithmetic become errors of about eps * kappa_q in R_q, and 2 dR/(1 - R^2) in ln Z (errors
-add up along the rod).
+add up along the rod). Started from constant arrays, MG and MF stay constant along the entries the recursion
+reads (every entry receives the same update), so both kernels carry them as two numbers.
 """
 
 from __future__ import annotations
@@ -78,30 +79,24 @@ def peel_numpy(force: np.ndarray, velocity: np.ndarray) -> tuple[np.ndarray, np.
         return z, refl, kappa, 0
     g = 0.5 * (force + z1 * velocity)
     f = 0.5 * (force - z1 * velocity)
-    mg = np.full(n, 0.5 * np.max(np.abs(force) + np.abs(z1 * velocity)))
-    mf = mg.copy()
+    mg = mf = 0.5 * float(np.max(np.abs(force) + np.abs(z1 * velocity)))     # MG, MF (constant arrays)
     zq = z1
     for q in range(1, n):
         r = f[q] / g[0]
         refl[q] = r
-        kappa[q] = (mg[0] + mf[q]) / abs(g[0])
+        kappa[q] = (mg + mf) / abs(g[0])
         z_next = zq * (1.0 + r) / (1.0 - r)
         if not (abs(r) < 1.0 and 0.0 < z_next < np.inf):
             return z, refl, kappa, q
         zq = z_next
         z[q] = zq
         c = 1.0 / (1.0 - r)
-        ac = abs(c)
-        ar = abs(r)
         length = n - q
         gs = g[:length].copy()
         fs = f[q:q + length].copy()
         g[:length] = (gs - r * fs) * c
         f[q:q + length] = (fs - r * gs) * c
-        mgs = mg[:length].copy()
-        mfs = mf[q:q + length].copy()
-        mg[:length] = (mgs + ar * mfs) * ac
-        mf[q:q + length] = (mfs + ar * mgs) * ac
+        mg, mf = (mg + abs(r) * mf) * abs(c), (mf + abs(r) * mg) * abs(c)
     return z, refl, kappa, n
 
 
@@ -133,21 +128,18 @@ def _peel_loops(force, velocity):
     kappa[0] = 1.0
     g = np.empty(n)
     f = np.empty(n)
-    mg = np.empty(n)
-    mf = np.empty(n)
     scale = 0.0
     for s in range(n):
         g[s] = 0.5 * (force[s] + z1 * velocity[s])
         f[s] = 0.5 * (force[s] - z1 * velocity[s])
         scale = max(scale, 0.5 * (abs(force[s]) + abs(z1 * velocity[s])))
-    for s in range(n):
-        mg[s] = scale
-        mf[s] = scale
+    mg = scale
+    mf = scale
     zq = z1
     for q in range(1, n):
         r = f[q] / g[0]
         refl[q] = r
-        kappa[q] = (mg[0] + mf[q]) / abs(g[0])
+        kappa[q] = (mg + mf) / abs(g[0])
         z_next = zq * (1.0 + r) / (1.0 - r)
         if not (abs(r) < 1.0 and 0.0 < z_next < np.inf):
             return z, refl, kappa, q
@@ -156,15 +148,12 @@ def _peel_loops(force, velocity):
         c = 1.0 / (1.0 - r)
         ac = abs(c)
         ar = abs(r)
+        mg, mf = (mg + ar * mf) * ac, (mf + ar * mg) * ac
         for s in range(n - q):
             gs = g[s]
             fs = f[s + q]
             g[s] = (gs - r * fs) * c
             f[s + q] = (fs - r * gs) * c
-            mgs = mg[s]
-            mfs = mf[s + q]
-            mg[s] = (mgs + ar * mfs) * ac
-            mf[s + q] = (mfs + ar * mgs) * ac
     return z, refl, kappa, n
 
 
