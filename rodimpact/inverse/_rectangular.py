@@ -3,7 +3,9 @@
 The rectangular response G is the force and velocity at one node p of the struck system at rest when its
 impact face is driven by a unit force for two steps (one window). The direct solver gets it by running the
 whole lattice for t_dt + 2n - 1 steps; :func:`rectangular_response` runs the same lattice equations but only
-where they can matter (the domain of dependence):
+where they can matter (the domain of dependence). :func:`chain_response` does the same for any force history
+at the face (the face response of Step 1 of the synthesis: node p = the face, 2n steps, a triangle of n^2
+node updates instead of 2n times the struck system):
 
 * ahead of the wavefront the lattice is still at rest (node k is reached after k steps);
 * a node k at step i can influence the node p at step t only if |p - k| <= t - i; nodes outside the backward
@@ -30,13 +32,14 @@ from numba import njit
 
 from ..direct import _kernels as DK
 from ..lattice.lattice import build_lattice
-from ..rods.conditions import Bonded, FixedEnd, FreeEnd, NonReflectingEnd, SpringEnd
+from ..rods.conditions import BitRockEnd, Bonded, FixedEnd, FreeEnd, NonReflectingEnd, SpringEnd
 from ..rods.system import System
 
 
-def _sweep(z, refl, node, steps, end_code, end_p0, end_p1, dt, drive_steps):
+def _sweep(z, refl, node, steps, end_code, end_p0, end_p1, dt, drive):
     """Force and velocity of node ``node`` (0 = impact face, z.size = far end) in steps 0..steps-1 of the
-    lattice at rest whose face is driven by a unit force (tension positive) during ``drive_steps`` steps."""
+    lattice at rest whose face is driven by the force ``drive[i]`` in step i (N, tension positive; 0 after
+    the end of ``drive``)."""
     n_el = z.size
     f = np.zeros(n_el)
     g = np.zeros(n_el)
@@ -51,7 +54,7 @@ def _sweep(z, refl, node, steps, end_code, end_p0, end_p1, dt, drive_steps):
         k_lo = max(node - reach - 1, 0)            # nodes k_lo..k_hi can matter (one node of margin)
         k_hi = min(node + reach + 1, i + 1, n_el)
         if k_lo == 0:                              # impact face: N^- = prescribed force (eq. 3.16)
-            value = 1.0 if i < drive_steps else 0.0
+            value = drive[i] if i < drive.size else 0.0
             if node == 0:
                 force[i] = value
                 velocity[i] = -(value - ((f[0] + g[0]) + z[0] * ((g[0] - f[0]) / z[0]))) / z[0]
@@ -108,15 +111,17 @@ def _far_end(system: System, z_last: float) -> Optional[tuple[int, float, float]
         return DK.NONREFLECTING, z_last if right.impedance is None else right.impedance, 0.0
     if isinstance(right, SpringEnd):
         return DK.SPRING, right.stiffness, right.damping
+    if isinstance(right, BitRockEnd):
+        return DK.BITROCK, right.loading_stiffness, right.unloading_stiffness
     return None
 
 
-def rectangular_response(system: System, node: int, dt: float, steps: int,
-                         drive_steps: int = 2) -> Optional[tuple[np.ndarray, np.ndarray, np.ndarray]]:
-    """Force (N) and velocity (m/s) of lattice node ``node`` per step for a unit force on the impact face
-    during ``drive_steps`` steps, and the lattice impedances; None when the system is not a passive chain
-    at rest (moving or loaded parts, non-bonded junctions, driven far end): then the direct solver is needed.
-    """
+def chain_response(system: System, node: int, dt: float, steps: int,
+                   drive: np.ndarray) -> Optional[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Force (N) and velocity (m/s) of lattice node ``node`` per step when the impact face of the struck
+    system at rest is driven by the force ``drive[i]`` in step i, and the lattice impedances; None when the
+    system is not a passive chain at rest (moving or loaded parts, non-bonded junctions, driven far end):
+    then the direct solver is needed."""
     if (system.loads or any(s is not None for s in system.initial) or any(v != 0.0 for v in system.velocities)
             or not all(isinstance(j, Bonded) for j in system.junctions)):
         return None
@@ -127,5 +132,12 @@ def rectangular_response(system: System, node: int, dt: float, steps: int,
     refl = np.zeros(z.size)
     refl[1:] = (z[1:] - z[:-1]) / (z[1:] + z[:-1])
     force, velocity = _sweep_numba(z, refl, int(node), int(steps), end[0], end[1], end[2], float(dt),
-                                   int(drive_steps))
+                                   np.ascontiguousarray(drive, dtype=float))
     return force, velocity, z
+
+
+def rectangular_response(system: System, node: int, dt: float,
+                         steps: int) -> Optional[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """:func:`chain_response` for a unit force on the impact face during the first window (two steps),
+    the rectangular response of eq. 4.12."""
+    return chain_response(system, node, dt, steps, np.ones(2))

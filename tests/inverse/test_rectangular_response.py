@@ -10,8 +10,8 @@ import rodimpact as ri
 from rodimpact.inverse import SynthesisWarning, percussion_drilling_example, transform_force
 from rodimpact.inverse._rectangular import rectangular_response
 from rodimpact.inverse._toeplitz import solve_lower_toeplitz
-from rodimpact.inverse.struck import (as_struck_system, at_rest, driven, linearized, locate, position_probe,
-                                      position_quantity)
+from rodimpact.inverse.struck import (as_struck_system, at_rest, driven, face_response, linearized, locate,
+                                      position_probe, position_quantity)
 from rodimpact.inverse.transform import _rectangular
 
 DT = 1e-6
@@ -110,3 +110,19 @@ def test_transform_of_a_moving_loaded_system_round_trip():
         warnings.simplefilter("ignore", SynthesisWarning)
         tr = transform_force(y, rods, position=14 * C * DT, dt=DT, **kw)
     np.testing.assert_allclose(tr.impact_force, x, rtol=1e-11)
+
+
+@pytest.mark.parametrize("far_end", FAR_ENDS + [ri.BitRockEnd(3e8, 9e8)])
+def test_face_response_equals_the_direct_solver(far_end):
+    """Step 1 of the synthesis (face velocity under the window forces) by the band sweep, for 300 windows
+    (reflections of every junction and of the far end, the bit-rock end loading and unloading)."""
+    system = _chain(far_end)
+    x = -1e5 * (1.0 + 0.5 * np.sin(np.arange(300) / 7.0)) * (np.arange(300) < 200)
+    fast = face_response(system, x, DT)
+    sim = ri.simulate(driven(system, x, DT), steps=600, dt=DT)
+    ref = np.asarray(sim.end_velocity["left"])
+    assert np.count_nonzero(np.diff(ref[:-1:2])) > 250
+    np.testing.assert_allclose(fast.velocity, ref, rtol=0, atol=1e-13 * np.max(np.abs(ref)))
+    if isinstance(far_end, ri.BitRockEnd):       # the bit unloads after its peak: the nonlinear branch is used
+        rock = sim.end_force["right"]
+        assert rock.min() < 1.1 * rock[-1] < 0
