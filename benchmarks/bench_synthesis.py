@@ -5,11 +5,12 @@ Cases
 A. Thesis example 1 scaled: the Lundberg-Lesser exponential on a semi-infinite uniform bar (closed-form face
    response), fixed duration 0.193 ms cut into n windows.
 B. A stepped struck bar of 400 elements (impedance rising by half after 200 elements, non-reflecting far end)
-   whose face response comes from the direct solver (one run of 2n steps), same target.
-C. The percussion-drilling example (force prescribed at the bit-rock interface): two runs of the direct
-   solver for the rectangular and the face response through the 2.75 m drill string, the triangular Toeplitz
-   solve, then the peeling. The drill string has 5.5 n elements, so the direct solver's cost grows like n^2
-   with a large constant; n = 30,000 would need ~4e10 element updates and is not run.
+   whose face response comes from the lattice equations of the direct solver (band sweep of 2n steps,
+   inverse/_rectangular.py), same target.
+C. The percussion-drilling example (force prescribed at the bit-rock interface): the rectangular and the face
+   response through the 2.75 m drill string (5.5 n elements) by band-limited sweeps of the lattice (about
+   11 n^2 + n^2 node updates), the triangular Toeplitz solve, then the peeling; n = 30,000 (~1e10 node
+   updates) is not run.
 
 Baseline: the thesis's recursion with a full re-simulation per element
 (:func:`rodimpact.inverse.synthesize_by_resimulation`, same compiled direct solver), run for small n only;
@@ -281,10 +282,10 @@ def main_base() -> None:
              "",
              "Case A: thesis example 1 scaled (Lundberg-Lesser exponential, semi-infinite uniform bar, closed-form "
              "face response). Case B: same target on a stepped 400-element bar (impedance x1.5 after 200 elements, "
-             "non-reflecting end; face response from one direct-solver run). Case C: percussion drilling, "
-             "force prescribed at the bit-rock interface (two direct-solver runs through a drill string of "
-             "5.5 n elements, Toeplitz solve, peeling; n = 30,000 not run: ~4e10 element updates in the "
-             "struck system alone). "
+             "non-reflecting end; face response from the lattice, band sweep of 2n steps). Case C: percussion "
+             "drilling, force prescribed at the bit-rock interface (rectangular and face response by band "
+             "sweeps through a drill string of 5.5 n elements, about 12 n^2 node updates; Toeplitz solve, "
+             "peeling; n = 30,000 not run: ~1e10 node updates). "
              "`verify` = max relative deviation of the direct solver with the synthesized striker from the "
              "target (n <= 3,000).",
              "",
