@@ -19,13 +19,13 @@ R_{q0..q0+k-1} only need the coefficients q0 .. q0+k-1 of the data. Divide and c
 peel the first h = k/2 (recursively) to get R and P1 (degree <= h), apply P1 to the block's data by FFT
 (cyclic convolution of length >= k: the wrap-around only spoils coefficients below h, which are not needed),
 peel the second half from the result (recursively) to get P2, and return P = P2 P1 (FFT product). Blocks of at
-most :data:`LEAF` layers run the O(n^2) recursion and build their P by the same loop. Cost O(n log^2 n).
+most :data:`LEAF` layers run the O(n^2) loops (:func:`rodimpact.inverse._kernels.peel_block_numba`, the same
+code as the O(n^2) peel), which also build their P. Cost O(n log^2 n).
 
-Existence and bookkeeping: every leaf checks |R| < 1 and 0 < Z < inf layer by layer exactly as the O(n^2)
-peel does and stops the whole recursion at the first failure, so both paths stop at the same element. The
-trust bookkeeping of the O(n^2) peel (``MG``/``MF``, the same recursion on absolute values from constant
-arrays) stays constant along each array, so it reduces to two scalars per layer, updated in the leaves with
-the same arithmetic: the amplitude growth kappa is the O(n^2) path's to rounding of the R's.
+Existence and bookkeeping: every leaf checks |R| < 1 and 0 < Z < inf layer by layer as the O(n^2) peel does
+and stops the whole recursion at the first failure, so both paths stop at the same element. The trust numbers
+MG, MF (two scalars, see :mod:`rodimpact.inverse._kernels`) pass from leaf to leaf: the amplitude growth
+kappa is the O(n^2) path's to rounding of the R's.
 
 Accuracy: the leaves compute like the O(n^2) peel; an FFT convolution carries errors of about
 eps log2(L) relative to the largest products instead of to each coefficient. docs/inverse.md ("Superfast
@@ -38,7 +38,6 @@ from __future__ import annotations
 from typing import Callable, Optional
 
 import numpy as np
-from numba import njit
 from scipy import fft as sfft
 
 from . import _kernels as K
@@ -50,92 +49,6 @@ CROSSOVER = 5000
 METHODS = ("auto", "quadratic", "superfast")
 
 Peeled = tuple[np.ndarray, np.ndarray, np.ndarray, int]
-
-
-def _leaf_loops(g, f, q0, state, z, refl, kappa, want_matrix):
-    """Peel the layers q0 .. q0+k-1 from the block data ``g``, ``f`` (length k, coefficients q0 .. q0+k-1 of
-    Ghat_q0, Fhat_q0; overwritten) exactly as the O(n^2) peel does (same operations in the same order).
-
-    ``state`` = [Z_q0, vg, vf] (impedance of element q0 and the two trust scalars; updated in place); results
-    go to ``z``, ``refl``, ``kappa`` at the global layer index. Returns the number of layers that satisfied
-    the existence condition (k if all) and the composed matrix P, shape (2, 2, k + 1) (zeros unless
-    ``want_matrix``).
-    """
-    k = g.size
-    p = np.zeros((2, 2, k + 1))
-    p[0, 0, 0] = 1.0
-    p[1, 1, 0] = 1.0
-    zq = state[0]
-    vg = state[1]
-    vf = state[2]
-    for j in range(k):
-        q = q0 + j
-        g0 = g[0]
-        r = f[j] / g0
-        refl[q] = r
-        kappa[q] = (vg + vf) / abs(g0)
-        z_next = zq * (1.0 + r) / (1.0 - r)
-        if not (abs(r) < 1.0 and 0.0 < z_next < np.inf):
-            state[0] = zq
-            return j, p
-        zq = z_next
-        z[q] = zq
-        c = 1.0 / (1.0 - r)
-        ac = abs(c)
-        ar = abs(r)
-        vg, vf = (vg + ar * vf) * ac, (vf + ar * vg) * ac
-        for s in range(k - j):
-            gs = g[s]
-            fs = f[s + j]
-            g[s] = (gs - r * fs) * c
-            f[s + j] = (fs - r * gs) * c
-        if want_matrix:
-            for col in range(2):
-                for i in range(j + 1, 0, -1):          # row 0 <- c x (row0 - R row1), row 1 <- c (row1 - R row0)
-                    a = p[0, col, i]
-                    b = p[1, col, i]
-                    p[1, col, i] = (b - r * a) * c
-                    p[0, col, i] = (p[0, col, i - 1] - r * p[1, col, i - 1]) * c
-                p[1, col, 0] = (p[1, col, 0] - r * p[0, col, 0]) * c
-                p[0, col, 0] = 0.0
-    state[0] = zq
-    state[1] = vg
-    state[2] = vf
-    return k, p
-
-
-def _leaf_numpy(g, f, q0, state, z, refl, kappa, want_matrix):
-    """Reference path of :func:`_leaf_loops`: one vectorised numpy expression per layer."""
-    k = g.size
-    p = np.zeros((2, 2, k + 1))
-    p[0, 0, 0] = p[1, 1, 0] = 1.0
-    zq, vg, vf = state
-    for j in range(k):
-        q = q0 + j
-        r = f[j] / g[0]
-        refl[q] = r
-        kappa[q] = (vg + vf) / abs(g[0])
-        z_next = zq * (1.0 + r) / (1.0 - r)
-        if not (abs(r) < 1.0 and 0.0 < z_next < np.inf):
-            state[0] = zq
-            return j, p
-        zq = z_next
-        z[q] = zq
-        c = 1.0 / (1.0 - r)
-        vg, vf = (vg + abs(r) * vf) * abs(c), (vf + abs(r) * vg) * abs(c)
-        gs, fs = g[:k - j].copy(), f[j:].copy()
-        g[:k - j] = (gs - r * fs) * c
-        f[j:] = (fs - r * gs) * c
-        if want_matrix:
-            row0, row1 = p[0].copy(), p[1].copy()
-            p[1] = (row1 - r * row0) * c
-            p[0, :, 1:] = (row0[:, :-1] - r * row1[:, :-1]) * c
-            p[0, :, 0] = 0.0
-    state[:] = (zq, vg, vf)
-    return k, p
-
-
-_leaf_numba = njit(cache=True)(_leaf_loops)
 
 
 def peel_superfast(force: np.ndarray, velocity: np.ndarray, backend: str = "numba",
@@ -153,16 +66,10 @@ def peel_superfast(force: np.ndarray, velocity: np.ndarray, backend: str = "numb
     force = np.ascontiguousarray(force, dtype=float)
     velocity = np.ascontiguousarray(velocity, dtype=float)
     n = force.size
-    z, refl, kappa, z1 = K.start_arrays(force, velocity)
-    if z1 is None:
+    z, refl, kappa, g, f, state = K.start(force, velocity)
+    if state is None:
         return z, refl, kappa, 0
-    if n == 1:
-        return z, refl, kappa, 1
-    g = 0.5 * (force + z1 * velocity)
-    f = 0.5 * (force - z1 * velocity)
-    scale = float(np.max(0.5 * (np.abs(force) + np.abs(z1 * velocity))))
-    state = np.array([z1, scale, scale])
-    run_leaf = _leaf_numba if backend == "numba" else _leaf_numpy
+    run_leaf = K.peel_block_numba if backend == "numba" else K.peel_block_numpy
 
     def solve(gb: np.ndarray, fb: np.ndarray, q0: int, want_matrix: bool) -> tuple[int, np.ndarray | None]:
         """Peel the layers q0 .. q0+k-1 (k = gb.size); return the layers done and their matrix P."""
