@@ -38,6 +38,8 @@ class _CylinderRuns(SequenceABC):
     def __init__(self, lengths: np.ndarray, diameters: np.ndarray, material: Material) -> None:
         self.lengths = lengths
         self.diameters = diameters
+        for a in (lengths, diameters):
+            a.setflags(write=False)                       # a Rod is immutable
         self.material = material
         self._areas: Optional[np.ndarray] = None
 
