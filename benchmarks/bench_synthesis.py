@@ -5,11 +5,12 @@ Cases
 A. Thesis example 1 scaled: the Lundberg-Lesser exponential on a semi-infinite uniform bar (closed-form face
    response), fixed duration 0.193 ms cut into n windows.
 B. A stepped struck bar of 400 elements (impedance rising by half after 200 elements, non-reflecting far end)
-   whose face response comes from the direct solver (one run of 2n steps), same target.
-C. The percussion-drilling example (force prescribed at the bit-rock interface): two runs of the direct
-   solver for the rectangular and the face response through the 2.75 m drill string, the triangular Toeplitz
-   solve, then the peeling. The drill string has 4 n elements, so the direct solver's cost grows like n^2
-   with a large constant; n = 30,000 would need ~2e10 element updates and is not run.
+   whose face response comes from the lattice equations of the direct solver (band sweep of 2n steps,
+   inverse/_rectangular.py), same target.
+C. The percussion-drilling example (force prescribed at the bit-rock interface): the rectangular and the face
+   response through the drill string (4 n elements) by band-limited sweeps of the lattice (about
+   11 n^2 + n^2 node updates), the triangular Toeplitz solve, then the peeling; n = 30,000 (~1e10 node
+   updates) is not run.
 
 Baseline: the thesis's recursion with a full re-simulation per element
 (:func:`rodimpact.inverse.synthesize_by_resimulation`, same compiled direct solver), run for small n only;
@@ -17,22 +18,47 @@ its times for n = 3,000 and 30,000 are extrapolated (said so in the table) with 
 t = a n + b n^2 + c n^3 fitted (non-negative least squares) to the measured points: n simulations, each with a
 fixed overhead, O(n) steps through the struck bar and O(n^2) element updates in the growing striker.
 
-Run:  python benchmarks/bench_synthesis.py   (writes the "synthesis" section of docs/performance.md)
+Scale (section "synthesis-scale"): three measurements, each against the implementation it replaced (kept here
+as the baseline):
+
+1. Peeling (inverse/_schur.py): the O(n^2) loops (``peel_numba``) for n = 1e3 .. 1e5 and the divide-and-
+   conquer Schur recursion (``peel_superfast``) for n = 1e3 .. 1e6, on the face data of a smooth target
+   against a semi-infinite bar (closed form); fitted log-log slopes, the measured crossover, the largest
+   relative difference of the impedances, and ``synthesize()`` end to end at n = 1e6 (thesis example 1
+   scaled, closed-form face response).
+2. ``Rod.from_impedance`` with a profile that changes at every element, 1e6 elements: cylinders made on demand
+   vs one validated Cylinder per element (the former implementation, below).
+3. ``transform_force`` for the percussion-drilling string (thesis Sec. 4.2.2), n = 1e4: band-limited sweep vs
+   one run of the direct solver for the rectangular response (the former implementation, below).
+
+Run:  python benchmarks/bench_synthesis.py                 (both sections of docs/performance.md)
+      python benchmarks/bench_synthesis.py --part scale    (only the "synthesis-scale" section)
+      python benchmarks/bench_synthesis.py --quick         (scale part at small sizes, prints only: a check)
 """
 
 from __future__ import annotations
 
+import argparse
+import math
+import os
 import platform
 import time
 import warnings
 
 import numba
 import numpy as np
+import scipy
 from scipy.optimize import nnls
 
 import rodimpact as ri
 from rodimpact.inverse import ExponentialDecay, percussion_drilling_example, synthesize, synthesize_by_resimulation
-from rodimpact.inverse.struck import as_struck_system
+from rodimpact.inverse import _kernels as K, _schur as S
+from rodimpact.inverse._toeplitz import solve_lower_toeplitz
+from rodimpact.inverse.struck import (as_struck_system, at_rest, driven, linearized, locate, position_probe,
+                                      position_quantity)
+from rodimpact.rods.material import Material
+from rodimpact.rods.rod import ImpedanceProfile
+from rodimpact.rods.segments import Cylinder
 
 try:
     from _report import write_section
@@ -86,7 +112,143 @@ def _reference(n: int, case: str):
     return lambda: synthesize_by_resimulation(x, system, 6.0, dt)
 
 
-def main() -> None:
+def _face_data(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Smooth compressive target (window values) and the relative face velocity of a semi-infinite bar."""
+    t = np.arange(n) / n
+    x = -2e5 * (1.0 + 0.3 * t + 0.1 * np.sin(7.0 * t) + 0.05 * np.cos(23.0 * t))
+    return x, -x / 8e4 - 6.0
+
+
+def _slope(ns, ts) -> float:
+    return float(np.polyfit(np.log(ns), np.log(ts), 1)[0])
+
+
+# ---------------------------------------------------------------------------------------------- 1. peeling
+def bench_peeling(quad_sizes, fast_sizes, crossover_sizes, n_synth) -> list[str]:
+    x, u = _face_data(3000)
+    K.peel_numba(x, u)
+    S.peel_superfast(x, u)                                  # JIT / cache warm-up
+    rows = []
+    quad = {}
+    for n in sorted(set(quad_sizes) | set(fast_sizes)):
+        x, u = _face_data(n)
+        rep = 3 if n <= 1e5 else 2
+        tf, b = _best(lambda: S.peel_superfast(x, u), rep)
+        tq, diff = float("nan"), float("nan")
+        if n in quad_sizes:
+            tq, a = _best(lambda: K.peel_numba(x, u), 3 if n <= 3e4 else 1)
+            quad[n] = tq
+            m = a[3]
+            assert m == b[3] == n, "the benchmark target must be feasible for every n"
+            diff = float(np.max(np.abs(b[0][:m] / a[0][:m] - 1.0)))
+        rows.append((n, tq, tf, diff))
+        print(f"peel n={n}: O(n^2) {tq:.4g} s, superfast {tf:.4g} s, max |dZ/Z| {diff:.2e}")
+    qs = [(n, tq) for n, tq, _, _ in rows if np.isfinite(tq) and n >= 1e4]
+    fs = [(n, tf) for n, _, tf, _ in rows if n >= 1e4]
+    slope_q = _slope(*zip(*qs)) if len(qs) > 1 else float("nan")
+    slope_f = _slope(*zip(*fs)) if len(fs) > 1 else float("nan")
+    cross = []
+    for n in crossover_sizes:
+        x, u = _face_data(n)
+        tq, _ = _best(lambda: K.peel_numba(x, u), 7)
+        tf, _ = _best(lambda: S.peel_superfast(x, u), 7)
+        cross.append((n, tq, tf))
+    faster = [n for n, tq, tf in cross if tf < tq]
+    measured_cross = faster[0] if faster else None
+    dt = 100 * 1.93e-6 / n_synth
+    bar = ri.Rod.from_impedance([79.7e3] * 4, dt)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ri.inverse.SynthesisWarning)
+        t_syn, res = _best(lambda: synthesize(ExponentialDecay(239.1e3, 0.383e-3), bar, 6.0, n=n_synth, dt=dt,
+                                              far_end="nonreflecting"), 2)
+    print(f"synthesize n={n_synth}: {t_syn:.3f} s ({res.diagnostics['peeling']}, {res.n_feasible} elements)")
+    lines = ["### Peeling: O(n^2) loops vs superfast Schur recursion", "",
+             "Face data of a smooth compressive target against a semi-infinite bar (closed form); best of 3 "
+             "(O(n^2) at n >= 1e5 and superfast at 1e6: fewer runs). `max |dZ/Z|` = largest relative "
+             "difference of the impedances of the two paths.", "",
+             "| n | O(n^2) / s | superfast / s | speed-up | max abs(dZ/Z) |", "|---:|---:|---:|---:|---:|"]
+    for n, tq, tf, diff in rows:
+        q = "-" if np.isnan(tq) else f"{tq:.4g}"
+        sp = "-" if np.isnan(tq) else f"{tq / tf:.3g}"
+        d = "-" if np.isnan(diff) else f"{diff:.1e}"
+        lines.append(f"| {n:,} | {q} | {tf:.4g} | {sp} | {d} |")
+    lines += ["", f"Fitted log-log slopes (n >= 1e4): O(n^2) path {slope_q:.2f}, superfast {slope_f:.2f} "
+              f"(for comparison: n log^2 n has the local slope 1 + 2 / ln n = 1.22 at n = 1e4, 1.14 at 1e6).", "",
+              "Crossover (best of 7): " + ", ".join(f"n = {n:,}: {tq * 1e3:.3g} / {tf * 1e3:.3g} ms" for n, tq, tf
+                                                    in cross)
+              + f" (O(n^2) / superfast). Superfast first faster at n = {measured_cross}; "
+              f"`method=\"auto\"` switches at `_schur.CROSSOVER` = {S.CROSSOVER:,}, leaf blocks of at most "
+              f"`_schur.LEAF` = {S.LEAF} layers.", "",
+              f"`synthesize()` end to end, thesis example 1 scaled to n = {n_synth:,} (closed-form face response): "
+              f"**{t_syn:.3g} s** (best of 2; peeling: {res.diagnostics['peeling']})."]
+    return lines
+
+
+# ------------------------------------------------------------------------------------ 2. from_impedance
+def from_impedance_old(z: np.ndarray, dt: float, c: float = ri.STEEL.wave_speed,
+                       rho: float = ri.STEEL.density) -> ri.Rod:
+    """The former Rod.from_impedance: one validated Cylinder per run of equal impedance."""
+    mat = Material(rho * c * c, rho, "impedance-level")
+    cuts = np.flatnonzero(np.diff(z) != 0) + 1
+    starts = np.concatenate([[0], cuts])
+    stops = np.concatenate([cuts, [z.size]])
+    segs = tuple(Cylinder((b - a) * c * dt, math.sqrt(4.0 * z[a] / (rho * c) / math.pi), material=mat)
+                 for a, b in zip(starts, stops))
+    return ri.Rod(segs, mat, None, ImpedanceProfile(z.copy(), dt, c))
+
+
+def bench_from_impedance(n: int) -> list[str]:
+    z = 8e4 * np.exp(np.cumsum(np.random.default_rng(0).normal(0.0, 0.01, n)))
+    t_new, rod = _best(lambda: ri.Rod.from_impedance(z, 1e-7), 3)
+    t_old, old = _best(lambda: from_impedance_old(z, 1e-7), 1)
+    same = rod == old
+    print(f"from_impedance n={n}: new {t_new:.3g} s, old {t_old:.3g} s, equal rods: {same}")
+    return ["### `Rod.from_impedance`, a profile that changes at every element", "",
+            "| elements | former (one Cylinder each) / s | now / s | speed-up | same rod |",
+            "|---:|---:|---:|---:|---|",
+            f"| {n:,} | {t_old:.3g} | {t_new:.3g} | {t_old / t_new:.3g} | {same} |"]
+
+
+# ----------------------------------------------------------------------------------- 3. transform_force
+def transform_old(prob, n: int, dt: float) -> np.ndarray:
+    """The former transform_force at rest: rectangular response from one direct-solver run, Toeplitz solve."""
+    o = prob.options
+    system = as_struck_system(prob.struck, far_end=o["far_end"])
+    loc = locate(system, o["position"], dt)
+    lin, _ = linearized(system)
+    steps = loc.node + 2 * n - 1
+    sim = ri.simulate(driven(at_rest(lin), np.array([1.0, 0.0]), dt), steps=steps, dt=dt,
+                      probes=[position_probe(loc)])
+    p = sim.probe("synthesis_position")
+    g = position_quantity(o["quantity"], p.force, p.velocity, float(sim.lattice.impedance[loc.element_left]))
+    g = g[loc.node + 2 * np.arange(n)]
+    y = prob.target(2.0 * dt * np.arange(n))            # rule "start": window starts
+    return solve_lower_toeplitz(g, y, "auto")
+
+
+def bench_transform(n: int) -> list[str]:
+    prob = percussion_drilling_example(n)
+    o = prob.options
+    dt = 0.5 / n / ri.STEEL.wave_speed
+
+    def new():
+        return ri.inverse.transform_force(prob.target, prob.struck, o["position"], n=n, dt=dt,
+                                          quantity=o["quantity"], far_end=o["far_end"], rule=o["rule"])
+
+    small = percussion_drilling_example(50)
+    ri.inverse.transform_force(small.target, small.struck, o["position"], n=50, dt=0.5 / 50 / ri.STEEL.wave_speed,
+                               quantity=o["quantity"], far_end=o["far_end"], rule=o["rule"])   # warm-up
+    t_new, tr = _best(new, 3)
+    t_old, x_old = _best(lambda: transform_old(prob, n, dt), 1)
+    diff = float(np.max(np.abs(tr.impact_force - x_old)) / np.max(np.abs(x_old)))
+    print(f"transform_force drill string n={n}: new {t_new:.3g} s, old {t_old:.3g} s, max rel diff {diff:.1e}")
+    return ["### `transform_force`, percussion-drilling string (bit-rock spring, incident wave at the rock)", "",
+            "| n | struck elements | former (direct solver) / s | now (band sweep) / s | speed-up | "
+            "max abs(dX)/max abs(X) |", "|---:|---:|---:|---:|---:|---:|",
+            f"| {n:,} | {tr.location.node:,} | {t_old:.3g} | {t_new:.3g} | {t_old / t_new:.3g} | {diff:.1e} |"]
+
+
+def main_base() -> None:
     warnings.simplefilter("ignore", ri.inverse.SynthesisWarning)
     for fn in (_case_a(50), _case_b(50), _case_c(20), _reference(5, "A")):   # JIT warm-up (numba cache)
         fn()
@@ -120,10 +282,10 @@ def main() -> None:
              "",
              "Case A: thesis example 1 scaled (Lundberg-Lesser exponential, semi-infinite uniform bar, closed-form "
              "face response). Case B: same target on a stepped 400-element bar (impedance x1.5 after 200 elements, "
-             "non-reflecting end; face response from one direct-solver run). Case C: percussion drilling, "
-             "force prescribed at the bit-rock interface (two direct-solver runs through a drill string of "
-             "4 n elements, Toeplitz solve, peeling; n = 30,000 not run: ~2e10 element updates in the "
-             "struck system alone). "
+             "non-reflecting end; face response from the lattice, band sweep of 2n steps). Case C: percussion "
+             "drilling, force prescribed at the bit-rock interface (rectangular and face response by band "
+             "sweeps through a drill string of 4 n elements, about 9 n^2 node updates; Toeplitz solve, "
+             "peeling; n = 30,000 not run: ~1e10 node updates). "
              "`verify` = max relative deviation of the direct solver with the synthesized striker from the "
              "target (n <= 3,000).",
              "",
@@ -157,6 +319,44 @@ def main() -> None:
         lines.append(f"| {case} | {ratios[0]:.3g} | {ratios[1]:.3g} | {ratios[2]:.3g} |")
     write_section("synthesis", "\n".join(lines))
     print("\n".join(lines))
+
+
+def main_scale(quick: bool) -> None:
+    if quick:
+        parts = [bench_peeling((1000, 3000), (1000, 3000, 10000), (1000, 3000), 20000), bench_from_impedance(20000),
+                 bench_transform(300)]
+    else:
+        parts = [bench_peeling((1000, 3000, 10000, 30000, 100000), (1000, 3000, 10000, 30000, 100000, 300000,
+                                                                    1000000),
+                               (2000, 3000, 4000, 5000, 6000, 8000), 1000000),
+                 bench_from_impedance(1000000), bench_transform(10000)]
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    lines = ["## Inverse problem at scale (`benchmarks/bench_synthesis.py --part scale`)", "",
+             f"Machine: {platform.machine()}, {os.cpu_count()} cores, load average {load:.2f} at the end; Python "
+             f"{platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, numba "
+             f"{numba.__version__}; single thread.", ""]
+    for part in parts:
+        lines += part + [""]
+    text = "\n".join(lines)
+    print(text)
+    if not quick:
+        write_section("synthesis-scale", text)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--part", choices=("all", "base", "scale"), default="all",
+                    help="which section to measure and write (default: both)")
+    ap.add_argument("--quick", action="store_true",
+                    help="scale part only, at small sizes; prints, does not write the docs")
+    args = ap.parse_args()
+    if args.quick:
+        main_scale(True)
+        return
+    if args.part in ("all", "base"):
+        main_base()
+    if args.part in ("all", "scale"):
+        main_scale(False)
 
 
 if __name__ == "__main__":

@@ -25,6 +25,7 @@ from . import _kernels as K
 from .result import ExistenceFailure, SynthesisResult
 from .struck import as_struck_system, face_response, locate
 from .targets import as_target
+from ._schur import chosen_method, peel
 from ._toeplitz import TOEPLITZ_METHODS
 from .transform import _check_quantity, _resolve_dt, _resolve_n, transform_windows
 
@@ -126,8 +127,7 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
     v_face = face.velocity
     u = v_face[0::2] - v_in
     _check_first_element(x[0], v_face[0], v_in, face.face_impedance)
-    peel = K.peel_numba if backend == "numba" else K.peel_numpy
-    z, refl, kappa, m_kernel = peel(np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(u, dtype=float))
+    z, refl, kappa, m_kernel = peel(x, u, backend)       # O(n^2) or superfast by size (_schur.CROSSOVER)
     tensile = np.flatnonzero(x >= 0.0)
     m = min(m_kernel, int(tensile[0]) if tensile.size else n)
 
@@ -178,7 +178,7 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
         warnings.warn(w, SynthesisWarning, stacklevel=2)
     diagnostics = {
         "version": __version__, "wall_time_s": _time.perf_counter() - wall0, "backend": backend,
-        "face_response": face.method, "odd_step_content": odd,
+        "face_response": face.method, "peeling": chosen_method(n), "odd_step_content": odd,
         "max_error_estimate": float(err[-1]) if m else 0.0,
         "max_amplitude_growth": float(kappa[:m].max()) if m else 0.0,
         "striker_prerequisites": "stress-free, uniform velocity v_in, no nodal loads (thesis Sec. 4.1): "

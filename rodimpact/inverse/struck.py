@@ -22,6 +22,7 @@ from ..rods.conditions import (BitRockEnd, Bonded, Contact, FixedEnd, ForceEnd, 
                                SpringEnd)
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
+from ._rectangular import chain_response
 
 
 def as_struck_system(struck: Any, struck_velocity: Any = 0.0, far_end: Any = "free",
@@ -148,8 +149,10 @@ def face_response(system: System, force_windows: np.ndarray, dt: float, backend:
     """Face velocity history V(k), k = 0..2n-1, of the struck system driven by ``force_windows``.
 
     For a uniform bar that the waves cannot leave within 2n steps (or a matched semi-infinite one), at
-    uniform velocity v~ and without loads, V = v~ - N / Z~ (a right-going wave: dN = -Z dv); otherwise the
-    direct solver runs once with a :class:`~rodimpact.ForceEnd` at the face.
+    uniform velocity v~ and without loads, V = v~ - N / Z~ (a right-going wave: dN = -Z dv); for a passive
+    chain at rest the lattice is swept where it can reach the face within 2n steps
+    (:func:`rodimpact.inverse._rectangular.chain_response`); otherwise the direct solver runs once with a
+    :class:`~rodimpact.ForceEnd` at the face.
     """
     n = force_windows.size
     lat = build_lattice(system, dt)
@@ -157,6 +160,9 @@ def face_response(system: System, force_windows: np.ndarray, dt: float, backend:
     if _is_semi_infinite_uniform(system, lat, n):
         v0 = system.velocities[0]
         return FaceResponse(v0 - np.repeat(force_windows, 2) / z1, z1, "analytic")
+    fast = chain_response(system, 0, dt, 2 * n, np.repeat(force_windows, 2)) if backend == "numba" else None
+    if fast is not None:         # the same lattice equations, only where they reach the face in time
+        return FaceResponse(fast[1], z1, "simulated")
     res = simulate(driven(system, force_windows, dt), steps=2 * n, dt=dt, backend=backend,
                    allow_discretization_error=True)    # the synthesis runs at the user's dt: a warning
     return FaceResponse(np.asarray(res.end_velocity["left"], dtype=float), z1, "simulated")

@@ -30,6 +30,7 @@ import numpy as np
 from .._validate import positive
 from ..direct.simulate import simulate
 from ..rods.system import InitialState, System
+from ._rectangular import rectangular_response
 from ._toeplitz import solve_lower_toeplitz
 from .struck import (Location, as_struck_system, at_rest, driven, has_free_motion, linearized, locate,
                      position_probe, position_quantity, window_count_check)
@@ -95,6 +96,18 @@ def _response(system: System, location: Location, dt: float, steps: int, quantit
     return position_quantity(quantity, p.force, p.velocity, z_left, n0, v0)
 
 
+def _rectangular(system: System, location: Location, dt: float, steps: int, quantity: str,
+                 backend: str) -> np.ndarray:
+    """Rectangular response (eq. 4.12) per step: by the band-limited sweep of
+    :mod:`rodimpact.inverse._rectangular` for a passive chain at rest (compiled backend), else by one run of
+    the direct solver driven by a unit force for one window."""
+    fast = rectangular_response(system, location.node, dt, steps) if backend == "numba" else None
+    if fast is None:
+        return _response(driven(system, np.array([1.0, 0.0]), dt), location, dt, steps, quantity, backend, False)
+    force, velocity, z = fast
+    return position_quantity(quantity, force, velocity, float(z[location.element_left]))
+
+
 def transform_windows(system: System, location: Location, target: np.ndarray, dt: float,
                       quantity: str = "force", method: str = "auto", backend: str = "numba") -> ForceTransformation:
     """Core of :func:`transform_force` on normalised input (``system`` from
@@ -110,8 +123,7 @@ def transform_windows(system: System, location: Location, target: np.ndarray, dt
     d = location.node
     steps = d + 2 * n - 1
     sample = d + 2 * np.arange(n)
-    g = _response(driven(at_rest(lin), np.array([1.0, 0.0]), dt), location, dt, steps, quantity, backend,
-                  False)[sample]
+    g = _rectangular(at_rest(lin), location, dt, steps, quantity, backend)[sample]
     if has_free_motion(lin):
         free = _response(driven(lin, np.array([0.0]), dt), location, dt, steps, quantity, backend, True)[sample]
     else:

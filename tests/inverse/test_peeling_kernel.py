@@ -105,3 +105,33 @@ def test_error_estimate_bounds_the_rounding_error(seed):
     est = K.error_estimate(refl, kappa, m)
     assert np.all(err <= est)
     assert err.max() > 0        # the comparison is not vacuous
+
+
+def test_trust_numbers_equal_the_absolute_value_recursion_on_arrays():
+    """kappa is defined by MG/MF, the peeling recursion run on absolute values from constant arrays (read at
+    MG[0] and MF[q]); both kernels carry them as two numbers. Reference: the recursion on full arrays."""
+    rng = np.random.default_rng(5)
+    n = 120
+    t = np.arange(n) / n
+    x = -2e5 * (1 + 0.8 * t + 0.02 * rng.standard_normal(n))
+    x[80:] *= 3.5                                    # beyond the force reserve: existence fails at element 81
+    u = -x / 8e4 - 6.0
+    _, refl, kappa, m = K.peel_numba(x, u)
+    z1 = x[0] / u[0]
+    mg = np.full(n, np.max(0.5 * (np.abs(x) + np.abs(z1 * u))))
+    mf = mg.copy()
+    g0 = 0.5 * (x[0] + z1 * u[0])                   # the wavefront wave g[0]
+    last = min(m, n - 1)                             # kappa is also given at the failing element
+    expected = [1.0]
+    for q in range(1, last + 1):
+        expected.append((mg[0] + mf[q]) / abs(g0))
+        r = refl[q]
+        c = 1.0 / (1.0 - r)
+        length = n - q
+        mgs, mfs = mg[:length].copy(), mf[q:q + length].copy()
+        mg[:length] = (mgs + abs(r) * mfs) * abs(c)
+        mf[q:q + length] = (mfs + abs(r) * mgs) * abs(c)
+        g0 = (g0 - r * (r * g0)) * c                 # g0' = (g0 - R f_q) c with f_q = R g0
+    np.testing.assert_allclose(kappa[:last + 1], expected, rtol=1e-13)
+    np.testing.assert_allclose(K.peel_numpy(x, u)[2][:last + 1], expected, rtol=1e-13)
+    assert m == 80 and max(expected) > 10

@@ -1,0 +1,143 @@
+"""Rectangular response of a passive struck chain by a band-limited sweep (thesis Sec. 4.1.2, eq. 4.12).
+
+The rectangular response G is the force and velocity at one node p of the struck system at rest when its
+impact face is driven by a unit force for two steps (one window). The direct solver gets it by running the
+whole lattice for t_dt + 2n - 1 steps; :func:`rectangular_response` runs the same lattice equations but only
+where they can matter (the domain of dependence). :func:`chain_response` does the same for any force history
+at the face (the face response of Step 1 of the synthesis: node p = the face, 2n steps, a triangle of n^2
+node updates instead of 2n times the struck system):
+
+* ahead of the wavefront the lattice is still at rest (node k is reached after k steps);
+* a node k at step i can influence the node p at step t only if |p - k| <= t - i; nodes outside the backward
+  cone of the last requested step are skipped (their values would never reach p in time).
+
+For the percussion-drilling string (node p at the far end, t_dt = 5.5 n steps) the band is 2n nodes wide
+instead of 5.5 n, and the sweep runs in travelling-wave variables with separate old/new arrays (no
+loop-carried dependence), which the compiler vectorises. Same lattice, the same operations at the
+interior nodes, the ends (:func:`rodimpact.direct._kernels.end_solve`) and the node read-out as the compiled
+direct solver, so the result equals it to rounding (bit for bit on a single rod; bonded junctions between rods
+are plain interior nodes here, which differs from the direct solver's junction law in the last bits).
+
+Symbols: Z impedance of each element (N s/m), R_k = (Z_k - Z_{k-1}) / (Z_k + Z_{k-1}) reflection factor of
+node k between elements k-1 and k (eq. 2.40), f / g right- / left-going force waves in each element
+(N = f + g, Z v = g - f, thesis Sec. 2.3.2).
+"""
+
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+from numba import njit
+
+from ..direct import _kernels as DK
+from ..lattice.lattice import build_lattice
+from ..rods.conditions import BitRockEnd, Bonded, FixedEnd, FreeEnd, NonReflectingEnd, SpringEnd
+from ..rods.system import System
+
+
+def _sweep(z, refl, node, steps, end_code, end_p0, end_p1, dt, drive):
+    """Force and velocity of node ``node`` (0 = impact face, z.size = far end) in steps 0..steps-1 of the
+    lattice at rest whose face is driven by the force ``drive[i]`` in step i (N, tension positive; 0 after
+    the end of ``drive``)."""
+    n_el = z.size
+    f = np.zeros(n_el)
+    g = np.zeros(n_el)
+    f_new = np.zeros(n_el)
+    g_new = np.zeros(n_el)
+    force = np.zeros(steps)
+    velocity = np.zeros(steps)
+    delta = 0.0
+    delta_max = 0.0
+    for i in range(steps):
+        reach = steps - 1 - i                      # steps left in which a change can still reach the node
+        k_lo = max(node - reach - 1, 0)            # nodes k_lo..k_hi can matter (one node of margin)
+        k_hi = min(node + reach + 1, i + 1, n_el)
+        if k_lo == 0:                              # impact face: N^- = prescribed force (eq. 3.16)
+            value = drive[i] if i < drive.size else 0.0
+            if node == 0:
+                force[i] = value
+                velocity[i] = -(value - ((f[0] + g[0]) + z[0] * ((g[0] - f[0]) / z[0]))) / z[0]
+            f_new[0] = value - g[0]
+        if 0 < node < n_el:                        # interior node (eqs. 3.5-3.7), from the element states
+            a = node - 1
+            n_a = f[a] + g[a]
+            v_a = (g[a] - f[a]) / z[a]
+            n_b = f[node] + g[node]
+            v_b = (g[node] - f[node]) / z[node]
+            vn = (n_b - n_a + z[a] * v_a + z[node] * v_b) / (z[a] + z[node])
+            force[i] = n_a + z[a] * (vn - v_a)
+            velocity[i] = vn
+        k1 = max(k_lo, 1)                          # interior nodes k1..k2, as views indexed from 0 (vectorises)
+        k2 = min(k_hi, n_el - 1)
+        fa_v = f[k1 - 1:k2]
+        gb_v = g[k1:k2 + 1]
+        r_v = refl[k1:k2 + 1]
+        g_out = g_new[k1 - 1:k2]
+        f_out = f_new[k1:k2 + 1]
+        for j in range(fa_v.size):
+            fa = fa_v[j]
+            gb = gb_v[j]
+            sc = r_v[j] * (fa - gb)
+            g_out[j] = gb + sc
+            f_out[j] = fa + sc
+        if k_hi == n_el:                           # far end: the direct solver's end law
+            e = n_el - 1
+            n_e = f[e] + g[e]
+            v_e = (g[e] - f[e]) / z[e]
+            w, nn, delta_max = DK.end_solve(end_code, n_e - z[e] * v_e, z[e], 0.0, end_p0, end_p1, delta, delta_max,
+                                            dt)
+            delta += w * dt
+            if node == n_el:
+                force[i] = nn
+                velocity[i] = w
+            g_new[e] = nn - f[e]
+        f, f_new = f_new, f
+        g, g_new = g_new, g
+    return force, velocity
+
+
+_sweep_numba = njit(cache=True, error_model="numpy")(_sweep)
+
+
+def _far_end(system: System, z_last: float) -> Optional[tuple[int, float, float]]:
+    """Kernel code and parameters of a passive far end at rest (None for the others)."""
+    right = system.right
+    if isinstance(right, FreeEnd):
+        return DK.FREE, 0.0, 0.0
+    if isinstance(right, FixedEnd):
+        return DK.FIXED, 0.0, 0.0
+    if isinstance(right, NonReflectingEnd):      # continuation at rest: incoming invariant 0
+        return DK.NONREFLECTING, z_last if right.impedance is None else right.impedance, 0.0
+    if isinstance(right, SpringEnd):
+        return DK.SPRING, right.stiffness, right.damping
+    if isinstance(right, BitRockEnd):
+        return DK.BITROCK, right.loading_stiffness, right.unloading_stiffness
+    return None
+
+
+def chain_response(system: System, node: int, dt: float, steps: int,
+                   drive: np.ndarray) -> Optional[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Force (N) and velocity (m/s) of lattice node ``node`` per step when the impact face of the struck
+    system at rest is driven by the force ``drive[i]`` in step i, and the lattice impedances; None when the
+    system is not a passive chain at rest (moving or loaded parts, non-bonded junctions, driven far end):
+    then the direct solver is needed."""
+    if (system.loads or any(s is not None for s in system.initial) or any(v != 0.0 for v in system.velocities)
+            or not all(isinstance(j, Bonded) for j in system.junctions)):
+        return None
+    z = build_lattice(system, dt).impedance
+    end = _far_end(system, float(z[-1]))
+    if end is None:
+        return None
+    refl = np.zeros(z.size)
+    refl[1:] = (z[1:] - z[:-1]) / (z[1:] + z[:-1])
+    force, velocity = _sweep_numba(z, refl, int(node), int(steps), end[0], end[1], end[2], float(dt),
+                                   np.ascontiguousarray(drive, dtype=float))
+    return force, velocity, z
+
+
+def rectangular_response(system: System, node: int, dt: float,
+                         steps: int) -> Optional[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """:func:`chain_response` for a unit force on the impact face during the first window (two steps),
+    the rectangular response of eq. 4.12."""
+    return chain_response(system, node, dt, steps, np.ones(2))
