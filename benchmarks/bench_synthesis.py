@@ -284,7 +284,7 @@ def main_base() -> None:
              "face response). Case B: same target on a stepped 400-element bar (impedance x1.5 after 200 elements, "
              "non-reflecting end; face response from the lattice, band sweep of 2n steps). Case C: percussion "
              "drilling, force prescribed at the bit-rock interface (rectangular and face response by band "
-             "sweeps through a drill string of 4 n elements, about 9 n^2 node updates; Toeplitz solve, "
+             "sweeps through a drill string of 4 n elements, O(n^2) node updates; Toeplitz solve, "
              "peeling; n = 30,000 not run: ~1e10 node updates). "
              "`verify` = max relative deviation of the direct solver with the synthesized striker from the "
              "target (n <= 3,000).",
