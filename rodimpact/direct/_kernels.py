@@ -247,43 +247,65 @@ def track_events(k, out, junction_N, junction_contact, events):
 
 
 @njit(inline="always", cache=True)
-def keep_step(k, out, stride, chunk, kept):
-    """Copy column ``out`` of the step outputs ``chunk`` into the recorded histories ``kept`` if step ``k`` falls
-    on the recording stride."""
-    if k % stride == 0:
-        c = k // stride
-        for q in range(len(chunk)):
-            src = chunk[q]
-            dst = kept[q]
-            for row in range(src.shape[0]):
-                dst[row, c] = src[row, out]
+def _copy_column(src, out, dst, c):
+    for row in range(src.shape[0]):
+        dst[row, c] = src[row, out]
 
 
 @njit(inline="always", cache=True)
-def _take_samples(k, N, v, Z, dt, rod_start, acc, u_end, samples):
-    """Energy sums per rod (thesis eq. 3.25: kinetic 1/2 m v^2 with m = Z dt, strain 1/2 N^2 dt / Z, momentum
-    m v) and the fields N, v, u (node displacement = left-end displacement + element elongations
-    (N - N0) dt / Z) if step ``k`` is a sample step; ``N``, ``v`` hold the element states at t = k dt."""
-    e_steps, s_steps, cursor, e_kin, e_pot, e_mom, e_acc, s_N, s_v, s_u, N0 = samples
+def keep_step(out, c, chunk, kept):
+    """Copy column ``out`` of the step outputs ``chunk`` (junction N, contact flag, end N, end V, probe N, V, u)
+    into column ``c`` of the recorded histories ``kept``."""
+    _copy_column(chunk[0], out, kept[0], c)
+    _copy_column(chunk[1], out, kept[1], c)
+    _copy_column(chunk[2], out, kept[2], c)
+    _copy_column(chunk[3], out, kept[3], c)
+    _copy_column(chunk[4], out, kept[4], c)
+    _copy_column(chunk[5], out, kept[5], c)
+    _copy_column(chunk[6], out, kept[6], c)
+
+
+@njit(cache=True, fastmath={"reassoc", "nsz"})
+def _rod_energy(f, g, inv_Z, a, b):
+    """Sums over elements a .. b - 1 of (g - f)^2 / Z, (f + g)^2 / Z and g - f: 2 / dt times the kinetic energy
+    1/2 m v^2 (m = Z dt, Z v = g - f), 2 / dt times the strain energy 1/2 N^2 dt / Z (N = f + g) and the momentum
+    m v / dt. The sums may be reordered (vectorised); the result then differs from a left-to-right sum by
+    rounding only."""
+    kin = 0.0
+    pot = 0.0
+    mom = 0.0
+    for j in range(a, b):
+        d = g[j] - f[j]
+        s = f[j] + g[j]
+        kin += d * d * inv_Z[j]
+        pot += s * s * inv_Z[j]
+        mom += d
+    return kin, pot, mom
+
+
+@njit(inline="always", cache=True)
+def _take_samples(k, fresh, state, Z, dt, rod_start, acc, u_end, samples):
+    """If step ``k`` is a sample step: the energy sums per rod (thesis eq. 3.25: kinetic 1/2 m v^2 with m = Z dt,
+    strain 1/2 N^2 dt / Z, momentum m v) with the work/impulse accumulators, and the fields N, v, u (node
+    displacement = left-end displacement + element elongations (N - N0) dt / Z). The waves (f, g) hold the
+    state at t = k dt; (N, v) too if ``fresh``, else they are brought up to date first."""
+    N, v, f, g = state
+    e_steps, s_steps, cursor, e_kin, e_pot, e_mom, e_acc, s_N, s_v, s_u, N0, inv_Z = samples
     n_rods = rod_start.size - 1
     m = cursor[0]
     if m < e_steps.size and e_steps[m] == k:
         for r in range(n_rods):
-            kin = 0.0
-            pot = 0.0
-            mom = 0.0
-            for j in range(rod_start[r], rod_start[r + 1]):
-                kin += 0.5 * dt * Z[j] * v[j] * v[j]
-                pot += 0.5 * dt * N[j] * N[j] / Z[j]
-                mom += dt * Z[j] * v[j]
-            e_kin[m, r] = kin
-            e_pot[m, r] = pot
-            e_mom[m, r] = mom
+            kin, pot, mom = _rod_energy(f, g, inv_Z, rod_start[r], rod_start[r + 1])
+            e_kin[m, r] = 0.5 * dt * kin
+            e_pot[m, r] = 0.5 * dt * pot
+            e_mom[m, r] = dt * mom
         for q in range(acc.size):
             e_acc[m, q] = acc[q]
         cursor[0] = m + 1
     m = cursor[1]
     if m < s_steps.size and s_steps[m] == k:
+        if not fresh:
+            _element_states(f, g, Z, N, v)
         node = 0
         for r in range(n_rods):
             u = u_end[r, 0]
@@ -300,10 +322,10 @@ def _take_samples(k, N, v, Z, dt, rod_start, acc, u_end, samples):
 
 @njit(inline="always", cache=True)
 def _is_sample(k, samples):
-    cursor = samples[2]
-    e_steps, s_steps = samples[0], samples[1]
-    return (cursor[0] < e_steps.size and e_steps[cursor[0]] == k) or (cursor[1] < s_steps.size
-                                                                      and s_steps[cursor[1]] == k)
+    """True if step ``k`` is the next energy sample or the next snapshot."""
+    e_steps, s_steps, cursor = samples[0], samples[1], samples[2]
+    return ((cursor[0] < e_steps.size and e_steps[cursor[0]] == k)
+            or (cursor[1] < s_steps.size and s_steps[cursor[1]] == k))
 
 
 @njit(inline="always", cache=True)
@@ -363,22 +385,25 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
     n_sp = sp_elem.size
     rod_nodes = (np.empty(n_rods), np.empty(n_rods), np.empty(n_rods), np.empty(n_rods))
     rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes
+    c = -(-first // stride)         # next recorded column and its step (no division inside the loop)
+    next_kept = c * stride
     done = n_steps
     for i in range(n_steps):
         k = first + i
         if not has_room(events):
             done = i
             break
-        if _is_sample(k, samples):
-            if i > 0:       # at i = 0, (N, v) are those the previous call (or the initial state) left
-                _element_states(f, g, Z, N, v)
-            _take_samples(k, N, v, Z, dt, rod_start, acc, u_end, samples)
+        if _is_sample(k, samples):    # at i = 0, (N, v) are those the previous call (or the initial state) left
+            _take_samples(k, i == 0, state, Z, dt, rod_start, acc, u_end, samples)
         for t in touch:
             N[t] = f[t] + g[t]
             v[t] = (g[t] - f[t]) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         track_events(k, i, outputs[0], outputs[1], events)
-        keep_step(k, i, stride, chunk, kept)
+        if k == next_kept:
+            keep_step(i, c, chunk, kept)
+            c += 1
+            next_kept += stride
         ptr = 0
         for r in range(n_rods):
             s = rod_start[r]
@@ -404,7 +429,7 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
             f[s] = f_first
             g[e - 1] = g_last
     _element_states(f, g, Z, N, v)
-    _take_samples(first + done, N, v, Z, dt, rod_start, acc, u_end, samples)
+    _take_samples(first + done, True, state, Z, dt, rod_start, acc, u_end, samples)
     return done
 
 
@@ -447,7 +472,8 @@ def run_numpy(first, n_steps, state, lattice, dt, ends, junctions, specials, pro
         _numpy_samples(k, N, v, Z, dt, rod_start, acc, u_end, samples)
         boundaries.py_func(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         track_events.py_func(k, i, outputs[0], outputs[1], events)
-        keep_step.py_func(k, i, stride, chunk, kept)
+        if k % stride == 0:
+            keep_step.py_func(i, k // stride, chunk, kept)
         f = np.zeros(a.size)
         f[sp_pos] = sp_F
         # eq. 3.7 / 3.9 written as V = v_a + d, which keeps uniform motion exact in floating point
@@ -473,7 +499,7 @@ def run_numpy(first, n_steps, state, lattice, dt, ends, junctions, specials, pro
 
 def _numpy_samples(k, N, v, Z, dt, rod_start, acc, u_end, samples):
     """:func:`_take_samples` as numpy reductions per rod."""
-    e_steps, s_steps, cursor, e_kin, e_pot, e_mom, e_acc, s_N, s_v, s_u, N0 = samples
+    e_steps, s_steps, cursor, e_kin, e_pot, e_mom, e_acc, s_N, s_v, s_u, N0, _ = samples
     starts = rod_start[:-1]
     m = cursor[0]
     if m < e_steps.size and e_steps[m] == k:

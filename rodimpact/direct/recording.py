@@ -113,7 +113,8 @@ class Recorder:
     * ``events``: per junction (open phase start or -1, its peak |N|, min N, its step, max |N|), the closed
       phases (start, stop, peak |N|) and their count;
     * ``samples``: the energy and snapshot step indices, a cursor into each, the energy sums per rod
-      (kinetic, strain, momentum) with the work/impulse accumulators, and the fields N, v, u at the snapshots.
+      (kinetic, strain, momentum) with the work/impulse accumulators, the fields N, v, u at the snapshots, the
+      initial element forces (for u) and 1 / Z (for the energy sums of the compiled path).
     """
 
     def __init__(self, recording: Recording, lattice: Lattice, arrays: dict, initial_force: np.ndarray, n_steps: int,
@@ -139,7 +140,8 @@ class Recorder:
         m, ms = self.energy_steps.size, self.snapshot_steps.size
         self.samples = (self.energy_steps, self.snapshot_steps, np.zeros(2, dtype=np.int64), np.zeros((m, n_rods)),
                         np.zeros((m, n_rods)), np.zeros((m, n_rods)), np.zeros((m, 8)), np.zeros((ms, n_el)),
-                        np.zeros((ms, n_el)), np.zeros((ms, n_nodes)), initial_force)
+                        np.zeros((ms, n_el)), np.zeros((ms, n_nodes)), initial_force,
+                        1.0 / lattice.impedance)
 
     def grow_events(self) -> None:
         """Twice the room for closed contact phases (the compiled loop returned because a junction's is full)."""
