@@ -103,6 +103,8 @@ class Recording:
 HISTORIES = ("junction_N", "junction_contact", "end_N", "end_V", "pr_N", "pr_V", "pr_u")
 #: contact phases per junction held before the compiled loop returns to have the buffer enlarged
 _PHASES = 16
+#: arrays of at most this many values (8 MB) are allocated without asking how much memory the machine has
+_SMALL = 2**20
 
 
 class Recorder:
@@ -126,11 +128,13 @@ class Recorder:
         self.snapshot_steps = recording.snapshot_steps(n_steps, lattice.dt)
         n_el, n_nodes, n_rods = lattice.n_elements, lattice.n_elements + lattice.n_rods, lattice.n_rods
         n_hist = sum(rows.values()) + rows["pr_N"]                      # + strain per probe
-        fits_in_memory("steps", 8.0 * n_hist * n_rec, f"the histories of {n_steps} steps ({n_hist} signals)",
-                       "keep every n-th step with record_every=n, or split the run")
-        fits_in_memory("snapshot_every", 8.0 * (2 * n_el + n_nodes) * self.snapshot_steps.size,
-                       f"{self.snapshot_steps.size} snapshots of {n_el} elements",
-                       "take fewer snapshots (snapshot_every, snapshot_times)")
+        if n_hist * n_rec > _SMALL:
+            fits_in_memory("steps", 8.0 * n_hist * n_rec, f"the histories of {n_steps} steps ({n_hist} signals)",
+                           "keep every n-th step with record_every=n, or split the run")
+        if (2 * n_el + n_nodes) * self.snapshot_steps.size > _SMALL:
+            fits_in_memory("snapshot_every", 8.0 * (2 * n_el + n_nodes) * self.snapshot_steps.size,
+                           f"{self.snapshot_steps.size} snapshots of {n_el} elements",
+                           "take fewer snapshots (snapshot_every, snapshot_times)")
         self.chunk = tuple(np.zeros((rows[key], capacity)) for key in HISTORIES)
         self.kept = tuple(np.zeros((rows[key], n_rec)) for key in HISTORIES)
         n_j = rows["junction_N"]
