@@ -306,16 +306,20 @@ def _take_samples(k, fresh, state, Z, dt, rod_start, acc, u_end, samples):
     if m < s_steps.size and s_steps[m] == k:
         if not fresh:
             _element_states(f, g, Z, N, v)
+        row_N = s_N[m]
+        row_v = s_v[m]
+        row_u = s_u[m]
+        for j in range(N.size):
+            row_N[j] = N[j]
+            row_v[j] = v[j]
         node = 0
         for r in range(n_rods):
             u = u_end[r, 0]
-            s_u[m, node] = u
+            row_u[node] = u
             node += 1
             for j in range(rod_start[r], rod_start[r + 1]):
-                s_N[m, j] = N[j]
-                s_v[m, j] = v[j]
-                u += (N[j] - N0[j]) * dt / Z[j]
-                s_u[m, node] = u
+                u += (N[j] - N0[j]) * dt * inv_Z[j]
+                row_u[node] = u
                 node += 1
         cursor[1] = m + 1
 
