@@ -28,6 +28,19 @@ def _stride(name: str, every: Any) -> int:
     return int(every)
 
 
+def check_probes(probes: Iterable[Any]) -> tuple[Probe, ...]:
+    """``probes`` as a tuple after checking that each is a :class:`Probe` and that their names differ."""
+    out = tuple(probes)
+    names: set[str] = set()
+    for i, p in enumerate(out):
+        if not isinstance(p, Probe):
+            raise TypeError(f"probes[{i}]: must be a Probe(name, rod, position), got {type(p).__name__}")
+        if p.name in names:
+            raise ValueError(f"probes[{i}].name: {p.name!r} is used twice")
+        names.add(p.name)
+    return out
+
+
 @dataclass(frozen=True)
 class Recording:
     """The outputs of a run besides the contact force and end values (which are always kept).
@@ -53,15 +66,7 @@ class Recording:
         if isinstance(self.probes, (Probe, str)) or not isinstance(self.probes, Iterable):
             raise TypeError(f"probes: must be a sequence of Probe(name, rod, position), got "
                             f"{type(self.probes).__name__}")
-        probes = tuple(self.probes)
-        names: set[str] = set()
-        for i, p in enumerate(probes):
-            if not isinstance(p, Probe):
-                raise TypeError(f"probes[{i}]: must be a Probe(name, rod, position), got {type(p).__name__}")
-            if p.name in names:
-                raise ValueError(f"probes[{i}].name: {p.name!r} is used twice")
-            names.add(p.name)
-        object.__setattr__(self, "probes", probes)
+        object.__setattr__(self, "probes", check_probes(self.probes))
         if self.snapshot_times is not None:
             t = finite_array("snapshot_times", np.atleast_1d(self.snapshot_times))
             if t.ndim != 1:

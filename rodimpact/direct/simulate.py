@@ -19,7 +19,7 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
 from . import _kernels as K
-from .recording import Recorder, Recording
+from .recording import Recorder, Recording, check_probes
 from .result import Probe, ProbeHistory, SimulationResult
 
 Backend = Literal["numba", "numpy"]
@@ -349,13 +349,7 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
 
     # ---- probes
     pr_rod, pr_local, pr_sp = [], [], []
-    names = set()
-    for i, p in enumerate(probes):
-        if not isinstance(p, Probe):
-            raise TypeError(f"probes[{i}]: must be a Probe(name, rod, position), got {type(p).__name__}")
-        if p.name in names:
-            raise ValueError(f"probes[{i}].name: {p.name!r} is used twice")
-        names.add(p.name)
+    for i, p in enumerate(check_probes(probes)):
         if p.rod >= n_rods:
             raise ValueError(f"probes[{i}].rod: rod index {p.rod} does not exist (0..{n_rods - 1})")
         length = system.rods[p.rod].length
