@@ -12,6 +12,11 @@ source ``boundaries.py_func``):
 * :func:`run_numba` -- the compiled path (``numba.njit(cache=True)``): the same lattice in travelling-wave
   variables, one fused in-place sweep per rod. Two formulations that agree to rounding are a real check.
 
+Both run many steps per call and record inside the loop (the bundles are built by
+:class:`rodimpact.direct.recording.Recorder`): every ``stride``-th step of the node histories
+(:func:`keep_step`), the contact phases of every step (:func:`track_events`) and the energy sums and field
+snapshots at precomputed step indices.
+
 Array layout (all rods concatenated left to right; ``rod_start`` has n_rods + 1 entries):
 
 * end codes 0 free/force, 1 fixed, 2 force, 3 velocity, 4 non-reflecting, 5 spring-dashpot, 6 bit-rock;

@@ -68,6 +68,24 @@ def test_default_run_is_bit_identical_to_the_frozen_loop(make, steps, probes):
     np.testing.assert_allclose(old_default.junction_force, res.junction_force, rtol=0, atol=1e-12 * scale)
 
 
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_random_lattices_are_bit_identical_to_the_frozen_loop(seed):
+    """Rods of 1 to 300 elements with random impedances (every vector length and remainder of the interior
+    sweep), random velocities and loads at random nodes."""
+    rng = np.random.default_rng(seed)
+    sizes = rng.integers(1, 300, 4)
+    rods = [ri.Rod.from_impedance(rng.uniform(2e4, 9e4, int(n)), dt=DT) for n in sizes]
+    loads = tuple(ri.NodalForce(r, float(rng.uniform(0.2, 0.8)) * rods[r].length, lambda t: 200.0 * np.cos(3e4 * t))
+                  for r in range(4) if sizes[r] > 3)
+    system = ri.System(rods, velocities=list(rng.uniform(-3, 3, 4)), junctions=[ri.Contact(), ri.Bonded(),
+                       ri.Contact(gap=2e-6)], right="nonreflecting", loads=loads)
+    ref = old_simulate(system, 2000, DT, energy_every=2000)
+    res = ri.simulate(system, steps=2000, dt=DT)
+    assert np.array_equal(res.junction_force, ref.junction_force)
+    assert np.array_equal(res.final_force, ref.final_force) and np.array_equal(res.final_velocity, ref.final_velocity)
+    assert np.any(res.junction_force != 0.0)
+
+
 def test_results_do_not_depend_on_what_is_recorded():
     """Energy samples and snapshots at every step leave the motion untouched, bit for bit (the kernel no longer
     stops and rebuilds its wave variables at each sample)."""
