@@ -19,7 +19,8 @@ DT = 1e-6
 
 
 def busy_system():
-    """Contact with a gap, a bonded joint, a spring-dashpot and a bit-rock end, a nodal load and bearings."""
+    """Contact with a gap, a bonded joint, a spring-dashpot and a bit-rock end, a nodal load and bearings, and an
+    initial force field in the middle rod."""
     striker = ri.Rod.from_impedance(np.r_[np.full(30, 60e3), np.linspace(20e3, 90e3, 25)], dt=DT)
     middle = ri.Rod.from_impedance(np.linspace(40e3, 80e3, 40), dt=DT)
     bar = ri.Rod.from_impedance(np.full(60, 50e3), dt=DT)
@@ -27,7 +28,8 @@ def busy_system():
                      junctions=[ri.Contact(gap=1e-6), ri.Bonded()], left=ri.SpringEnd(2e8, 50.0),
                      right=ri.BitRockEnd(3e8, 9e8),
                      loads=(ri.NodalForce(1, 0.1, lambda t: 300 * np.sin(1e4 * t)),
-                            ri.Bearings(2, [(0.05, 0.2)], friction_coefficient=0.3)))
+                            ri.Bearings(2, [(0.05, 0.2)], friction_coefficient=0.3)),
+                     initial=[None, ri.InitialState(force=lambda x: -2e4 * np.sin(30.0 * x)), None])
 
 
 def thesis_system():
