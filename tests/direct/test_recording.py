@@ -72,3 +72,16 @@ def test_snapshot_limits_are_checked_against_the_run():
     with pytest.raises(ValueError, match="snapshot_every: 1 gives 200001 snapshots; use a larger stride"):
         rods = [ri.Rod.from_impedance(np.full(3, 40e3), dt=DT)]
         ri.simulate(rods, velocities=[1.0], steps=200_000, snapshot_every=1)
+
+
+def test_snapshots_that_do_not_fit_in_memory_are_refused_before_the_run(monkeypatch):
+    """Snapshots are preallocated: on a machine with 4 MB, 501 snapshots of 1200 elements (N, v, u: about 14 MB)
+    are refused up front, naming the request; 50 of them (1.4 MB) run."""
+    import rodimpact._validate as validate
+
+    monkeypatch.setattr(validate, "physical_memory", lambda: 4e6)
+    rods = [ri.Rod.from_impedance(np.full(200, 40e3), dt=DT), ri.Rod.from_impedance(np.full(1000, 40e3), dt=DT)]
+    with pytest.raises(ValueError, match="snapshot_every: 501 snapshots of 1200 elements would need .* GiB, more "
+                                         "than this machine's memory"):
+        ri.simulate(rods, velocities=[1.0, 0.0], steps=500, snapshot_every=1)
+    assert ri.simulate(rods, velocities=[1.0, 0.0], steps=500, snapshot_every=10).snapshots.time.size == 51
