@@ -1,9 +1,10 @@
 """Import direction between the package's layers (docs: architecture): a layer imports only the layers below it,
 so that there is no import circle (results know nothing about files or figures).
 
-Bottom to top: rods, lattice, direct, inverse, signals, plotting, io, examples, cli; ``reference`` is independent
-of lattice and direct so that it can check them. The private helpers ``_validate`` / ``_permissions`` may be used
-everywhere, and the package root only for ``__version__``. Checked twice: statically over every import statement
+Bottom to top: rods, lattice, direct, inverse, design, signals, plotting, io, examples, cli; ``reference`` is
+independent of lattice and direct so that it can check them. The private helper modules at the top of the package
+(``_validate``, ``_permissions``, ...) may be used everywhere and import only each other; the package root is
+imported only for ``__version__``. Checked twice: statically over every import statement
 (also those inside functions, which run only on use), and at run time in a fresh interpreter per layer with every
 import recorded as (importing module, imported module).
 """
@@ -22,14 +23,14 @@ BELOW = {
     "lattice": {"rods"},
     "direct": {"rods", "lattice"},
     "inverse": {"rods", "lattice", "direct"},
+    "design": {"rods", "lattice", "direct", "inverse"},
     "reference": {"rods"},
     "signals": {"rods", "lattice", "direct"},
-    "plotting": {"rods", "lattice", "direct", "inverse", "reference", "signals"},
-    "io": {"rods", "lattice", "direct", "inverse", "reference", "signals", "plotting"},
-    "examples": {"rods", "lattice", "direct", "inverse", "reference", "signals", "plotting", "io"},
-    "cli": {"rods", "lattice", "direct", "inverse", "reference", "signals", "plotting", "io", "examples"},
+    "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals"},
+    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "plotting"},
+    "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "plotting", "io"},
+    "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "plotting", "io", "examples"},
 }
-SHARED = {"_validate", "_permissions"}
 
 
 def layer(module: str) -> str | None:
@@ -44,8 +45,10 @@ def allowed(source: str, target: str, names: tuple[str, ...] = ()) -> bool:
     src, dst = layer(source), layer(target)
     if target == "rodimpact":
         return src is None or set(names) <= {"__version__"}
-    if dst is None or src is None or dst == src or dst in SHARED:
+    if dst is None or src is None or dst == src or dst.startswith("_"):
         return True
+    if src.startswith("_"):            # a private helper module imports only its peers
+        return False
     return dst in BELOW.get(src, set())
 
 
@@ -97,6 +100,8 @@ def test_the_static_check_sees_an_upward_import():
     assert not allowed("rodimpact.direct.simulate", "rodimpact", ("sweep",))
     assert allowed("rodimpact.io.results", "rodimpact.plotting", ("save_plots",))
     assert allowed("rodimpact.direct.simulate", "rodimpact", ("__version__",))
+    assert not allowed("rodimpact._validate", "rodimpact.rods.material", ("Material",))
+    assert not allowed("rodimpact.newlayer.x", "rodimpact.direct.result", ())     # a new layer must be placed
 
 
 RECORDER = """
