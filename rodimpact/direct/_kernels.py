@@ -214,7 +214,7 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
 # ------------------------------------------------------------------------------------------------ recording
 @njit(inline="always", cache=True)
 def has_room(events):
-    """True while every junction can take one more closed contact phase (at most one closes per step)."""
+    """True if every junction can take one more closed contact phase (at most one closes per step)."""
     _, phases, count = events
     for j in range(count.size):
         if count[j] >= phases.shape[1]:
@@ -226,8 +226,9 @@ def has_room(events):
 def track_events(k, out, junction_N, junction_contact, events):
     """Contact phases of every junction with step ``k`` (column ``out`` of the step outputs): a phase is a maximal
     run of steps in contact; its peak is the largest |N| in it; the most compressive N (first step) and the
-    largest |N| are taken over all steps."""
+    largest |N| are taken over all steps. Returns True if a junction's buffer of closed phases is now full."""
     state, phases, count = events
+    full = False
     for j in range(count.size):
         nj = junction_N[j, out]
         a = abs(nj)
@@ -249,6 +250,8 @@ def track_events(k, out, junction_N, junction_contact, events):
             phases[j, m, 2] = state[j, 1]
             count[j] = m + 1
             state[j, 0] = -1.0
+            full = full or m + 1 == phases.shape[1]
+    return full
 
 
 @njit(inline="always", cache=True)
@@ -330,11 +333,12 @@ def _take_samples(k, fresh, state, Z, dt, rod_start, acc, u_end, samples):
 
 
 @njit(inline="always", cache=True)
-def _is_sample(k, samples):
-    """True if step ``k`` is the next energy sample or the next snapshot."""
+def _next_sample(samples):
+    """The step of the next energy sample or snapshot (-1 if there is none)."""
     e_steps, s_steps, cursor = samples[0], samples[1], samples[2]
-    return ((cursor[0] < e_steps.size and e_steps[cursor[0]] == k)
-            or (cursor[1] < s_steps.size and s_steps[cursor[1]] == k))
+    e = e_steps[cursor[0]] if cursor[0] < e_steps.size else -1
+    sn = s_steps[cursor[1]] if cursor[1] < s_steps.size else -1
+    return e if sn < 0 or (0 <= e < sn) else sn
 
 
 @njit(inline="always", cache=True)
@@ -396,19 +400,18 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
     rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes
     c = -(-first // stride)         # next recorded column and its step (no division inside the loop)
     next_kept = c * stride
-    done = n_steps
-    for i in range(n_steps):
+    next_sample = _next_sample(samples)
+    done = n_steps if has_room(events) else 0
+    for i in range(done):
         k = first + i
-        if not has_room(events):
-            done = i
-            break
-        if _is_sample(k, samples):    # at i = 0, (N, v) are those the previous call (or the initial state) left
+        if k == next_sample:    # at i = 0, (N, v) are those the previous call (or the initial state) left
             _take_samples(k, i == 0, state, Z, dt, rod_start, acc, u_end, samples)
+            next_sample = _next_sample(samples)
         for t in touch:
             N[t] = f[t] + g[t]
             v[t] = (g[t] - f[t]) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
-        track_events(k, i, outputs[0], outputs[1], events)
+        full = track_events(k, i, outputs[0], outputs[1], events)
         if k == next_kept:
             keep_step(i, c, chunk, kept)
             c += 1
@@ -437,6 +440,9 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
                 j = stop + 1
             f[s] = f_first
             g[e - 1] = g_last
+        if full:           # the caller enlarges the phase buffer and calls again from the next step
+            done = i + 1
+            break
     _element_states(f, g, Z, N, v)
     _take_samples(first + done, True, state, Z, dt, rod_start, acc, u_end, samples)
     return done
@@ -472,15 +478,12 @@ def run_numpy(first, n_steps, state, lattice, dt, ends, junctions, specials, pro
     sp_pos = np.searchsorted(a, sp_elem)
     first_el = rod_start[:-1]
     last_el = rod_start[1:] - 1
-    done = n_steps
-    for i in range(n_steps):
+    done = n_steps if has_room.py_func(events) else 0
+    for i in range(done):
         k = first + i
-        if not has_room.py_func(events):
-            done = i
-            break
         _numpy_samples(k, N, v, Z, dt, rod_start, acc, u_end, samples)
         boundaries.py_func(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
-        track_events.py_func(k, i, outputs[0], outputs[1], events)
+        full = track_events.py_func(k, i, outputs[0], outputs[1], events)
         if k % stride == 0:
             keep_step.py_func(i, k // stride, chunk, kept)
         f = np.zeros(a.size)
@@ -502,6 +505,9 @@ def run_numpy(first, n_steps, state, lattice, dt, ends, junctions, specials, pro
         v_new = v_left + v_right - v                                        # eqs. 3.12, 3.13, 3.15
         N[:] = N_new
         v[:] = v_new
+        if full:
+            done = i + 1
+            break
     _numpy_samples(first + done, N, v, Z, dt, rod_start, acc, u_end, samples)
     return done
 
