@@ -1,15 +1,29 @@
-"""Speed of the direct solver's kernels: element updates per second for n = 10^2 .. 10^6 elements.
+"""Speed of the direct solver: the compiled time loop against the loop it replaced, the interior sweep against a
+streaming roof, and full fields at every step.
 
-Compares the compiled (numba) kernel with the numpy reference path and with a memory-bandwidth roof measured
-in the same run: a compiled streaming loop that moves exactly the kernel's bytes (reads N, v, Z; writes N, v:
-40 bytes per element and step) with trivial arithmetic. Also times a 400-element impact (thesis scale).
+* ``simulate()`` on the thesis-scale impact (README "In Python": two-part striker 51.0e3 / 28.7e3 N s/m x 50
+  elements each, bar 51.0e3 x 400, v = 5 m/s, non-reflecting right end, dt = 1 us, 600 steps) with default
+  options: median wall time now and with the old loop (``_old_loop.old_simulate``, frozen), and a cProfile of
+  the new call with the share spent inside the compiled kernel;
+* element updates per second of the compiled loop for n = 10^3 .. 10^6 elements against a roof measured in the
+  same run: a compiled streaming loop with exactly the interior sweep's memory traffic (reads f, g, R; writes
+  f, g: 40 bytes per element and step) and trivial arithmetic;
+* ``snapshot_every=1`` (N, v, u at every step) now and with the old loop; elwaspatid on the same impact only
+  if it is importable (it is not a dependency: AGPL).
 
-Run:  python benchmarks/bench_kernel.py   (writes the "kernel" section of docs/performance.md)
+Run:  python benchmarks/bench_kernel.py          (writes the "kernel" section of docs/performance.md)
+      python benchmarks/bench_kernel.py --quick  (small sizes, prints only: checks that the script runs)
 """
 
 from __future__ import annotations
 
+import cProfile
+import importlib.util
+import io
+import os
 import platform
+import pstats
+import sys
 import time
 import tracemalloc
 
@@ -18,79 +32,140 @@ import numpy as np
 
 import rodimpact as ri
 from rodimpact.direct import _kernels as K
-from rodimpact.direct.simulate import _HISTORIES, _initial_state, _kernel_arrays, _wave_arrays
+from rodimpact.direct import simulate as sim
+from rodimpact.direct.recording import Recorder, Recording
 
-try:
-    from _report import write_section
-except ImportError:  # run from the repository root
-    from benchmarks._report import write_section
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from _old_loop import old_simulate  # noqa: E402
+from _report import write_section  # noqa: E402
 
 DT = 1e-6
 
 
 @numba.njit(cache=True)
-def _stream(n_steps, N, v, Z):
-    """Bandwidth roof: same loads/stores as the kernel (N, v, Z in; N, v out), minimal arithmetic."""
+def _stream(n_steps, f, g, R):
+    """Bandwidth roof: the interior sweep's loads and stores (f, g, R in; f, g out), minimal arithmetic."""
     for _ in range(n_steps):
-        for j in range(N.size):
-            z = Z[j]
-            N[j] = N[j] + 1e-30 * z
-            v[j] = v[j] - 1e-30 * z
+        for j in range(f.size - 1):
+            r = R[j]
+            f[j] = f[j] + 1e-30 * r
+            g[j] = g[j] - 1e-30 * r
 
 
-def _setup(n: int, n_steps: int):
-    z = 5e4 * (1.0 + 0.5 * np.sin(np.arange(n) * 0.01))
-    rods = [ri.Rod.from_impedance(z[: n // 4], dt=DT), ri.Rod.from_impedance(z[n // 4:], dt=DT)]
-    system = ri.System(rods, velocities=[5.0, 0.0])   # free ends: waves stay alive (no denormal decay)
-    lat = ri.build_lattice(system, DT)
-    state = _initial_state(system, lat)
-    arrays = _kernel_arrays(system, lat, state, [])
-    for key in _HISTORIES:     # the kernel writes one column per step
-        arrays[key] = np.zeros((arrays[key].shape[0], n_steps))
-    arrays["end_value"], arrays["sp_force"] = arrays.pop("step_inputs")(0, n_steps)
-    return lat, state, (*_wave_arrays(lat, arrays), arrays)
+def thesis_impact():
+    striker = ri.Rod.from_impedance([51.0e3] * 50 + [28.7e3] * 50, dt=DT)
+    bar = ri.Rod.from_impedance([51.0e3] * 400, dt=DT)
+    return striker, bar
 
 
-def _time_kernel(run, n: int, n_steps: int, repeat: int = 3) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        lat, state, (reflection, touch, arrays) = _setup(n, n_steps)
-        t0 = time.perf_counter()
-        run(n_steps, state["N"], state["v"], lat.impedance, reflection, touch, **arrays, dt=DT)
-        best = min(best, time.perf_counter() - t0)
-    return best
-
-
-def main() -> None:
-    _time_kernel(K.run_numba, 100, 10, 1)          # compile / load cache
-    _stream(1, np.zeros(10), np.zeros(10), np.ones(10))
-    rows = []
-    for n in (10**2, 10**3, 10**4, 10**5, 10**6):
-        steps = max(20, int(3e7 // n))
-        t_nb = _time_kernel(K.run_numba, n, steps)
-        np_steps = max(3, min(steps, int(2e6 // n)))
-        t_np = _time_kernel(K.run_numpy, n, np_steps, 1)
-        N, v, Z = np.zeros(n), np.zeros(n), np.ones(n)
-        best = np.inf
-        for _ in range(3):
-            t0 = time.perf_counter()
-            _stream(steps, N, v, Z)
-            best = min(best, time.perf_counter() - t0)
-        r_nb, r_np, r_roof = n * steps / t_nb, n * np_steps / t_np, n * steps / best
-        rows.append((n, r_nb, r_np, r_roof, r_roof / r_nb))
-        print(f"n={n:>8}: numba {r_nb:.3g}/s  numpy {r_np:.3g}/s  roof {r_roof:.3g}/s  roof/numba {r_roof / r_nb:.2f}")
-    # thesis-scale impact: 100-element striker on a 400-element bar, 600 steps
-    striker = ri.Rod.from_impedance([51e3] * 50 + [28.7e3] * 50, dt=DT)
-    bar = ri.Rod.from_impedance([51e3] * 400, dt=DT)
-    ri.simulate([striker, bar], velocities=[5.0, 0.0], steps=600, right="nonreflecting")
+def _median(fn, repeat: int) -> float:
+    fn()
     walls = []
-    for _ in range(20):
+    for _ in range(repeat):
         t0 = time.perf_counter()
-        ri.simulate([striker, bar], velocities=[5.0, 0.0], steps=600, right="nonreflecting")
+        fn()
         walls.append(time.perf_counter() - t0)
-    t_k = _time_kernel(K.run_numba, 500, 600, 20)
-    # memory of a long run: 10^6 steps of a 500-element system with 10 snapshots and 3 probes, every step
-    # recorded and every 100th
+    return float(np.median(walls))
+
+
+def _rates(n: int, n_steps: int, rounds: int) -> tuple[float, float]:
+    """Element updates per second of the compiled loop alone (lattice and arrays built outside the timing) and
+    of the streaming roof on arrays of the same size, timed alternately (best of ``rounds`` each) so that a
+    changing machine load affects both alike."""
+    levels = 5e4 * (1.0 + 0.5 * np.sin(np.arange(16)))
+    z = np.repeat(levels, -(-n // 16))[:n]
+    rods = [ri.Rod.from_impedance(z[: n // 4], dt=DT), ri.Rod.from_impedance(z[n // 4:], dt=DT)]
+    system = ri.System(rods, velocities=[5.0, 0.0])   # free ends: the waves stay alive (no denormal decay)
+    lat = ri.build_lattice(system, DT)
+    f, g, R = np.zeros(n), np.zeros(n), np.full(n - 1, 0.1)
+    best_kernel = best_roof = np.inf
+    for _ in range(rounds):
+        state = sim._initial_state(system, lat)
+        arrays = sim._kernel_arrays(system, lat, state, [])
+        recorder = Recorder(Recording(energy_every=n_steps), lat, arrays, state["N"].copy(), n_steps, n_steps)
+        t0 = time.perf_counter()
+        sim._advance(K.run_numba, n_steps, n_steps, lat, arrays, state, recorder, None)
+        best_kernel = min(best_kernel, time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        _stream(n_steps, f, g, R)
+        best_roof = min(best_roof, time.perf_counter() - t0)
+    return n * n_steps / best_kernel, n * n_steps / best_roof
+
+
+def _compiled_share(call, repeat: int) -> tuple[float, str]:
+    """Median fraction of a call's wall time spent inside the compiled loop (timed around each compiled call),
+    and the top of a cProfile of ``repeat`` calls (which inflates the Python side: it times every Python call)."""
+    inner = K.run_numba
+    spent = [0.0]
+
+    def timed(*args):
+        t0 = time.perf_counter()
+        out = inner(*args)
+        spent[0] += time.perf_counter() - t0
+        return out
+
+    shares = []
+    K.run_numba = timed
+    try:
+        for _ in range(repeat):
+            spent[0] = 0.0
+            t0 = time.perf_counter()
+            call()
+            shares.append(spent[0] / (time.perf_counter() - t0))
+    finally:
+        K.run_numba = inner
+    prof = cProfile.Profile()
+    prof.enable()
+    for _ in range(repeat):
+        call()
+    prof.disable()
+    out = io.StringIO()
+    pstats.Stats(prof, stream=out).sort_stats("tottime").print_stats(12)
+    lines = [ln for ln in out.getvalue().splitlines() if ln.strip()][3:]
+    return float(np.median(shares)), "\n".join(lines)
+
+
+def _elwaspatid_snapshots(repeat: int):
+    """elwaspatid (full x-t fields) on the thesis impact, if importable; else None. Steel rods whose diameters
+    give the impedances of the lattice; its own element count per segment (nmin) is set to 50."""
+    if importlib.util.find_spec("elwaspatid") is None:
+        return None
+    from elwaspatid import WP2, Barhete
+
+    E, rho = 210e9, 7800.0
+    c = np.sqrt(E / rho)
+    diameter = [float(np.sqrt(4 * z / (rho * c) / np.pi)) for z in (51.0e3, 28.7e3, 51.0e3)]
+    bars = Barhete([E] * 3, [rho] * 3, [50 * c * DT, 50 * c * DT, 400 * c * DT], diameter, nmin=50)
+    return _median(lambda: WP2(bars, nstep=600, left="free", right="infinite", Vinit=5.0), repeat)
+
+
+def main(quick: bool = False) -> None:
+    repeat = 5 if quick else 200
+    striker, bar = thesis_impact()
+    new = lambda **kw: ri.simulate([striker, bar], velocities=[5.0, 0.0], steps=600, dt=DT,  # noqa: E731
+                                   right="nonreflecting", **kw)
+    old = lambda **kw: old_simulate(ri.System([striker, bar], velocities=[5.0, 0.0],  # noqa: E731
+                                              right="nonreflecting"), 600, DT, **kw)
+    assert np.array_equal(new().contact_force, old(energy_every=600).contact_force)     # same numbers
+    t_old, t_new = _median(old, repeat), _median(new, repeat)
+    share, profile = _compiled_share(new, repeat)
+    t_old_snap = _median(lambda: old(snapshot_every=1), max(3, repeat // 10))
+    t_new_snap = _median(lambda: new(snapshot_every=1), max(3, repeat // 10))
+    t_peer = _elwaspatid_snapshots(max(3, repeat // 10))
+    print(f"simulate() thesis scale: old loop {t_old * 1e3:.3f} ms, now {t_new * 1e3:.3f} ms (median of {repeat}); "
+          f"compiled share {share:.0%}")
+    print(profile)
+    print(f"snapshot_every=1: old loop {t_old_snap * 1e3:.2f} ms, now {t_new_snap * 1e3:.2f} ms"
+          + (f", elwaspatid {t_peer * 1e3:.2f} ms" if t_peer is not None else ", elwaspatid not installed"))
+    _rates(100, 10, 1)          # compile / load caches
+    rows = []
+    for n in ((10**3, 10**4) if quick else (10**3, 10**4, 10**5, 10**6)):
+        steps = max(20, int((3e6 if quick else 1e8) // n))
+        r_k, r_roof = _rates(n, steps, 3 if quick else 7)
+        rows.append((n, r_k, r_roof))
+        print(f"n={n:>8}: compiled loop {r_k:.3g}/s  roof {r_roof:.3g}/s  ratio {r_k / r_roof:.2f}")
+    if quick:
+        return
     peaks = {}
     for stride in (1, 100):
         tracemalloc.start()
@@ -100,37 +175,52 @@ def main() -> None:
         peaks[stride] = tracemalloc.get_traced_memory()[1]
         tracemalloc.stop()
     lines = [
-        "## Direct solver kernel (`benchmarks/bench_kernel.py`)",
+        "## Direct solver (`benchmarks/bench_kernel.py`)",
         "",
-        f"Machine: {platform.processor() or platform.machine()}, Python {platform.python_version()}, "
-        f"numpy {np.__version__}, numba {numba.__version__}; single thread. Best of 3 runs.",
+        f"Machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, Python "
+        f"{platform.python_version()}, numpy {np.__version__}, numba {numba.__version__}; one thread; load average "
+        f"{os.getloadavg()[0]:.1f} at the end of the run. \"Old loop\" is the loop before the time stepping moved "
+        "into compiled code (`benchmarks/_old_loop.py`, frozen): it returned to Python at every energy sample and "
+        "snapshot.",
         "",
-        "Element updates per second (one update = one element advanced by one step). The roof is a compiled "
-        "streaming loop with exactly the kernel's memory traffic (reads N, v, Z; writes N, v), measured in the "
-        "same run.",
+        "**Thesis-scale impact** (two-part striker 51.0e3 / 28.7e3 N s/m x 50 elements each on a 51.0e3 x 400 bar, "
+        "5 m/s, non-reflecting end, 600 steps, default options; the same contact force bit for bit):",
         "",
-        "| elements | numba kernel | numpy reference | bandwidth roof | roof / numba |",
-        "|---:|---:|---:|---:|---:|",
+        "| | old loop | now |",
+        "|---|---:|---:|",
+        f"| `simulate()` median of {repeat} | {t_old * 1e3:.3f} ms | {t_new * 1e3:.3f} ms |",
+        f"| with `snapshot_every=1` (fields at all 601 times) | {t_old_snap * 1e3:.2f} ms | {t_new_snap * 1e3:.2f} ms |",
+        "",
+        f"Share of the `simulate()` call spent in the compiled loop (timed around it, median): {share:.0%}. Top of a "
+        f"cProfile of {repeat} calls (the profiler slows the Python side down; `_run_waves` is the compiled loop):",
+        "",
+        "```",
+        profile,
+        "```",
+        "",
+        ("elwaspatid (pure numpy, fields at every step) on the same impact: "
+         f"{t_peer * 1e3:.2f} ms." if t_peer is not None else
+         "elwaspatid was not installed for this run (it is not a dependency), so there is no side-by-side number."),
+        "",
+        "**Interior sweep.** Element updates per second (one update = one element advanced by one step) of the "
+        "compiled loop on a two-rod lattice, against a roof measured in the same run: a compiled streaming loop "
+        "with exactly the sweep's memory traffic (reads f, g, R; writes f, g) and trivial arithmetic.",
+        "",
+        "| elements | compiled loop | streaming roof | loop / roof |",
+        "|---:|---:|---:|---:|",
     ]
-    lines += [f"| {n:,} | {a:.3g} | {b:.3g} | {c:.3g} | {d:.2f} |" for n, a, b, c, d in rows]
+    lines += [f"| {n:,} | {a:.3g} | {b:.3g} | {a / b:.2f} |" for n, a, b in rows]
     lines += [
-        "",
-        f"Thesis-scale impact (100-element striker on a 400-element bar, 600 steps): kernel "
-        f"{t_k * 1e3:.3f} ms; whole `simulate()` call including lattice construction, energy and result "
-        f"assembly {np.median(walls) * 1e3:.2f} ms (median of 20).",
         "",
         f"Memory of a long run (10^6 steps, 500 elements, 3 probes, 10 snapshots): peak traced allocation "
         f"{peaks[1] / 2**20:.1f} MiB when every step is recorded -- the node histories (8 bytes x steps x "
         f"(3 values per probe + 2 per junction + 4 end values)) dominate -- and {peaks[100] / 2**20:.1f} MiB with "
-        f"`record_every=100`, which is then bounded by the per-chunk buffers (at most 65536 steps); contact "
-        f"events are still taken at every step. Fields are kept only at the requested snapshots, energy at a "
-        f"bounded number of samples, and prescribed histories are evaluated per chunk.",
-        "",
-        "Parameter sweeps: the compiled kernel releases the GIL, and `rodimpact.sweep` runs independent "
-        "simulations in parallel threads (section below).",
+        f"`record_every=100`, then bounded by the per-call step buffers (at most 65536 steps); contact events are "
+        f"still taken at every step. Fields are kept only at the requested snapshots (preallocated, checked "
+        f"against the machine's memory before the run), energy at about 256 samples by default.",
     ]
     write_section("kernel", "\n".join(lines))
 
 
 if __name__ == "__main__":
-    main()
+    main(quick="--quick" in sys.argv[1:])

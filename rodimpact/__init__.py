@@ -18,6 +18,7 @@ from .rods.loads import Bearings, NodalForce
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
 from .direct.result import EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory, SimulationResult
+from .direct.recording import Recording
 from .direct.simulate import simulate
 from .direct.sweep import sweep
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
@@ -46,7 +47,7 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
-    "simulate", "sweep", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory",
+    "simulate", "Recording", "sweep", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory",
     "JunctionEvents",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",

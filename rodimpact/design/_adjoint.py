@@ -21,7 +21,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._validate import finite, fits_in_memory, positive_array
-from ..direct.simulate import _MAX_CHUNK, _energy_stride, _initial_state, _kernel_arrays, _wave_arrays
+from ..direct.simulate import _initial_state, _kernel_arrays, _wave_arrays
 from ..lattice.lattice import build_lattice
 from ..rods.rod import Rod
 from ..rods.system import System
@@ -117,7 +117,6 @@ class ImpactProblem:
         self._arrays = arrays
         self._end_value, self._sp_force = (np.ascontiguousarray(x) for x in arrays["step_inputs"](0, self.steps))
         self._z = lat.impedance.copy()
-        self._event = _call_starts(self.steps)
         if location is not None:   # element left of the observed node (the striker's face element at the face)
             self._k_left = self.n + location.element_left
 
@@ -141,7 +140,7 @@ class ImpactProblem:
         ck = _state_store(-(-self.steps // C), Z.size, self._arrays["junction_code"].size)
         buffers = self._buffers()
         run = K.advance_numba if self.backend == "numba" else K.advance_numpy
-        run(0, self.steps, C, f, g, Z, R, self._touch, self._arrays["rod_start"], *buffers, self.dt, self._event,
+        run(0, self.steps, C, f, g, Z, R, self._touch, self._arrays["rod_start"], *buffers, self.dt,
             ck, False, _record(1, Z.size, self._touch.size))
         (jn, jc, en, ev), (pn, pv) = buffers[4], buffers[3][3:5]
         face = jn[0]
@@ -206,7 +205,7 @@ class ImpactProblem:
         segment = _record(self.checkpoint_every, Z.size, self._touch.size)
         args = (tape["checkpoints"], _state_store(0, Z.size, self._arrays["junction_code"].size), segment,
                 np.empty(Z.size), np.empty(Z.size), Z, R, self._touch,
-                self._arrays["rod_start"], *self._buffers(), self.dt, self._event, seed, lf, lg, les, dZ, dR)
+                self._arrays["rod_start"], *self._buffers(), self.dt, self.steps, seed, lf, lg, les, dZ, dR)
         if self.backend == "numba":
             K.sweep_numba(K.advance_numba, K.reverse_numba, *args)
         else:
@@ -249,13 +248,3 @@ def _record(slots: int, n_el: int, n_touch: int) -> tuple[np.ndarray, ...]:
     """Room for what the transpose of ``slots`` steps needs: f_j - g_{j+1} of every node, the waves of the
     elements next to ends, joints, loads and probes, the end state."""
     return np.zeros((slots, n_el)), np.empty((slots, n_touch)), np.empty((slots, n_touch)), np.empty((slots, 2, 2))
-
-
-def _call_starts(steps: int) -> np.ndarray:
-    """Steps at which :func:`rodimpact.simulate` (no snapshots, default energy stride) begins a new compiled
-    call: there the state passes through (N, v), which the forward run repeats to stay bit-identical."""
-    every = _energy_stride(None, steps)
-    marks = np.zeros(steps, dtype=np.bool_)
-    marks[every::every] = True
-    marks[_MAX_CHUNK::_MAX_CHUNK] = True
-    return marks

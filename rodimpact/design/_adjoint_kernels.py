@@ -8,10 +8,8 @@ reflection factor of the node between elements j and j+1 (eq. 2.40). Adjoint var
 Forward (:func:`advance_numba`, :func:`advance_numpy`): the lattice step of :func:`~rodimpact.direct._kernels.run_numba`
 (the shared :func:`~rodimpact.direct._kernels.boundaries` solves ends, junctions, loaded nodes and probes),
 bit-identical to it, with the state (f, g, end state, junction state, gap) stored before every ``stride``-th
-step: checkpoints (stride C) or the full history of a segment (stride 1). ``event[k]`` marks the steps at
-which :func:`rodimpact.simulate` starts a new compiled call (the state passes through (N, v) between the
-calls); repeating that round trip at the end of step k-1 keeps the results bit-identical to ``simulate`` and
-the stored states are those the next step starts from.
+step: checkpoints (stride C) or the full history of a segment (stride 1). Like ``simulate``, whose waves persist
+between its compiled calls, the run never passes through (N, v) between steps, so it is bit-identical to it.
 
 Reverse (:func:`reverse_numba`, :func:`reverse_numpy`): the transpose of one step, applied from the last step
 of a segment to its first with the branches (contact/separated, stick/slip, bit-rock loading/unloading/released)
@@ -43,7 +41,7 @@ _save_nb = njit(inline="always", cache=True)(_save)
 
 
 def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-             rod_nodes, dt, event, ck, record, rec):
+             rod_nodes, dt, ck, record, rec):
     """Steps k0 .. k1-1 in place on the waves (f, g), exactly as :func:`~rodimpact.direct._kernels.run_numba`.
 
     ``ck`` (f, g, end state, junction state, gap; one slot per checkpoint, or none): the state before every
@@ -109,12 +107,6 @@ def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, spec
                 j = stop + 1
             f[s] = f_first
             g[e - 1] = g_last
-        if k + 1 < event.size and event[k + 1]:   # simulate() ends a compiled call: (f, g) -> (N, v) -> (f, g)
-            for j in range(n_el):
-                nj = f[j] + g[j]
-                vj = (g[j] - f[j]) / Z[j]
-                f[j] = 0.5 * (nj - Z[j] * vj)
-                g[j] = 0.5 * (nj + Z[j] * vj)
 
 
 advance_numba = njit(cache=True, error_model="numpy", nogil=True)(_advance)
@@ -130,7 +122,7 @@ def interior_nodes(rod_start: np.ndarray, sp_elem: np.ndarray) -> tuple[np.ndarr
 
 
 def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-                  rod_nodes, dt, event, ck, record, rec):
+                  rod_nodes, dt, ck, record, rec):
     """Readable reference of :func:`advance_numba`: per step, the scattering of every plain interior node as
     one vectorised expression (g_a' = g_b + R (f_a - g_b), f_b' = f_a + R (f_a - g_b), eq. 2.39) and the loaded
     nodes and rod ends from their node forces (g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b)."""
@@ -164,11 +156,6 @@ def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions,
         g_new[last] = rod_NR - f[last]
         f[:] = f_new
         g[:] = g_new
-        if k + 1 < event.size and event[k + 1]:
-            n_ = f + g
-            v_ = (g - f) / Z
-            f[:] = 0.5 * (n_ - Z * v_)
-            g[:] = 0.5 * (n_ + Z * v_)
 
 
 # ---------------------------------------------------------------------------------------------- reverse
@@ -485,13 +472,12 @@ def reverse_numpy(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_va
 
 
 def _sweep(advance, reverse, checkpoints, no_checkpoints, segment, f, g, Z, R, touch, rod_start, ends, junctions,
-           specials, probes, outputs, acc, rod_nodes, dt, event, seed, lf, lg, les, dZ, dR):
+           specials, probes, outputs, acc, rod_nodes, dt, steps, seed, lf, lg, les, dZ, dR):
     """The whole reverse pass: for the segments between checkpoints, last first, recompute the segment forward
     from its checkpoint (recording every step into ``segment``), then transpose its steps. On return lf, lg
     hold dJ/d(initial waves); dZ, dR are accumulated. ``no_checkpoints``: empty checkpoint stores."""
     ck_f, ck_g, ck_es, ck_js, ck_gap = checkpoints
     stride = segment[0].shape[0]
-    steps = event.size
     n_seg = ck_f.shape[0]
     end_state = ends[2]
     junction_state = junctions[1]
@@ -505,7 +491,7 @@ def _sweep(advance, reverse, checkpoints, no_checkpoints, segment, f, g, Z, R, t
         junction_state[:] = ck_js[i]
         gap[:] = ck_gap[i]
         advance(k0, k1, 1, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-                rod_nodes, dt, event, no_checkpoints, True, segment)
+                rod_nodes, dt, no_checkpoints, True, segment)
         reverse(k0, k1, segment, touch, Z, R, rod_start, ends[0], ends[1], ends[3],
                 outputs[1], specials[0], specials[1], specials[2], probes[0], probes[1], probes[2], seed, lf, lg,
                 les, dZ, dR, dt)

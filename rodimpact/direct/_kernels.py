@@ -12,6 +12,11 @@ source ``boundaries.py_func``):
 * :func:`run_numba` -- the compiled path (``numba.njit(cache=True)``): the same lattice in travelling-wave
   variables, one fused in-place sweep per rod. Two formulations that agree to rounding are a real check.
 
+Both run many steps per call and record inside the loop (the bundles are built by
+:class:`rodimpact.direct.recording.Recorder`): every ``stride``-th step of the node histories
+(:func:`keep_step`), the contact phases of every step (:func:`track_events`) and the energy sums and field
+snapshots at precomputed step indices.
+
 Array layout (all rods concatenated left to right; ``rod_start`` has n_rods + 1 entries):
 
 * end codes 0 free/force, 1 fixed, 2 force, 3 velocity, 4 non-reflecting, 5 spring-dashpot, 6 bit-rock;
@@ -84,8 +89,9 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
     """Everything of one step that is not a plain interior node: the two outer ends, the junctions,
     loaded/frictional interior nodes and the probes. Uses only the element states at t_k; writes node
     forces/velocities of each rod's first and last node into rod_NL/rod_VL/rod_NR/rod_VR and the resolved
-    node forces of special nodes into sp_F. ``out`` is the step's column in the per-step inputs and outputs. The arrays come grouped
-    in tuples (see :func:`_run_waves`) so that the compiler can inline this function into the step loop."""
+    node forces of special nodes into sp_F. ``out`` is the step's column in the per-step inputs and outputs. The
+    arrays come grouped in tuples (see :func:`run_numba`) so that the compiler can inline this function into the
+    step loop."""
     end_code, end_par, end_state, end_value = ends
     junction_code, junction_state, gap, gap_tol, u_end = junctions
     sp_elem, sp_cap, sp_force, sp_F, sp_V = specials
@@ -204,22 +210,173 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
         u_end[r, 1] += rod_VR[r] * dt
 
 
+
+# ------------------------------------------------------------------------------------------------ recording
 @njit(inline="always", cache=True)
-def _grouped(end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end, sp_elem,
-             sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N,
-             junction_contact, end_N, end_V, rod_NL, rod_VL, rod_NR, rod_VR):
-    """The arrays :func:`boundaries` needs, grouped into tuples (ends, junctions, specials, probes, outputs,
-    rod-end nodes); few arguments let the compiler inline :func:`boundaries` into the step loop."""
-    return ((end_code, end_par, end_state, end_value), (junction_code, junction_state, gap, gap_tol, u_end),
-            (sp_elem, sp_cap, sp_force, sp_F, sp_V), (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp),
-            (junction_N, junction_contact, end_N, end_V), (rod_NL, rod_VL, rod_NR, rod_VR))
+def has_room(events):
+    """True if every junction can take one more closed contact phase (at most one closes per step)."""
+    _, phases, count = events
+    for j in range(count.size):
+        if count[j] >= phases.shape[1]:
+            return False
+    return True
 
 
-def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value,
-               junction_code, junction_state, gap, gap_tol, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp,
-               pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
-    """Advance ``n_steps`` steps in place (compiled path). The i-th step reads and writes column ``i`` of the
-    per-step input (``end_value``, ``sp_force``) and output arrays.
+@njit(inline="always", cache=True)
+def track_events(k, out, junction_N, junction_contact, events):
+    """Contact phases of every junction with step ``k`` (column ``out`` of the step outputs): a phase is a maximal
+    run of steps in contact; its peak is the largest |N| in it; the most compressive N (first step) and the
+    largest |N| are taken over all steps. Returns True if a junction's buffer of closed phases is now full."""
+    state, phases, count = events
+    full = False
+    for j in range(count.size):
+        nj = junction_N[j, out]
+        a = abs(nj)
+        if nj < state[j, 2]:
+            state[j, 2] = nj
+            state[j, 3] = k
+        if a > state[j, 4]:
+            state[j, 4] = a
+        if junction_contact[j, out] > 0.5:
+            if state[j, 0] < 0.0:
+                state[j, 0] = k
+                state[j, 1] = a
+            elif a > state[j, 1]:
+                state[j, 1] = a
+        elif state[j, 0] >= 0.0:
+            m = count[j]
+            phases[j, m, 0] = state[j, 0]
+            phases[j, m, 1] = k
+            phases[j, m, 2] = state[j, 1]
+            count[j] = m + 1
+            state[j, 0] = -1.0
+            full = full or m + 1 == phases.shape[1]
+    return full
+
+
+@njit(inline="always", cache=True)
+def _copy_column(src, out, dst, c):
+    for row in range(src.shape[0]):
+        dst[row, c] = src[row, out]
+
+
+@njit(inline="always", cache=True)
+def keep_step(out, c, chunk, kept):
+    """Copy column ``out`` of the step outputs ``chunk`` (junction N, contact flag, end N, end V, probe N, V, u)
+    into column ``c`` of the recorded histories ``kept``."""
+    _copy_column(chunk[0], out, kept[0], c)
+    _copy_column(chunk[1], out, kept[1], c)
+    _copy_column(chunk[2], out, kept[2], c)
+    _copy_column(chunk[3], out, kept[3], c)
+    _copy_column(chunk[4], out, kept[4], c)
+    _copy_column(chunk[5], out, kept[5], c)
+    _copy_column(chunk[6], out, kept[6], c)
+
+
+@njit(cache=True, fastmath={"reassoc", "nsz"})
+def _rod_energy(f, g, inv_Z, a, b):
+    """Sums over elements a .. b - 1 of (g - f)^2 / Z, (f + g)^2 / Z and g - f: 2 / dt times the kinetic energy
+    1/2 m v^2 (m = Z dt, Z v = g - f), 2 / dt times the strain energy 1/2 N^2 dt / Z (N = f + g) and the momentum
+    m v / dt. The sums may be reordered (vectorised); the result then differs from a left-to-right sum by
+    rounding only."""
+    kin = 0.0
+    pot = 0.0
+    mom = 0.0
+    for j in range(a, b):
+        d = g[j] - f[j]
+        s = f[j] + g[j]
+        kin += d * d * inv_Z[j]
+        pot += s * s * inv_Z[j]
+        mom += d
+    return kin, pot, mom
+
+
+@njit(inline="always", cache=True)
+def _take_samples(k, fresh, state, Z, dt, rod_start, acc, u_end, samples):
+    """If step ``k`` is a sample step: the energy sums per rod (thesis eq. 3.25: kinetic 1/2 m v^2 with m = Z dt,
+    strain 1/2 N^2 dt / Z, momentum m v) with the work/impulse accumulators, and the fields N, v, u (node
+    displacement = left-end displacement + element elongations (N - N0) dt / Z). The waves (f, g) hold the
+    state at t = k dt; (N, v) too if ``fresh``, else they are brought up to date first."""
+    N, v, f, g = state
+    e_steps, s_steps, cursor, e_kin, e_pot, e_mom, e_acc, s_N, s_v, s_u, N0, inv_Z = samples
+    n_rods = rod_start.size - 1
+    m = cursor[0]
+    if m < e_steps.size and e_steps[m] == k:
+        for r in range(n_rods):
+            kin, pot, mom = _rod_energy(f, g, inv_Z, rod_start[r], rod_start[r + 1])
+            e_kin[m, r] = 0.5 * dt * kin
+            e_pot[m, r] = 0.5 * dt * pot
+            e_mom[m, r] = dt * mom
+        for q in range(acc.size):
+            e_acc[m, q] = acc[q]
+        cursor[0] = m + 1
+    m = cursor[1]
+    if m < s_steps.size and s_steps[m] == k:
+        if not fresh:
+            _element_states(f, g, Z, N, v)
+        row_N = s_N[m]
+        row_v = s_v[m]
+        row_u = s_u[m]
+        for j in range(N.size):
+            row_N[j] = N[j]
+            row_v[j] = v[j]
+        node = 0
+        for r in range(n_rods):
+            u = u_end[r, 0]
+            row_u[node] = u
+            node += 1
+            for j in range(rod_start[r], rod_start[r + 1]):
+                u += (N[j] - N0[j]) * dt * inv_Z[j]
+                row_u[node] = u
+                node += 1
+        cursor[1] = m + 1
+
+
+@njit(inline="always", cache=True)
+def _next_sample(samples):
+    """The step of the next energy sample or snapshot (-1 if there is none)."""
+    e_steps, s_steps, cursor = samples[0], samples[1], samples[2]
+    e = e_steps[cursor[0]] if cursor[0] < e_steps.size else -1
+    sn = s_steps[cursor[1]] if cursor[1] < s_steps.size else -1
+    return e if sn < 0 or (0 <= e < sn) else sn
+
+
+@njit(inline="always", cache=True)
+def _element_states(f, g, Z, N, v):
+    """N = f + g, v = (g - f) / Z for every element."""
+    for j in range(N.size):
+        N[j] = f[j] + g[j]
+        v[j] = (g[j] - f[j]) / Z[j]
+
+
+@njit(inline="always", cache=True)
+def _interior(f, g, R, a, b, fa):
+    """Plain interior nodes from a | a+1 to b-1 | b (eqs. 2.39, 2.40) in place; ``fa`` is the right-going wave
+    of element a before the step (f[a] itself may already be overwritten). Returns that of element b.
+
+    Written over views indexed from 0 so that the compiler vectorises it; f[i+1] is loaded before it is
+    overwritten and carried to the next node."""
+    fs = f[a:b + 1]
+    gs = g[a:b + 1]
+    rs = R[a:b]
+    for i in range(b - a):
+        gb = gs[i + 1]
+        fb = fs[i + 1]
+        sc = rs[i] * (fa - gb)
+        gs[i] = gb + sc
+        fs[i + 1] = fa + sc
+        fa = fb
+    return fa
+
+
+def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, probes, outputs, acc, record):
+    """Advance steps ``first .. first + n_steps - 1`` in place (compiled path) and record them; returns the number
+    of steps done (fewer than ``n_steps`` only if a junction's buffer of closed contact phases is full: the
+    caller enlarges it and calls again from there). The i-th step reads and writes column ``i`` of the per-step
+    inputs (``end_value``, ``sp_force``) and outputs (``outputs``, the probe histories of ``probes``).
+
+    ``state = (N, v, f, g)``, ``lattice = (Z, R, touch, rod_start)``; ``record = (stride, kept, events,
+    samples)`` as built by :class:`rodimpact.direct.recording.Recorder`.
 
     The same lattice as :func:`run_numpy`, written in travelling-wave variables: element j carries a
     right-going force wave f_j and a left-going g_j, N = f + g, v = (g - f) / Z (thesis Sec. 2.3.2). At a
@@ -227,27 +384,38 @@ def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_sta
     g_a' = g_b + R (f_a - g_b) and f_b' = f_a + R (f_a - g_b) (transmission 1 +- R, eq. 2.39), which is eqs.
     3.6-3.15 without the division and streams at memory speed. Loaded nodes, ends and junctions are solved
     by :func:`boundaries` on (N, v), refreshed each step at the ``touch`` elements only; the outgoing waves
-    there follow from the node force: g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b.
+    there follow from the node force: g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b. The waves (f, g) persist between
+    calls; (N, v) are brought up to date at the sample steps and at the end of the call.
     """
+    N, v, f, g = state
+    Z, R, touch, rod_start = lattice
+    sp_elem = specials[0]
+    sp_F, sp_V = specials[3], specials[4]
+    u_end = junctions[4]
+    stride, kept, events, samples = record
+    chunk = (outputs[0], outputs[1], outputs[2], outputs[3], probes[3], probes[4], probes[5])
     n_rods = rod_start.size - 1
-    rod_NL = np.empty(n_rods)
-    rod_VL = np.empty(n_rods)
-    rod_NR = np.empty(n_rods)
-    rod_VR = np.empty(n_rods)
-    sp_F = np.zeros(sp_elem.size)
-    sp_V = np.zeros(sp_elem.size)
     n_sp = sp_elem.size
-    ends, junctions, specials, probes, outputs, rod_nodes = _grouped(
-        end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end, sp_elem, sp_cap,
-        sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N,
-        end_V, rod_NL, rod_VL, rod_NR, rod_VR)
-    f = 0.5 * (N - Z * v)
-    g = 0.5 * (N + Z * v)
-    for i in range(n_steps):
+    rod_nodes = (np.empty(n_rods), np.empty(n_rods), np.empty(n_rods), np.empty(n_rods))
+    rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes
+    c = -(-first // stride)         # next recorded column and its step (no division inside the loop)
+    next_kept = c * stride
+    next_sample = _next_sample(samples)
+    done = n_steps if has_room(events) else 0
+    for i in range(done):
+        k = first + i
+        if k == next_sample:    # at i = 0, (N, v) are those the previous call (or the initial state) left
+            _take_samples(k, i == 0, state, Z, dt, rod_start, acc, u_end, samples)
+            next_sample = _next_sample(samples)
         for t in touch:
             N[t] = f[t] + g[t]
             v[t] = (g[t] - f[t]) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        full = track_events(k, i, outputs[0], outputs[1], events)
+        if k == next_kept:
+            keep_step(i, c, chunk, kept)
+            c += 1
+            next_kept += stride
         ptr = 0
         for r in range(n_rods):
             s = rod_start[r]
@@ -260,13 +428,7 @@ def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_sta
                 stop = e - 1
                 if ptr < n_sp and sp_elem[ptr] < e - 1:
                     stop = sp_elem[ptr]
-                for jj in range(j, stop):
-                    gb = g[jj + 1]
-                    fb = f[jj + 1]
-                    sc = R[jj] * (fa - gb)
-                    g[jj] = gb + sc
-                    f[jj + 1] = fa + sc
-                    fa = fb
+                fa = _interior(f, g, R, j, stop, fa)
                 if stop < e - 1:
                     gb = g[stop + 1]
                     fb = f[stop + 1]
@@ -278,39 +440,52 @@ def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_sta
                 j = stop + 1
             f[s] = f_first
             g[e - 1] = g_last
-    for j in range(N.size):
-        N[j] = f[j] + g[j]
-        v[j] = (g[j] - f[j]) / Z[j]
+        if full:           # the caller enlarges the phase buffer and calls again from the next step
+            done = i + 1
+            break
+    _element_states(f, g, Z, N, v)
+    _take_samples(first + done, True, state, Z, dt, rod_start, acc, u_end, samples)
+    return done
 
 
 # nogil: independent runs (rodimpact.sweep) advance in parallel threads
 run_numba = njit(cache=True, error_model="numpy", nogil=True)(_run_waves)
 
 
-def run_numpy(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value, junction_code,
-              junction_state, gap, gap_tol, u_end, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp, pr_N, pr_V,
-              pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
+def waves(N: np.ndarray, v: np.ndarray, Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Right- and left-going force waves f = (N - Z v)/2, g = (N + Z v)/2 of the element states."""
+    return 0.5 * (N - Z * v), 0.5 * (N + Z * v)
+
+
+def run_numpy(first, n_steps, state, lattice, dt, ends, junctions, specials, probes, outputs, acc, record):
     """Readable reference path with the same signature as :func:`run_numba`: per step, the interior nodes
     are one vectorised evaluation of thesis eqs. 3.6-3.9 and the elements of eqs. 3.10-3.15 in the thesis's
-    own variables (N, v); ``R`` and ``touch`` (used by the wave-variable path) are not needed here."""
+    own variables (N, v); the wave variables, ``R`` and ``touch`` of the compiled path are not used. Energy and
+    snapshots are numpy reductions; contact events and the stride share the compiled path's scalar code."""
+    N, v = state[0], state[1]
+    Z, rod_start = lattice[0], lattice[3]
+    sp_elem, sp_F, sp_V = specials[0], specials[3], specials[4]
+    u_end = junctions[4]
+    stride, kept, events, samples = record
+    chunk = (*outputs, *probes[3:6])
     n_rods = rod_start.size - 1
     n_el = int(rod_start[-1])
-    rod_NL, rod_VL, rod_NR, rod_VR = (np.empty(n_rods) for _ in range(4))
-    sp_F = np.zeros(sp_elem.size)
-    sp_V = np.zeros(sp_elem.size)
+    rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes = tuple(np.empty(n_rods) for _ in range(4))
     interior = np.ones(n_el - 1, dtype=bool)          # node between j and j+1 is interior unless a rod ends at j
     interior[rod_start[1:-1] - 1] = False
     a = np.flatnonzero(interior)                      # element left of each interior node
     b = a + 1
     sp_pos = np.searchsorted(a, sp_elem)
-    first = rod_start[:-1]
-    last = rod_start[1:] - 1
-    ends, junctions, specials, probes, outputs, rod_nodes = _grouped.py_func(
-        end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end, sp_elem, sp_cap,
-        sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N,
-        end_V, rod_NL, rod_VL, rod_NR, rod_VR)
-    for i in range(n_steps):
+    first_el = rod_start[:-1]
+    last_el = rod_start[1:] - 1
+    done = n_steps if has_room.py_func(events) else 0
+    for i in range(done):
+        k = first + i
+        _numpy_samples(k, N, v, Z, dt, rod_start, acc, u_end, samples)
         boundaries.py_func(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        full = track_events.py_func(k, i, outputs[0], outputs[1], events)
+        if k % stride == 0:
+            keep_step.py_func(i, k // stride, chunk, kept)
         f = np.zeros(a.size)
         f[sp_pos] = sp_F
         # eq. 3.7 / 3.9 written as V = v_a + d, which keeps uniform motion exact in floating point
@@ -324,9 +499,34 @@ def run_numpy(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_stat
         v_left = np.empty(n_el)
         n_right[a], v_right[a] = n_plus, vn
         n_left[b], v_left[b] = n_minus, vn
-        n_left[first], v_left[first] = rod_NL, rod_VL
-        n_right[last], v_right[last] = rod_NR, rod_VR
+        n_left[first_el], v_left[first_el] = rod_NL, rod_VL
+        n_right[last_el], v_right[last_el] = rod_NR, rod_VR
         N_new = n_left + n_right - N                                        # eqs. 3.10, 3.11, 3.14
         v_new = v_left + v_right - v                                        # eqs. 3.12, 3.13, 3.15
         N[:] = N_new
         v[:] = v_new
+        if full:
+            done = i + 1
+            break
+    _numpy_samples(first + done, N, v, Z, dt, rod_start, acc, u_end, samples)
+    return done
+
+
+def _numpy_samples(k, N, v, Z, dt, rod_start, acc, u_end, samples):
+    """:func:`_take_samples` as numpy reductions per rod."""
+    e_steps, s_steps, cursor, e_kin, e_pot, e_mom, e_acc, s_N, s_v, s_u, N0, _ = samples
+    starts = rod_start[:-1]
+    m = cursor[0]
+    if m < e_steps.size and e_steps[m] == k:
+        e_kin[m] = np.add.reduceat(0.5 * dt * Z * v * v, starts)
+        e_pot[m] = np.add.reduceat(0.5 * dt * N * N / Z, starts)
+        e_mom[m] = np.add.reduceat(dt * Z * v, starts)
+        e_acc[m] = acc
+        cursor[0] = m + 1
+    m = cursor[1]
+    if m < s_steps.size and s_steps[m] == k:
+        s_N[m], s_v[m] = N, v
+        elongation = np.split((N - N0) * dt / Z, starts[1:])
+        s_u[m] = np.concatenate([u_end[r, 0] + np.concatenate([[0.0], np.cumsum(el)])
+                                 for r, el in enumerate(elongation)])
+        cursor[1] = m + 1

@@ -108,8 +108,9 @@ class EnergyHistory:
     @property
     def balance_error(self) -> float:
         """max |E(t) - E(0) - W(t)| relative to max(E): the energy bookkeeping error."""
-        err = self.total - self.total[0] - self.exchanged
-        return float(np.max(np.abs(err)) / max(np.max(np.abs(self.total)), 1e-300))
+        total = self.total
+        err = total - total[0] - self.exchanged
+        return float(np.abs(err).max() / max(np.abs(total).max(), 1e-300))
 
 
 @dataclass(frozen=True, repr=False)
@@ -304,21 +305,6 @@ class SimulationResult(SimulationTables):
         if e0[0] <= 0.0:
             raise ValueError("efficiency: rod 0 starts without energy; compare energy.kinetic/strain instead")
         return float((e0[0] - e0[-1]) / e0[0])
-
-    def save(self, outdir, **kwargs):
-        """Write the result to the folder ``outdir`` (CSV signals, NetCDF fields, summary.json, model.toml);
-        see :func:`rodimpact.io.results.save` for the options. Refuses a non-empty folder unless
-        ``overwrite=True``."""
-        from ..io.results import save   # io sits below direct in the layers; imported on use only
-
-        return save(self, outdir, **kwargs)
-
-    @staticmethod
-    def load(outdir) -> "SimulationResult":
-        """Read a folder written by :meth:`save` back (identical arrays); see :func:`rodimpact.io.results.load`."""
-        from ..io.results import load
-
-        return load(outdir)
 
     def to_xarray(self):
         """The recorded signals as an :class:`xarray.Dataset` (coordinates: time, energy_time, x)."""

@@ -11,7 +11,7 @@ from typing import Any, Callable, Iterable, Literal, Optional, Sequence
 import numpy as np
 
 from .. import __version__
-from .._validate import caller_stacklevel, finite_array, fits_in_memory, positive
+from .._validate import caller_stacklevel, positive
 from ..lattice import tolerance
 from ..lattice.lattice import Lattice, build_lattice, default_time_step
 from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
@@ -20,12 +20,13 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
 from . import _kernels as K
-from .result import EnergyHistory, EventTracker, FieldSnapshots, Probe, ProbeHistory, SimulationResult
+from .recording import Recorder, Recording, check_probes
+from .result import Probe, ProbeHistory, SimulationResult
 
 Backend = Literal["numba", "numpy"]
 #: longest run in steps (step indices are stored as int32 in result files)
 _MAX_STEPS = 2_000_000_000
-_MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-chunk input arrays
+_MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-step input and output arrays
 
 
 def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[float]] = None,
@@ -33,9 +34,10 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
              steps: Optional[int] = None, elements: Optional[int | tuple[int, int]] = None,
              resolution: Optional[float] = None, left: EndCondition | str = "free", right: EndCondition | str = "free",
              junctions: Optional[Sequence[Any]] = None, loads: Sequence[NodalForce | Bearings] = (),
-             initial: Optional[Sequence[Optional[InitialState]]] = None, probes: Iterable[Probe] = (),
-             snapshot_times: Optional[Sequence[float]] = None, snapshot_every: Optional[int] = None,
-             energy_every: Optional[int] = None, record_every: int = 1, backend: Backend = "numba",
+             initial: Optional[Sequence[Optional[InitialState]]] = None, record: Optional[Recording] = None,
+             probes: Optional[Iterable[Probe]] = None, snapshot_times: Optional[Sequence[float]] = None,
+             snapshot_every: Optional[int] = None, energy_every: Optional[int] = None,
+             record_every: Optional[int] = None, backend: Backend = "numba",
              progress: bool | None = None, allow_discretization_error: bool = False) -> SimulationResult:
     """Simulate the longitudinal impact of rods with the exact wave propagation method (thesis Sec. 3.1).
 
@@ -63,16 +65,15 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
         :class:`~rodimpact.NodalForce` / :class:`~rodimpact.Bearings`.
     initial:
         Optional per-rod :class:`~rodimpact.InitialState` (non-uniform initial force/velocity).
-    probes:
-        :class:`~rodimpact.Probe` objects: force, velocity, displacement and strain histories.
-    snapshot_times, snapshot_every:
-        Field snapshots N(x), v(x), u(x) at the steps nearest to the given times and/or every k steps.
-    energy_every:
-        Energy sampling stride in steps (default: about 256 samples per run).
-    record_every:
-        Keep every ``record_every``-th step of the histories (contact force, contact flag, end values, probes);
-        default 1 (every step). A stride bounds their memory on long runs; contact and separation times, contact
-        durations and the peak contact force are still taken at every step (``result.junction_events``).
+    record:
+        What to record besides the contact force and end values: a :class:`~rodimpact.Recording` (probes,
+        snapshots, energy stride, history stride). Or give its fields as the keywords below (not both).
+    probes, snapshot_times, snapshot_every, energy_every, record_every:
+        The fields of :class:`~rodimpact.Recording`: probe histories; field snapshots at the steps nearest to
+        the given times and/or every k steps; the energy sampling stride (default: about 256 samples per run);
+        keep every ``record_every``-th step of the histories (default 1). Contact and separation times, contact
+        durations and the peak contact force are taken at every step whatever the stride
+        (``result.junction_events``).
     backend:
         "numba" (compiled, default) or "numpy" (readable reference path; slow).
     progress:
@@ -91,82 +92,82 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     n_steps = _step_count(duration, steps, dt)
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
+    record = _recording(record, probes=probes, snapshot_times=snapshot_times, snapshot_every=snapshot_every,
+                        energy_every=energy_every, record_every=record_every)
     lattice = build_lattice(system, dt)
     rough = _check_discretization(system, lattice, allow_discretization_error)
-    probe_list = [_named_rod(p, i, system) for i, p in enumerate(probes)]
-    snap_steps = _snapshot_steps(snapshot_times, snapshot_every, n_steps, dt)
-    every = _energy_stride(energy_every, n_steps)
-    stride = _record_stride(record_every)
+    probe_list = [_named_rod(p, i, system) for i, p in enumerate(record.probes)]
     wall0 = _time.perf_counter()
     state = _initial_state(system, lattice)
     arrays = _kernel_arrays(system, lattice, state, probe_list)
-    rows = sum(arrays[key].shape[0] for key in _HISTORIES) + len(probe_list)      # + strain per probe
-    fits_in_memory("steps", 8.0 * rows * -(-n_steps // stride), f"the histories of {n_steps} steps ({rows} signals)",
-                   "keep every n-th step with record_every=n, or split the run")
-    history = _History(arrays, n_steps, stride)
-    run = K.run_numba if backend == "numba" else K.run_numpy
-
-    N, v = state["N"], state["v"]
-    N0 = N.copy()
-    reflection, touch = _wave_arrays(lattice, arrays)
-    z = lattice.impedance
-    rs = lattice.rod_start
-    energy_steps = sorted(set(range(0, n_steps + 1, every)) | {n_steps})
-    events = sorted(set(energy_steps) | set(snap_steps) | set(range(0, n_steps, _MAX_CHUNK)))
     bar = _progress_bar(progress, n_steps, lattice.n_elements)
-    e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
-    snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
-    static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key != "step_inputs"}
-    k = 0
-    for target in events:
-        if target > k:
-            kw = {**static, **history.buffers(target - k)}
-            kw["end_value"], kw["sp_force"] = arrays["step_inputs"](k, target - k)
-            run(target - k, N, v, z, reflection, touch, **kw, dt=dt)
-            if bar is not None:
-                bar.update(target - k)
-            k = target
-        if k in energy_steps:
-            e_rec["t"].append(k * dt)
-            # thesis eq. 3.25 per rod: kinetic 1/2 m v^2 with m = Z dt, strain 1/2 N^2 l/(EA) = 1/2 N^2 dt / Z
-            e_rec["kin"].append(np.add.reduceat(0.5 * dt * z * v * v, rs[:-1]))
-            e_rec["pot"].append(np.add.reduceat(0.5 * dt * N * N / z, rs[:-1]))
-            e_rec["mom"].append(np.add.reduceat(dt * z * v, rs[:-1]))
-            e_rec["acc"].append(arrays["acc"].copy())
-        if k in snap_steps:
-            snaps.append((k * dt, N.copy(), v.copy(), _node_displacements(N, N0, z, dt, rs, arrays["u_end"])))
-    if bar is not None:
-        bar.close()
+    capacity = max(1, min(n_steps, _MAX_CHUNK, int(1e8 // lattice.n_elements) if bar is not None else _MAX_CHUNK))
+    recorder = Recorder(record, lattice, arrays, state["N"].copy(), n_steps, capacity)
+    _advance(K.run_numba if backend == "numba" else K.run_numpy, n_steps, capacity, lattice, arrays, state,
+             recorder, bar)
     wall = _time.perf_counter() - wall0
 
-    history.flush()
-    time = np.arange(0, n_steps, stride) * dt
-    arrays.update(history.recorded)
-    acc = np.array(e_rec["acc"])
-    energy = EnergyHistory(
-        time=np.array(e_rec["t"]), kinetic=np.array(e_rec["kin"]).T, strain=np.array(e_rec["pot"]).T,
-        momentum=np.array(e_rec["mom"]).T, work_left=acc[:, 0], work_right=acc[:, 1], work_loads=acc[:, 2],
-        work_friction=acc[:, 3], impulse=acc[:, 4:].sum(axis=1))
-    probe_hist = _probe_histories(system, lattice, probe_list, arrays)
-    snapshots = None
-    if snaps:
-        snapshots = FieldSnapshots(
-            time=np.array([s[0] for s in snaps]), element_x=lattice.element_x, node_x=lattice.node_x,
-            element_rod=lattice.element_rod, node_rod=lattice.node_rod,
-            force=np.stack([s[1] for s in snaps], axis=-1), velocity=np.stack([s[2] for s in snaps], axis=-1),
-            displacement=np.stack([s[3] for s in snaps], axis=-1))
+    N, v = state["N"], state["v"]
+    hist = recorder.histories()
+    energy = recorder.energy(dt)
     warn_list = [f"discretization error allowed: {p}" for p in rough]
     diagnostics = {"version": __version__, "backend": backend, "wall_time_s": wall, "steps": n_steps,
-                   "record_every": stride,
+                   "record_every": recorder.stride,
                    "elements": lattice.n_elements, "dt": dt, "energy_balance_error": energy.balance_error,
                    "lattice_report": lattice.report(), "warnings": warn_list}
     return SimulationResult(
-        system=system, lattice=lattice, time=time, junction_force=arrays["junction_N"],
-        junction_contact=arrays["junction_contact"].astype(bool),
-        end_force={"left": arrays["end_N"][0], "right": arrays["end_N"][1]},
-        end_velocity={"left": arrays["end_V"][0], "right": arrays["end_V"][1]},
-        probes=probe_hist, snapshots=snapshots, energy=energy, final_force=N.copy(), final_velocity=v.copy(),
-        diagnostics=diagnostics, record_every=stride, n_steps=n_steps, junction_events=history.events.finish(n_steps))
+        system=system, lattice=lattice, time=np.arange(0, n_steps, recorder.stride) * dt,
+        junction_force=hist["junction_N"], junction_contact=hist["junction_contact"].astype(bool),
+        end_force={"left": hist["end_N"][0], "right": hist["end_N"][1]},
+        end_velocity={"left": hist["end_V"][0], "right": hist["end_V"][1]},
+        probes=_probe_histories(system, lattice, probe_list, hist), snapshots=recorder.snapshots(lattice),
+        energy=energy, final_force=N.copy(), final_velocity=v.copy(), diagnostics=diagnostics,
+        record_every=recorder.stride, n_steps=n_steps, junction_events=recorder.junction_events())
+
+
+def _advance(run: Callable, n_steps: int, capacity: int, lat: Lattice, arrays: dict, state: dict,
+             recorder: Recorder, bar: Any) -> None:
+    """Run all steps in compiled calls of at most ``capacity`` steps (the per-step inputs of each are evaluated
+    before it), the array bundles of :mod:`rodimpact.direct._kernels` built once."""
+    z = lat.impedance
+    N, v = state["N"], state["v"]
+    reflection, touch = _wave_arrays(lat, arrays)
+    wave_state = (N, v, *K.waves(N, v, z))
+    lattice = (z, reflection, touch, arrays["rod_start"])
+    junctions = tuple(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end"))
+    n_sp = arrays["sp_elem"].size
+    scratch = (np.zeros(n_sp), np.zeros(n_sp))      # resolved force and velocity of each special node
+    chunk = recorder.chunk
+    probes = (arrays["pr_rod"], arrays["pr_local"], arrays["pr_sp"], *chunk[4:], arrays["pr_disp"])
+    k = 0
+    while k < n_steps:
+        n = min(capacity, n_steps - k)
+        end_value, sp_force = arrays["step_inputs"](k, n)
+        ends = (arrays["end_code"], arrays["end_par"], arrays["end_state"], end_value)
+        specials = (arrays["sp_elem"], arrays["sp_cap"], sp_force, *scratch)
+        done = run(k, n, wave_state, lattice, lat.dt, ends, junctions, specials, probes, chunk[:4], arrays["acc"],
+                   recorder.record)
+        if done < n:
+            recorder.grow_events()
+        k += done
+        if bar is not None:
+            bar.update(done)
+    if bar is not None:
+        bar.close()
+
+
+def _recording(record: Optional[Recording], **keywords: Any) -> Recording:
+    """``record``, or a :class:`Recording` of the keywords that were given (not both)."""
+    given = {key: val for key, val in keywords.items() if val is not None}
+    if record is None:
+        return Recording(**given)
+    if not isinstance(record, Recording):
+        raise TypeError(f"record: must be a Recording(probes=..., snapshot_times=..., ...), got "
+                        f"{type(record).__name__}")
+    if given:
+        raise ValueError(f"record: give the outputs either as record=Recording(...) or as the keywords "
+                         f"{', '.join(f'{key}=' for key in given)}, not both")
+    return record
 
 
 # ---------------------------------------------------------------------------------------------- helpers
@@ -238,80 +239,6 @@ def _step_count(duration: Optional[float], steps: Optional[int], dt: float) -> i
                          f"{_MAX_STEPS:.0e} per run")
     n = int(round(x)) if abs(x - round(x)) <= 1e-9 * max(x, 1.0) else int(math.ceil(x))
     return max(n, 1)
-
-
-def _snapshot_steps(times, every, n_steps: int, dt: float) -> list[int]:
-    out: set[int] = set()
-    if times is not None:
-        t = finite_array("snapshot_times", times if np.ndim(times) else [times], unit="s")
-        if np.any(t < 0) or np.any(t > n_steps * dt * (1 + 1e-12)):
-            raise ValueError(f"snapshot_times: must lie in [0, {n_steps * dt:.6g}] s, got {t.min():.6g}..{t.max():.6g}")
-        out |= set(np.round(t / dt).astype(int).tolist())
-    if every is not None:
-        if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
-            raise ValueError(f"snapshot_every: must be an integer number of steps >= 1, got {every!r}")
-        out |= set(range(0, n_steps + 1, int(every)))
-        if len(out) > 100_000:
-            raise ValueError(f"snapshot_every: {every} gives {len(out)} snapshots; use a larger stride")
-    return sorted(out)
-
-
-def _energy_stride(every, n_steps: int) -> int:
-    if every is None:   # about 256 samples: each sample ends a compiled call, so keep them few by default
-        return max(1, -(-n_steps // 256))
-    if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
-        raise ValueError(f"energy_every: must be an integer number of steps >= 1, got {every!r}")
-    return int(every)
-
-
-def _record_stride(every) -> int:
-    if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
-        raise ValueError(f"record_every: must be an integer number of steps >= 1, got {every!r}")
-    return int(every)
-
-
-#: per-step history arrays the kernels write (one column per step)
-_HISTORIES = ("pr_N", "pr_V", "pr_u", "junction_N", "junction_contact", "end_N", "end_V")
-
-
-class _History:
-    """The per-step outputs of the kernels. The kernels write consecutive steps into buffers of at most
-    ``_MAX_CHUNK`` steps; when a buffer is full (and at the end) every ``stride``-th step is kept and the contact
-    events are taken from all its steps. With stride 1 the buffers are windows of the recorded arrays."""
-
-    def __init__(self, arrays: dict, n_steps: int, stride: int) -> None:
-        self.stride = stride
-        self._capacity = max(1, min(n_steps, _MAX_CHUNK))
-        n_rec = -(-n_steps // stride)
-        self.recorded = {key: np.zeros((arrays[key].shape[0], n_rec)) for key in _HISTORIES}
-        self._buf = self.recorded if stride == 1 else {
-            key: np.zeros((arrays[key].shape[0], self._capacity)) for key in _HISTORIES}
-        self._first = 0        # first step of the current buffer
-        self._filled = 0       # steps written into it
-        self.events = EventTracker(arrays["junction_N"].shape[0])
-
-    def _offset(self) -> int:
-        """Column of the current buffer's first step in the storage the kernels write to."""
-        return self._first if self.stride == 1 else 0
-
-    def buffers(self, n: int) -> dict[str, np.ndarray]:
-        """Output arrays for the next ``n <= _MAX_CHUNK`` steps (views)."""
-        if self._filled + n > self._capacity:
-            self.flush()
-        a = self._offset() + self._filled
-        self._filled += n
-        return {key: buf[:, a:a + n] for key, buf in self._buf.items()}
-
-    def flush(self) -> None:
-        """Record the contact events of the buffered steps and keep those that fall on the stride."""
-        n, first, off = self._filled, self._first, self._offset()
-        self.events.feed(first, self._buf["junction_N"][:, off:off + n], self._buf["junction_contact"][:, off:off + n])
-        local = np.arange((-first) % self.stride, n, self.stride)
-        if self.stride > 1 and local.size:
-            target = slice((first + int(local[0])) // self.stride, (first + int(local[-1])) // self.stride + 1)
-            for key, buf in self._buf.items():
-                self.recorded[key][:, target] = buf[:, local]
-        self._first, self._filled = first + n, 0
 
 
 def _progress_bar(progress, n_steps: int, n_el: int):
@@ -441,13 +368,7 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
 
     # ---- probes
     pr_rod, pr_local, pr_sp = [], [], []
-    names = set()
-    for i, p in enumerate(probes):
-        if not isinstance(p, Probe):
-            raise TypeError(f"probes[{i}]: must be a Probe(name, rod, position), got {type(p).__name__}")
-        if p.name in names:
-            raise ValueError(f"probes[{i}].name: {p.name!r} is used twice")
-        names.add(p.name)
+    for i, p in enumerate(check_probes(probes)):
         if p.rod >= n_rods:
             raise ValueError(f"probes[{i}].rod: rod index {p.rod} does not exist (0..{n_rods - 1})")
         length = system.rods[p.rod].length
@@ -487,16 +408,6 @@ def _wave_arrays(lat: Lattice, arrays: dict) -> tuple[np.ndarray, np.ndarray]:
         a = rs[r] + m - 1
         touch |= {int(a), int(a + 1)} & set(range(rs[r], rs[r + 1]))
     return reflection, np.array(sorted(touch), dtype=np.int64)
-
-
-def _node_displacements(N, N0, z, dt, rod_start, u_end) -> np.ndarray:
-    """Node displacements from the left-end displacement of each rod plus the element elongations
-    (N - N0) dt / Z (exact on the lattice: elements are uniform at t = k dt)."""
-    out = []
-    for r in range(rod_start.size - 1):
-        a, b = rod_start[r], rod_start[r + 1]
-        out.append(u_end[r, 0] + np.concatenate([[0.0], np.cumsum((N[a:b] - N0[a:b]) * dt / z[a:b])]))
-    return np.concatenate(out)
 
 
 def _probe_histories(system: System, lat: Lattice, probes: list[Probe], arrays: dict) -> dict[str, ProbeHistory]:

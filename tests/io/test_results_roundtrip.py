@@ -188,13 +188,3 @@ def test_python_callables_give_results_without_model_file(tmp_path):
 def test_load_of_a_folder_without_results_says_so(tmp_path):
     with pytest.raises(FileNotFoundError, match="no result.nc here"):
         load(tmp_path)
-
-
-def test_result_methods_save_and_load(tmp_path):
-    """SimulationResult.save / SimulationResult.load are the same round trip as rodimpact.save / load."""
-    rods = [ri.Rod.from_impedance([4e4] * 10, dt=1e-6), ri.Rod.from_impedance([6e4] * 30, dt=1e-6)]
-    res = ri.simulate(rods, velocities=[2.0, 0.0], steps=80, probes=[ri.Probe("p", 1, 0.05)])
-    res.save(tmp_path / "out")
-    back = ri.SimulationResult.load(tmp_path / "out")
-    np.testing.assert_array_equal(back.contact_force, res.contact_force)
-    np.testing.assert_array_equal(back.probe("p").force, res.probe("p").force)

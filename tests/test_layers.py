@@ -1,0 +1,146 @@
+"""Import direction between the package's layers (docs: architecture): a layer imports only the layers below it,
+so that there is no import circle (results know nothing about files or figures).
+
+Bottom to top: rods, lattice, direct, inverse, design, signals, plotting, io, examples, cli; ``reference`` is
+independent of lattice and direct so that it can check them. The private helper modules at the top of the package
+(``_validate``, ``_permissions``, ...) may be used everywhere and import only each other; the package root is
+imported only for ``__version__``. Checked twice: statically over every import statement
+(also those inside functions, which run only on use), and at run time in a fresh interpreter per layer with every
+import recorded as (importing module, imported module).
+"""
+
+import ast
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "rodimpact"
+BELOW = {
+    "rods": set(),
+    "lattice": {"rods"},
+    "direct": {"rods", "lattice"},
+    "inverse": {"rods", "lattice", "direct"},
+    "design": {"rods", "lattice", "direct", "inverse"},
+    "reference": {"rods"},
+    "signals": {"rods", "lattice", "direct"},
+    "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals"},
+    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "plotting"},
+    "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "plotting", "io"},
+    "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "plotting", "io", "examples"},
+}
+
+
+def layer(module: str) -> str | None:
+    """The layer of a module name inside the package (None for the root and non-package modules)."""
+    parts = module.split(".")
+    if parts[0] != "rodimpact" or len(parts) == 1:
+        return None
+    return "cli" if parts[1] in ("cli", "__main__") else parts[1]
+
+
+def allowed(source: str, target: str, names: tuple[str, ...] = ()) -> bool:
+    src, dst = layer(source), layer(target)
+    if target == "rodimpact":
+        return src is None or set(names) <= {"__version__"}
+    if dst is None or src is None or dst == src or dst.startswith("_"):
+        return True
+    if src.startswith("_"):            # a private helper module imports only its peers
+        return False
+    return dst in BELOW.get(src, set())
+
+
+def module_name(path: Path) -> str:
+    rel = path.relative_to(PACKAGE.parent).with_suffix("")
+    parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
+    return ".".join(parts)
+
+
+def static_imports(path: Path):
+    """(target module, imported names, line) of every import statement outside ``if TYPE_CHECKING:``."""
+    tree = ast.parse(path.read_text())
+    package = module_name(path) if path.name == "__init__.py" else module_name(path).rpartition(".")[0]
+    typing_only = {id(n) for node in ast.walk(tree) if isinstance(node, ast.If) and "TYPE_CHECKING" in
+                   ast.unparse(node.test) for n in ast.walk(node)}
+    for node in ast.walk(tree):
+        if id(node) in typing_only:
+            continue
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                yield alias.name, (), node.lineno
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join(anchor + ([base] if base else []))
+            names = tuple(a.name for a in node.names)
+            submodules = [f"{base}.{n}" for n in names if (PACKAGE.parent / f"{base}.{n}".replace(".", "/")).exists()
+                          or (PACKAGE.parent / (f"{base}.{n}".replace(".", "/") + ".py")).exists()]
+            for target in submodules or [base]:
+                yield target, names, node.lineno
+
+
+def test_every_import_statement_points_down():
+    wrong = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        source = module_name(path)
+        for target, names, line in static_imports(path):
+            if not allowed(source, target, names):
+                wrong.append(f"{path.relative_to(PACKAGE.parent)}:{line} ({layer(source)}) imports {target} "
+                             f"({layer(target)})")
+    assert not wrong, "imports against the layers:\n" + "\n".join(wrong)
+
+
+def test_the_static_check_sees_an_upward_import():
+    """The checker itself: a lazy import of io inside a result method (the circle this test guards against)."""
+    assert not allowed("rodimpact.direct.result", "rodimpact.io.results", ("save",))
+    assert not allowed("rodimpact.reference.modal", "rodimpact.direct.simulate", ("simulate",))
+    assert not allowed("rodimpact.direct.simulate", "rodimpact", ("sweep",))
+    assert allowed("rodimpact.io.results", "rodimpact.plotting", ("save_plots",))
+    assert allowed("rodimpact.direct.simulate", "rodimpact", ("__version__",))
+    assert not allowed("rodimpact._validate", "rodimpact.rods.material", ("Material",))
+    assert not allowed("rodimpact.newlayer.x", "rodimpact.direct.result", ())     # a new layer must be placed
+
+
+RECORDER = """
+import builtins, importlib.util, json, sys
+edges = []
+real = builtins.__import__
+def recording(name, globals=None, locals=None, fromlist=(), level=0):
+    importer = (globals or {}).get("__name__", "")
+    package = (globals or {}).get("__package__") or importer.rpartition(".")[0]
+    target = importlib.util.resolve_name("." * level + name, package) if level else name
+    if importer.startswith("rodimpact") and target.startswith("rodimpact"):
+        for item in (fromlist or ()):
+            sub = target + "." + item
+            if importlib.util.find_spec(target) and item != "*" and sub.count(".") < 4:
+                try:
+                    if importlib.util.find_spec(sub):
+                        edges.append((importer, sub, []))
+                        continue
+                except (ImportError, ValueError):
+                    pass
+            edges.append((importer, target, [item]))
+        if not fromlist:
+            edges.append((importer, target, []))
+    return real(name, globals, locals, fromlist, level)
+builtins.__import__ = recording
+import importlib
+importlib.import_module(sys.argv[1])
+print(json.dumps(edges))
+"""
+
+
+@pytest.mark.parametrize("module", ["rodimpact.rods", "rodimpact.lattice", "rodimpact.direct.simulate",
+                                    "rodimpact.direct.result", "rodimpact.inverse", "rodimpact.reference",
+                                    "rodimpact.signals", "rodimpact.plotting", "rodimpact.io.results",
+                                    "rodimpact.cli"])
+def test_importing_a_layer_in_a_fresh_interpreter_imports_downwards(module):
+    out = subprocess.run([sys.executable, "-c", RECORDER, module], capture_output=True, text=True, check=True,
+                         cwd=PACKAGE.parent)
+    edges = json.loads(out.stdout.strip().splitlines()[-1])
+    assert any(layer(a) == "direct" for a, _, _ in edges)           # the whole package was loaded (root __init__)
+    wrong = sorted({f"{a} imports {b} {names}" for a, b, names in edges if not allowed(a, b, tuple(names))})
+    assert not wrong, "\n".join(wrong)
