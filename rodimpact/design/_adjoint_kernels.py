@@ -12,8 +12,9 @@ step: checkpoints (stride C) or the full history of a segment (stride 1). Like `
 between its compiled calls, the run never passes through (N, v) between steps, so it is bit-identical to it.
 
 Reverse (:func:`reverse_numba`, :func:`reverse_numpy`): the transpose of one step, applied from the last step
-of a segment to its first with the branches (contact/separated, stick/slip, bit-rock loading/unloading/released)
-taken as in the forward run. ``seed[:, k]`` = dJ/d(output at step k) for the rows: 0 force at junction 0 (the
+of a segment to its first with the branches (contact/separated, stick/slip) taken as in the forward run and
+the bit-rock end differentiated through its pieces (its step map is smooth where the path crosses a piece
+boundary). ``seed[:, k]`` = dJ/d(output at step k) for the rows: 0 force at junction 0 (the
 impact face), 1 right end force, 2 right end outward velocity, 3 probe force, 4 probe velocity.
 """
 
@@ -22,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..direct._kernels import BITROCK, FIXED, FORCE, FREE, NONREFLECTING, SPRING, VELOCITY, boundaries
+from ..direct._kernels import BITROCK, FIXED, FORCE, FREE, NONREFLECTING, SPRING, boundaries, end_solve
 
 SEED_FACE, SEED_END_FORCE, SEED_END_VELOCITY, SEED_PROBE_FORCE, SEED_PROBE_VELOCITY = range(5)
 
@@ -161,19 +162,19 @@ def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions,
 # ---------------------------------------------------------------------------------------------- reverse
 @njit(inline="always", error_model="numpy", cache=True)
 def end_vjp(code, a, z, value, p0, p1, delta, delta_max, dt, ln, lw, ldelta_new, ldmax_new):
-    """Transpose of one outer end (:func:`~rodimpact.direct._kernels.end_solve`) in the branch it takes.
+    """Transpose of one outer end (:func:`~rodimpact.direct._kernels.end_solve`).
 
-    Forward: w = W(a, z, delta, delta_max) per branch, N = a + z w, delta' = delta + w dt, delta_max' =
-    max(delta_max, delta + w dt/2) (bit-rock only). Given dJ/dN, dJ/dw and the adjoints of delta', delta_max',
-    returns dJ/da, dJ/dz, dJ/ddelta, dJ/ddelta_max. The device parameters (p0, p1) are held constant.
+    Forward: w from the end relation, N = a + z w, delta' = delta + w dt, delta_max' = max(delta_max, delta')
+    (bit-rock only). Given dJ/dN, dJ/dw and the adjoints of delta', delta_max', returns dJ/da, dJ/dz,
+    dJ/ddelta, dJ/ddelta_max. The device parameters (p0, p1) are held constant.
     """
     h = 0.5 * dt
-    w, _, _ = _end_w(code, a, z, value, p0, p1, delta, delta_max, dt)
+    w, _, _ = end_solve(code, a, z, value, p0, p1, delta, delta_max, dt)
     lw = lw + ldelta_new * dt
     ldelta = ldelta_new
     ldmax = ldmax_new
-    if code == BITROCK and delta + w * h > delta_max:
-        lw += ldmax_new * h
+    if code == BITROCK and delta + w * dt > delta_max:
+        lw += ldmax_new * dt
         ldelta += ldmax_new
         ldmax = 0.0
     la = ln                                   # N = a + z w
@@ -190,66 +191,42 @@ def end_vjp(code, a, z, value, p0, p1, delta, delta_max, dt, ln, lw, ldelta_new,
         la -= lw / den
         ldelta -= lw * p0 / den
         lz -= lw * w / den
-    elif code == BITROCK:
-        k1 = p0
-        k2 = p1
-        branch = _bitrock_branch(a, z, k1, k2, delta, delta_max, h)
-        if branch == 0:                       # released: w = -a / z
-            la -= lw / z
-            lz -= lw * w / z
-        elif branch == 1:                     # unloading: w = -(a + k1 pm - k2 (pm - delta)) / (z + k2 h)
-            den = z + k2 * h
-            la -= lw / den
-            ldmax -= lw * (k1 - k2) / den
-            ldelta -= lw * k2 / den
-            lz -= lw * w / den
-        else:                                 # loading: w = -(a + k1 delta) / (z + k1 h)
-            den = z + k1 * h
-            la -= lw / den
-            ldelta -= lw * k1 / den
-            lz -= lw * w / den
+    elif code == BITROCK:                     # a + z w + Fbar(w, delta, delta_max) = 0
+        den, d_delta, d_dmax = _bitrock_partials(p0, p1, delta, delta_max, w * dt)
+        den = z + dt * den
+        la -= lw / den
+        ldelta -= lw * d_delta / den
+        ldmax -= lw * d_dmax / den
+        lz -= lw * w / den
     # FIXED and VELOCITY: w does not depend on the state of the rod
     return la, lz, ldelta, ldmax
 
 
 @njit(inline="always", error_model="numpy", cache=True)
-def _bitrock_branch(a, z, k1, k2, delta, delta_max, h):
-    """0 released, 1 unloading/reloading, 2 loading: the test of end_solve, with the same arithmetic."""
+def _bitrock_partials(k1, k2, delta, delta_max, s):
+    """Partial derivatives of the bit-rock mean force Fbar = (1/s) int_delta^{delta+s} F (end_solve) along the
+    step's path x = delta + s tau, 0 <= tau <= 1: dFbar/ds = int tau F' dtau, dFbar/ddelta = int F' dtau and
+    dFbar/ddelta_max = int dF/ddelta_max dtau = (k1 - k2) |tau in the unloading piece|. F' is k2 on the
+    unloading piece (r, delta_max), k1 beyond delta_max, 0 below r. Fbar is continuously differentiable in s
+    where the path crosses r or delta_max, so the pieces need not be frozen. At s = 0 the piece end_solve
+    takes (downwards) is used."""
     pm = delta_max
-    p_release = pm - k1 * pm / k2
-    w_release = (p_release - delta) / h
-    w_max = (pm - delta) / h
-    if a + z * w_release >= 0.0:
-        return 0
-    if a + z * w_max + k1 * pm >= 0.0:
-        return 1
-    return 2
-
-
-@njit(inline="always", error_model="numpy", cache=True)
-def _end_w(code, a, z, value, p0, p1, delta, delta_max, dt):
-    """Outward end velocity w of :func:`end_solve` (its first return value), recomputed for the transpose."""
-    h = 0.5 * dt
-    if code == FREE or code == FORCE:
-        w = (value - a) / z
-    elif code == FIXED:
-        w = 0.0
-    elif code == VELOCITY:
-        w = value
-    elif code == NONREFLECTING:
-        w = (p1 - a) / (z + p0)
-    elif code == SPRING:
-        w = -(a + p0 * delta) / (z + p1 + p0 * h)
+    r = pm - k1 * pm / k2
+    if s == 0.0:
+        lo2 = 0.0
+        hi2 = 1.0 if delta > r else 0.0
+        lo1 = 0.0
+        hi1 = 0.0
     else:
-        b = _bitrock_branch(a, z, p0, p1, delta, delta_max, h)
-        pm = delta_max
-        if b == 0:
-            w = -a / z
-        elif b == 1:
-            w = -(a + p0 * pm - p1 * (pm - delta)) / (z + p1 * h)
-        else:
-            w = -(a + p0 * delta) / (z + p0 * h)
-    return w, a + z * w, delta_max
+        t_r = min(max((r - delta) / s, 0.0), 1.0)      # path fractions at the breakpoints
+        t_m = min(max((pm - delta) / s, 0.0), 1.0)
+        lo2 = min(t_r, t_m)
+        hi2 = max(t_r, t_m)
+        lo1 = t_m if s > 0.0 else 0.0                   # the virgin piece lies beyond delta_max >= delta
+        hi1 = 1.0 if s > 0.0 else 0.0
+    d_s = 0.5 * (k2 * (hi2 * hi2 - lo2 * lo2) + k1 * (hi1 * hi1 - lo1 * lo1))
+    d_delta = k2 * (hi2 - lo2) + k1 * (hi1 - lo1)
+    return d_s, d_delta, (k1 - k2) * (hi2 - lo2)
 
 
 @njit(inline="always", error_model="numpy", cache=True)
@@ -268,7 +245,7 @@ def _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, es, les, 
     (lNL, lNR, lVL, lVR per rod; lnp = dJ/dN^+, lspF, lspV per loaded node) and the output seeds, add dJ/df,
     dJ/dg of the waves before the step into mf, mg and dJ/dZ into dZ; les (2, 2) holds the adjoint of the end
     state after the step on entry and before it on return. Branches: junction contact flags of the forward
-    run; friction and bit-rock branches recomputed with the forward arithmetic from the stored waves."""
+    run; friction branches and the bit-rock step recomputed with the forward arithmetic from the stored waves."""
     n_rods = rod_start.size - 1
     n_el = Z.size
     # ---- probes (outputs read from node values)

@@ -47,6 +47,18 @@ def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
 
     The element side gives N = a + z w (a = N + Z v at a left end, N - Z v at a right end; eqs. 3.16-3.19),
     the device gives a second relation. Returns (w, N, new delta_max).
+
+    The node force is constant during the step while the end moves at the constant w, so delta runs linearly
+    from delta to delta + w dt. A displacement-dependent device acts with the mean of its force over that
+    path: then the impulse N dt and the work N w dt are exactly those of the continuous law along the path.
+    For the linear spring this mean is the force at the midpoint delta + w dt/2. The bit-rock law F (force on
+    the bit, N = -F) is piecewise linear in delta given delta_max: 0 up to the release point
+    r = delta_max (1 - k1/k2), slope k2 up to delta_max, then virgin loading k1 delta. With s = w dt,
+    a + z s/dt + (1/s) int_delta^{delta+s} F = 0 is solved exactly: the pieces are walked in the direction of
+    motion until the one holding the root, where the equation (times s) is a quadratic in s. A load reversal
+    or release inside the step is thereby located exactly, and the scheme stays second order
+    (tests/direct/test_bitrock_order.py). delta_max is the largest end displacement at the ends of the steps,
+    i.e. the largest penetration of the (piecewise-linear) path.
     """
     h = 0.5 * dt
     if code == FREE or code == FORCE:
@@ -64,23 +76,47 @@ def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
     elif code == SPRING:
         w = -(a + p0 * delta) / (z + p1 + p0 * h)
         n = a + z * w
-    else:  # BITROCK: a + z w + F(delta + w h) = 0 with F piecewise linear and non-decreasing
+    else:  # BITROCK: a s + (z/dt) s^2 + int_delta^{delta+s} F = 0, s = w dt the path of the step
         k1 = p0
         k2 = p1
         pm = delta_max
-        p_release = pm - k1 * pm / k2
-        w_release = (p_release - delta) / h
-        w_max = (pm - delta) / h
-        if a + z * w_release >= 0.0:
-            w = -a / z
-        elif a + z * w_max + k1 * pm >= 0.0:
-            w = -(a + k1 * pm - k2 * (pm - delta)) / (z + k2 * h)
+        r = pm - k1 * pm / k2                   # release point of the unloading line
+        zd = z / dt
+        if delta <= r:                          # F at the start of the path
+            f = 0.0
+        elif delta < pm:
+            f = k1 * pm + k2 * (delta - pm)
         else:
-            w = -(a + k1 * delta) / (z + k1 * h)
+            f = k1 * delta
+        up = a + f < 0.0                        # the end moves into the rock
+        sign = 1.0 if up else -1.0
+        # pieces of F: 0 released (up to r), 1 unloading/reloading (r to delta_max, slope k2), 2 virgin (k1)
+        piece = (0 if delta < r else (1 if delta < pm else 2)) if up else (0 if delta <= r else 1)
+        sb = 0.0                                # start of the current piece relative to delta
+        jb = 0.0                                # integral of F from delta to the start of the piece
+        while (up and piece < 2) or (not up and piece > 0):
+            nxt = pm if up and piece == 1 else r   # end of the piece in the direction of motion
+            c = k2 if piece == 1 else 0.0
+            sn = nxt - delta
+            jn = jb + (f + 0.5 * c * (sn - sb)) * (sn - sb)
+            if a * sn + zd * sn * sn + jn >= 0.0:  # the root lies in this piece
+                break
+            sb = sn
+            jb = jn
+            f = k1 * pm if up and piece == 1 else 0.0    # F at the crossed breakpoint
+            piece += 1 if up else -1
+        c = k1 if piece == 2 else (k2 if piece == 1 else 0.0)
+        # in the piece: A u^2 + B u + C = 0 for u = s - sb, the root in the direction of motion (C <= 0)
+        qa = zd + 0.5 * c
+        qb = sign * (a + 2.0 * zd * sb + f)
+        qc = a * sb + zd * sb * sb + jb
+        root = np.sqrt(qb * qb - 4.0 * qa * qc)
+        u = -2.0 * qc / (qb + root) if qb > 0.0 else (root - qb) / (2.0 * qa)
+        w = (sb + sign * u) / dt
         n = a + z * w
-        p = delta + w * h
-        if p > delta_max:
-            delta_max = p
+        q = delta + w * dt
+        if q > pm:
+            delta_max = q
     return w, n, delta_max
 
 

@@ -110,6 +110,11 @@ class BitRockEnd(EndCondition):
     Loading along F = k1 delta (``loading_stiffness``, N/m) while the penetration delta exceeds its previous
     maximum; unloading and reloading along the line of slope k2 (``unloading_stiffness``, default k1) through
     the maximum point; the force F >= 0 pushes back on the bit (N = -F) and never pulls (no tension).
+
+    In a time step the bit moves at a constant velocity and the end force is the mean of F over that linear
+    path, so load reversal, release and return to virgin loading are located inside the step and the impulse
+    and work are those of the continuous law; the scheme is second order in dt (docs/method.md, "Bit-rock
+    model").
     """
 
     loading_stiffness: float

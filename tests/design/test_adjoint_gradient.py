@@ -88,10 +88,10 @@ def efficiency_objective(problem):
 
 def signature(fw):
     """The discrete history a finite difference must not cross: contact flags, and at the far end whether it
-    is loaded (force non-zero) and whether the penetration reaches a new maximum (bit-rock loading branch)."""
+    is loaded (force non-zero) and whether the step's path reaches a new largest penetration (bit-rock: the
+    end displacement at the end of the step exceeds every earlier one)."""
     scale = max(float(np.max(np.abs(fw.end_force))), 1e-300)
-    delta = np.concatenate([[0.0], np.cumsum(fw.end_velocity * DT)[:-1]])
-    pen = delta + 0.5 * DT * fw.end_velocity
+    pen = np.cumsum(fw.end_velocity * DT)
     new_max = pen > np.maximum.accumulate(np.concatenate([[0.0], pen[:-1]]))
     return np.concatenate([fw.contact, np.abs(fw.end_force) > 1e-9 * scale, new_max])
 
