@@ -88,9 +88,10 @@ def _rod_energies(N, v, Z, dt, rod_start, kin, pot, col):
         pot[q, col] = tp[s] + _pairwise(tp, s + 1, m - 1)
 
 
-@njit(inline="always", **_OPTS)
+@njit(**_OPTS)
 def _interior(f, g, f2, g2, R, j, stop):
-    """Plain interior nodes between elements jj and jj + 1 for j <= jj < stop (eq. 2.39/2.40 in waves)."""
+    """Plain interior nodes between elements jj and jj + 1 for j <= jj < stop (eq. 2.39/2.40 in waves).
+    Slices indexed from 0, in a function of its own (not inlined): so compiled, the loop vectorises."""
     fa = f[j:stop]
     gb = g[j + 1:stop + 1]
     r = R[j:stop]
@@ -100,6 +101,17 @@ def _interior(f, g, f2, g2, R, j, stop):
         sc = r[k] * (fa[k] - gb[k])
         go[k] = gb[k] + sc
         fo[k] = fa[k] + sc
+
+
+@njit(**_OPTS)
+def _through_nv(f, g, Z):
+    """The waves after a pass through N = f + g, v = (g - f) / Z and back, f = (N - Z v)/2, g = (N + Z v)/2:
+    what a restart of the single-run kernel from (N, v) does (it rounds)."""
+    for j in range(Z.size):
+        n = f[j] + g[j]
+        zv = Z[j] * ((g[j] - f[j]) / Z[j])
+        f[j] = 0.5 * (n - zv)
+        g[j] = 0.5 * (n + zv)
 
 
 @njit(**_OPTS)
@@ -188,11 +200,7 @@ def _design(d, n_steps, stride, sync, Zs, vel, z0, N0, v0, rod_start, touch, end
     for i in range(n_steps):
         if q < sync.size and sync[q] == i:
             # simulate() ends a compiled call here and starts the next from (N, v)
-            for j in range(n_el):
-                N[j] = f[j] + g[j]
-                v[j] = (g[j] - f[j]) / Z[j]
-            f = 0.5 * (N - Z * v)
-            g = 0.5 * (N + Z * v)
+            _through_nv(f, g, Z)
             q += 1
         for t in touch:
             N[t] = f[t] + g[t]
