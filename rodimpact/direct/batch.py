@@ -16,7 +16,7 @@ import math
 import time as _time
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Optional, Sequence
+from typing import Any, Iterator, Optional
 
 import numpy as np
 
@@ -220,14 +220,9 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
     """
     if not isinstance(system, System):
         raise TypeError(f"system: must be a System whose rod 0 is the striker slot, got {type(system).__name__}")
-    if system.n_rods < 2:
-        raise ValueError("system: needs the striker slot (rod 0) and at least one struck rod, got a single rod")
-    if any(ld.rod == 0 for ld in system.loads):
-        raise ValueError("system.loads: rod 0 is the striker slot, which is replaced per design; loads on it are "
-                         "not supported in a batch (use simulate)")
-    if system.initial[0] is not None:
-        raise ValueError("system.initial[0]: the striker slot starts at rest force-free with velocities[d]; give "
-                         "None for rod 0")
+    problem = slot_problem(system)
+    if problem:
+        raise ValueError(problem)
     if dt is None:
         raise ValueError("dt: required (s): the time step is the element travel time of every striker")
     dt = positive("dt", dt, "s")
@@ -236,16 +231,25 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
     if isinstance(max_phases, bool) or not isinstance(max_phases, (int, np.integer)) or max_phases < 1:
         raise ValueError(f"max_phases: must be an integer >= 1, got {max_phases!r}")
     zs, tail = _striker_impedances(strikers, dt, wave_speed)
+    vel = _velocities(velocities, zs.shape[0])
+    return run_designs(system, zs, tail, vel, dt, n_steps, stride, energy_every, contact_force, int(max_phases),
+                       _threads(threads), executor, chunk_size)
+
+
+def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarray, dt: float, n_steps: int,
+                stride: int, energy_every: Optional[int], contact_force: bool, max_phases: int, threads: int,
+                executor: Any, chunk_size: Optional[int]) -> BatchResult:
+    """:func:`simulate_batch` on checked input: striker impedances ``zs`` (designs x elements), the length of
+    each striker's last element ``tail`` (m) and the velocities ``vel``."""
     n_d, n_s = zs.shape
-    vel = _velocities(velocities, n_d)
     n_rec = -(-n_steps // stride) if contact_force else 0
-    per_design = 8.0 * (n_rec + 3 * n_s + 5 * system.n_rods + (3 * int(max_phases) + 6) * (system.n_rods - 1))
+    per_design = 8.0 * (n_rec + 3 * n_s + 5 * system.n_rods + (3 * max_phases + 6) * (system.n_rods - 1))
     fits_in_memory("strikers", per_design * n_d, f"the results of {n_d} designs",
                    "record the contact force with a larger record_every (or contact_force=False), or split the batch")
     wall0 = _time.perf_counter()
-    plan, end_par, gap_tol = _plan(system, zs, vel, tail, dt, n_steps, stride, n_rec, energy_every, int(max_phases))
+    plan, end_par, gap_tol = _plan(system, zs, vel, tail, dt, n_steps, stride, n_rec, energy_every, max_phases)
     if executor is None:
-        out = _run_chunk(plan, zs, vel, end_par, gap_tol, _threads(threads))
+        out = _run_chunk(plan, zs, vel, end_par, gap_tol, threads)
     else:
         out = _run_on(executor, plan, zs, vel, end_par, gap_tol, chunk_size)
     hist, kin, pot, work, fin_n, fin_v, low, low_step, peak, on, n_ph, ph_start, ph_stop, ph_peak = out
@@ -263,6 +267,19 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
 
 
 # ---------------------------------------------------------------------------------------------- helpers
+def slot_problem(system: System) -> str:
+    """Why rod 0 of ``system`` cannot be the striker slot of a batch ("" if it can)."""
+    if system.n_rods < 2:
+        return "system: needs the striker slot (rod 0) and at least one struck rod, got a single rod"
+    if any(ld.rod == 0 for ld in system.loads):
+        return ("system.loads: rod 0 is the striker slot, which is replaced per design; loads on it are not "
+                "supported in a batch (use simulate)")
+    if system.initial[0] is not None:
+        return ("system.initial[0]: the striker slot starts force-free with velocities[d]; give None for rod 0 "
+                "(use simulate for a non-uniform initial state)")
+    return ""
+
+
 @dataclass(frozen=True)
 class _Plan:
     """Everything the batched kernel shares between designs (numpy arrays only, so tasks pickle cheaply)."""
@@ -402,24 +419,30 @@ def default_chunk_size(n_designs: int) -> int:
     return int(min(4096, max(64, math.ceil(n_designs / 32))))
 
 
-def _run_on(executor: Any, plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray,
-            gap_tol: np.ndarray, chunk_size: Optional[int]) -> tuple[np.ndarray, ...]:
-    """Send batches of designs to ``executor`` (``submit``/``result`` of concurrent.futures or dask) and join
-    their outputs in design order."""
+def gather(executor: Any, fn: Any, arguments: list[tuple]) -> Iterator[Any]:
+    """Submit ``fn(*args)`` for every entry of ``arguments`` to ``executor`` (``submit``/``result`` of
+    concurrent.futures or dask.distributed) and yield the results in order; pending tasks are cancelled when
+    one fails."""
     if not callable(getattr(executor, "submit", None)):
         raise TypeError(f"executor: must be a concurrent.futures.Executor or a dask.distributed.Client, got "
                         f"{type(executor).__name__}")
+    futures = [executor.submit(fn, *args) for args in arguments]
+    try:
+        for fut in futures:
+            yield fut.result()
+    finally:
+        for fut in futures:
+            fut.cancel()
+
+
+def _run_on(executor: Any, plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray,
+            gap_tol: np.ndarray, chunk_size: Optional[int]) -> tuple[np.ndarray, ...]:
+    """Send batches of designs to ``executor`` and join their outputs in design order."""
     n_d = zs.shape[0]
     size = default_chunk_size(n_d) if chunk_size is None else chunk_size
     if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or size < 1:
         raise ValueError(f"chunk_size: must be an integer >= 1 (designs per task), got {chunk_size!r}")
     bounds = list(range(0, n_d, int(size))) + [n_d]
-    futures = [executor.submit(_run_chunk, plan, zs[a:b], vel[a:b], end_par[a:b], gap_tol[a:b])
-               for a, b in zip(bounds[:-1], bounds[1:])]
-    try:
-        parts = [fut.result() for fut in futures]
-    except BaseException:
-        for fut in futures:
-            fut.cancel()
-        raise
+    parts = list(gather(executor, _run_chunk, [(plan, zs[a:b], vel[a:b], end_par[a:b], gap_tol[a:b])
+                                               for a, b in zip(bounds[:-1], bounds[1:])]))
     return tuple(np.concatenate(arrays, axis=0) for arrays in zip(*parts))
