@@ -327,7 +327,7 @@ def _striker_impedances(strikers: Any, dt: float, wave_speed: Optional[float]) -
         raise ValueError(f"strikers: need at least one design and one element, got shape {zs.shape}")
     if (zs <= 0).any():
         d, j = np.argwhere(zs <= 0)[0]
-        raise ValueError(f"strikers: impedances must be > 0 N s/m, design {d} element {j} is {zs[d, j]!r}")
+        raise ValueError(f"strikers: impedances must be > 0 N s/m, design {d} element {j} is {float(zs[d, j])!r}")
     return np.ascontiguousarray(zs), np.full(zs.shape[0], c * dt)
 
 
