@@ -11,7 +11,7 @@ bit for bit (the batch reproduces ``simulate``'s arithmetic).
 
 from __future__ import annotations
 
-from typing import Any, Mapping, Optional, Sequence
+from typing import Any, Callable, Mapping, Optional, Sequence
 
 import numpy as np
 
@@ -71,17 +71,18 @@ def _same_struck(a: tuple, b: tuple) -> bool:
 Group = tuple[System, float, int, int, list[int], np.ndarray, np.ndarray, np.ndarray]
 
 
-def plan(specs: Sequence[Any]) -> tuple[list[Group], str]:
+def plan(specs: Sequence[Any], label: Callable[[int], str]) -> tuple[list[Group], str]:
     """Group the points into batches: per group (system of point 0, dt, steps, energy stride, point indices,
     striker impedances, last element lengths, striker velocities). Returns ``([], reason)`` if the grid cannot
-    be batched."""
+    be batched, naming the point by ``label(index)``."""
     points = []
     for i, spec in enumerate(specs):
         p = _point(spec)
         if isinstance(p, str):
-            return [], f"point {i}: {p}"
+            return [], f"at {label(i)}: {p}"
         if i and not _same_struck(points[0], p):
-            return [], f"point {i}: the struck system, time step or number of steps differs from point 0"
+            return [], (f"at {label(i)}: the struck system (rods 1, 2, ..., their velocities, junctions, ends, loads, "
+                        f"initial states), time step, number of steps or energy stride differs from {label(0)}")
         points.append(p)
     problem = slot_problem(points[0][0])
     if problem:
@@ -92,7 +93,7 @@ def plan(specs: Sequence[Any]) -> tuple[list[Group], str]:
         try:
             disc = discretize_rod(p[0].rods[0], dt, 0)
         except Exception as exc:
-            return [], f"point {i}: {type(exc).__name__}: {exc}"
+            return [], f"at {label(i)}: {type(exc).__name__}: {exc}"
         groups.setdefault(disc.n_elements, []).append((i, disc, p[0].velocities[0]))
     out = []
     for members in groups.values():

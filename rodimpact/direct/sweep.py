@@ -163,7 +163,7 @@ def _batched(build, names, values, points, shape, chosen, workers, executor, chu
         specs = [build(**{n: v[i] for n, v, i in zip(names, values, index)}) for index in points]
     except Exception as exc:        # the per-point path reports it, naming the point
         return None, f"build: {type(exc).__name__}: {exc}"
-    groups, reason = BS.plan(specs)
+    groups, reason = BS.plan(specs, lambda i: _show({n: v[k] for n, v, k in zip(names, values, points[i])}))
     if not groups:
         return None, reason
     try:
