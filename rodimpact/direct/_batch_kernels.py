@@ -14,6 +14,10 @@ elements, rod 0 = the striker slot of ``n_s`` elements), plus per design: ``Zs[d
 right), ``vel[d]`` striker velocity, ``end_par[d]`` (the left end's parameters may depend on the striker),
 ``gap_tol[d]`` (depends on the striker's last element length).
 
+``quiet``: the elements from ``quiet`` on start at rest and nothing but a wave from the left can move them
+(passive right end, no prescribed load there); a wave moves one element per step, so in step i only the plain
+interior nodes left of ``quiet + i + 1`` are updated: the others would give exactly +0 again.
+
 Outputs per design d (junction index r, rod index q):
 
 * ``hist[d, k]``: junction 0 force at step ``k * stride`` (N; not written if ``hist`` has no columns);
@@ -104,10 +108,10 @@ def _interior(f, g, f2, g2, R, j, stop):
 
 
 @njit(**_OPTS)
-def _through_nv(f, g, Z):
-    """The waves after a pass through N = f + g, v = (g - f) / Z and back, f = (N - Z v)/2, g = (N + Z v)/2:
-    what a restart of the single-run kernel from (N, v) does (it rounds)."""
-    for j in range(Z.size):
+def _through_nv(f, g, Z, n):
+    """The waves of elements 0 .. n-1 after a pass through N = f + g, v = (g - f) / Z and back,
+    f = (N - Z v)/2, g = (N + Z v)/2: what a restart of the single-run kernel from (N, v) does (it rounds)."""
+    for j in range(n):
         n = f[j] + g[j]
         zv = Z[j] * ((g[j] - f[j]) / Z[j])
         f[j] = 0.5 * (n - zv)
@@ -158,7 +162,7 @@ def _events(force, contact, r, n_steps, low, low_step, peak, steps_on, n_ph, ph_
 
 
 @njit(**_OPTS)
-def _design(d, n_steps, stride, sync, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+def _design(d, n_steps, stride, sync, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
             junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
     """One design (see the module docstring); ``out`` holds the output arrays."""
     hist, kin, pot, work, fin_N, fin_v, low, low_step, peak, steps_on, n_ph, ph_start, ph_stop, ph_peak = out
@@ -194,13 +198,15 @@ def _design(d, n_steps, stride, sync, Zs, vel, z0, N0, v0, rod_start, touch, end
     rod_NL, _, rod_NR, _ = rod_nodes
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
-    f2 = np.empty(n_el)
-    g2 = np.empty(n_el)
+    f2 = f.copy()
+    g2 = g.copy()
     q = 0
     for i in range(n_steps):
+        # elements >= lim are still exactly at rest (f = g = +0 in both buffers): their update gives +0 again
+        lim = min(quiet + i + 1, n_el)
         if q < sync.size and sync[q] == i:
             # simulate() ends a compiled call here and starts the next from (N, v)
-            _through_nv(f, g, Z)
+            _through_nv(f, g, Z, lim)
             q += 1
         for t in touch:
             N[t] = f[t] + g[t]
@@ -217,7 +223,8 @@ def _design(d, n_steps, stride, sync, Zs, vel, z0, N0, v0, rod_start, touch, end
                 stop = e - 1
                 if ptr < n_sp and sp_elem[ptr] < e - 1:
                     stop = sp_elem[ptr]
-                _interior(f, g, f2, g2, R, j, stop)
+                if j < lim:
+                    _interior(f, g, f2, g2, R, j, min(stop, lim))
                 if stop < e - 1:
                     n_plus = N[stop] + Z[stop] * (sp_V[ptr] - v[stop])
                     g2[stop] = n_plus - f[stop]
@@ -241,11 +248,11 @@ def _design(d, n_steps, stride, sync, Zs, vel, z0, N0, v0, rod_start, touch, end
                 ph_start[d, r], ph_stop[d, r], ph_peak[d, r])
 
 
-def _run(n_steps, stride, sync, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+def _run(n_steps, stride, sync, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
          junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
     """All designs (rows of ``Zs``); the outputs are written into the arrays of ``out`` in place."""
     for d in prange(Zs.shape[0]):
-        _design(d, n_steps, stride, sync, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+        _design(d, n_steps, stride, sync, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
                 junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
 
 

@@ -29,6 +29,7 @@ from ..rods.material import STEEL
 from ..rods.rod import Rod
 from ..rods.system import System
 from . import _batch_kernels as BK
+from . import _kernels as K
 from .result import JunctionEvents
 from .simulate import (_MAX_CHUNK, _energy_stride, _initial_state, _kernel_arrays, _record_stride, _step_count,
                        _wave_arrays)
@@ -290,6 +291,7 @@ class _Plan:
     max_phases: int
     dt: float
     sync: np.ndarray
+    quiet: int
     z0: np.ndarray
     N0: np.ndarray
     v0: np.ndarray
@@ -358,6 +360,22 @@ def _sync_steps(n_steps: int, energy_every: Optional[int]) -> np.ndarray:
     return np.array(sorted(k for k in events if 0 < k < n_steps), dtype=np.int64)
 
 
+def _quiet_from(n_s: int, N: np.ndarray, v: np.ndarray, arrays: dict, end_value: np.ndarray,
+                sp_force: np.ndarray) -> int:
+    """First element of the struck part that starts at rest and stays so until the wave from the impact
+    arrives: behind the last element with an initial force or velocity and the last node with a prescribed
+    load; none (the element count) if the right end can move the rods by itself."""
+    code, par = int(arrays["end_code"][1]), arrays["end_par"][1]
+    passive = (code in (K.FIXED, K.SPRING, K.BITROCK) or (code == K.NONREFLECTING and par[1] == 0.0)
+               or (code in (K.FREE, K.FORCE, K.VELOCITY) and not end_value[1].any()))
+    if not passive:
+        return int(N.size)
+    moving = np.flatnonzero((N[n_s:] != 0.0) | (v[n_s:] != 0.0))
+    quiet = n_s + (int(moving[-1]) + 1 if moving.size else 0)
+    forced = arrays["sp_elem"][sp_force.any(axis=1)] if sp_force.size else arrays["sp_elem"][:0]
+    return max(quiet, int(forced.max()) + 2 if forced.size else 0)
+
+
 def _plan(system: System, zs: np.ndarray, vel: np.ndarray, tail: np.ndarray, dt: float, n_steps: int, stride: int,
           n_rec: int, energy_every: Optional[int], max_phases: int) -> tuple[_Plan, np.ndarray, np.ndarray]:
     """The shared arrays (from the system with design 0 in the slot) and the per-design end parameters and
@@ -379,7 +397,8 @@ def _plan(system: System, zs: np.ndarray, vel: np.ndarray, tail: np.ndarray, dt:
     gap_tol = np.repeat(arrays["gap_tol"][None], zs.shape[0], axis=0)
     gap_tol[:, 0] = 1e-9 * np.minimum(tail, lattice.element_length[n_s])
     plan = _Plan(n_steps=n_steps, stride=stride, n_rec=n_rec, max_phases=max_phases, dt=dt,
-                 sync=_sync_steps(n_steps, energy_every), z0=lattice.impedance, N0=state["N"], v0=state["v"],
+                 sync=_sync_steps(n_steps, energy_every),
+                 quiet=_quiet_from(n_s, state["N"], state["v"], arrays, end_value, sp_force), z0=lattice.impedance, N0=state["N"], v0=state["v"],
                  rod_start=arrays["rod_start"], touch=touch, end_code=arrays["end_code"], end_value=end_value,
                  junction_code=arrays["junction_code"], gap0=arrays["gap"], sp_elem=arrays["sp_elem"],
                  sp_cap=arrays["sp_cap"], sp_force=sp_force)
@@ -397,7 +416,7 @@ def _run_chunk(plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray
            np.zeros((n_d, n_j)), np.zeros((n_d, n_j), dtype=np.int64), np.zeros((n_d, n_j), dtype=np.int64),
            np.full((n_d, n_j, m), -1, dtype=np.int64), np.full((n_d, n_j, m), -1, dtype=np.int64),
            np.zeros((n_d, n_j, m)))
-    args = (plan.n_steps, plan.stride, plan.sync, zs, vel, plan.z0, plan.N0, plan.v0, plan.rod_start, plan.touch,
+    args = (plan.n_steps, plan.stride, plan.sync, plan.quiet, zs, vel, plan.z0, plan.N0, plan.v0, plan.rod_start, plan.touch,
             plan.end_code, end_par, plan.end_value, plan.junction_code, plan.gap0, gap_tol, plan.sp_elem,
             plan.sp_cap, plan.sp_force, plan.dt, out)
     if threads <= 1 or n_d == 1:
