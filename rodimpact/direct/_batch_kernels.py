@@ -94,7 +94,7 @@ def _rod_energies(N, v, Z, dt, rod_start, kin, pot, col):
 
 @njit(**_OPTS)
 def _interior(f, g, f2, g2, R, j, stop):
-    """Plain interior nodes between elements jj and jj + 1 for j <= jj < stop (eq. 2.39/2.40 in waves).
+    """Plain interior nodes between elements jj and jj + 1 for j <= jj < stop (eqs. 2.39/2.40 in waves).
     Slices indexed from 0, in a function of its own (not inlined): so compiled, the loop vectorises."""
     fa = f[j:stop]
     gb = g[j + 1:stop + 1]
@@ -212,25 +212,19 @@ def _design(d, n_steps, stride, sync, quiet, Zs, vel, z0, N0, v0, rod_start, tou
             N[t] = f[t] + g[t]
             v[t] = (g[t] - f[t]) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
-        ptr = 0
+        # one sweep over all nodes as if plain, then the nodes that are not (rod ends, loaded nodes) overwritten
+        # from their node forces, g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b (as _kernels._run_waves)
+        _interior(f, g, f2, g2, R, 0, min(lim, n_el - 1))
         for r in range(n_rods):
             s = rod_start[r]
             e = rod_start[r + 1]
             f2[s] = rod_NL[r] - g[s]
             g2[e - 1] = rod_NR[r] - f[e - 1]
-            j = s
-            while j < e - 1:
-                stop = e - 1
-                if ptr < n_sp and sp_elem[ptr] < e - 1:
-                    stop = sp_elem[ptr]
-                if j < lim:
-                    _interior(f, g, f2, g2, R, j, min(stop, lim))
-                if stop < e - 1:
-                    n_plus = N[stop] + Z[stop] * (sp_V[ptr] - v[stop])
-                    g2[stop] = n_plus - f[stop]
-                    f2[stop + 1] = n_plus - sp_F[ptr] - g[stop + 1]
-                    ptr += 1
-                j = stop + 1
+        for p in range(n_sp):
+            a = sp_elem[p]
+            n_plus = N[a] + Z[a] * (sp_V[p] - v[a])
+            g2[a] = n_plus - f[a]
+            f2[a + 1] = n_plus - sp_F[p] - g[a + 1]
         f, f2 = f2, f
         g, g2 = g2, g
     for j in range(n_el):
