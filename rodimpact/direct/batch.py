@@ -21,7 +21,7 @@ from typing import Any, Iterator, Optional
 import numpy as np
 
 from .. import __version__
-from .._validate import finite_array, fits_in_memory, positive
+from .._validate import finite_array, finite_values, fits_in_memory, positive
 from ..lattice.discretize import discretize_rod
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import NonReflectingEnd
@@ -334,7 +334,7 @@ def _striker_impedances(strikers: Any, dt: float, wave_speed: Optional[float]) -
 
 
 def _velocities(velocities: Any, n_d: int) -> np.ndarray:
-    vel = finite_array("velocities", np.atleast_1d(np.asarray(velocities, dtype=object)).astype(float))
+    vel = finite_values("velocities", velocities, "impact velocities (m/s)", max_ndim=1).ravel()
     if vel.size == 1:
         return np.full(n_d, vel[0])
     if vel.size != n_d:

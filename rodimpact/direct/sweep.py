@@ -4,6 +4,11 @@ The compiled kernel releases the GIL, so the runs of a sweep advance on several 
 between processes (and ``build`` may be any function, also one defined in a notebook). Each run is exactly the
 run :func:`~rodimpact.simulate` would do alone; the sweep only collects scalar metrics of every result into an
 :class:`xarray.Dataset` whose dimensions are the grid parameters (``.to_netcdf()`` saves it).
+
+A grid that changes only the striker (rod 0) and its velocity runs as batches of
+:func:`~rodimpact.simulate_batch` designs instead (:mod:`rodimpact.direct._batched_sweep`), with the same
+numbers; ``executor=`` sends batches of designs (or chunks of points) to a ``concurrent.futures`` executor or a
+``dask.distributed`` client.
 """
 
 from __future__ import annotations
