@@ -70,6 +70,11 @@ def simulate_loop(system: ri.System, zs: np.ndarray, vel: np.ndarray, **kwargs) 
     return out
 
 
+def warm_up() -> None:
+    """Load the compiled batch kernel in a worker process."""
+    ri.simulate_batch(struck(), designs(2), 5.0, dt=DT, steps=10, threads=1)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small sizes; print, do not write the docs")
@@ -111,7 +116,7 @@ def main() -> None:
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as client:
         start = time.perf_counter() - t0
-        ri.simulate_batch(system, zs[:64], vel[:64], executor=client, chunk_size=32, **kw)   # load the caches
+        client.run(warm_up)                                # every worker loads the compiled kernels once
         t_dask = best_of(lambda: ri.simulate_batch(system, zs[:n_dask], vel[:n_dask], executor=client, **kw), 1)
     chunk = default_chunk_size(n_dask)
     print(f"in-process, 2 threads: {n_dask / t_in:.0f} impacts/s; Dask LocalCluster 2 processes, {chunk} designs "

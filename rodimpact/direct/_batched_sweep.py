@@ -71,6 +71,18 @@ def _same_struck(a: tuple, b: tuple) -> bool:
 Group = tuple[System, float, int, int, list[int], np.ndarray, np.ndarray, np.ndarray]
 
 
+def _key(rod: Any) -> Any:
+    """A hashable stand-in for equal rods (``None`` if the rod's parts cannot be hashed)."""
+    native = rod.native
+    key = (rod.segments, rod.material, None if native is None else
+           (native.impedance.tobytes(), native.dt, native.wave_speed))
+    try:
+        hash(key)
+    except TypeError:
+        return None
+    return key
+
+
 def plan(specs: Sequence[Any], label: Callable[[int], str]) -> tuple[list[Group], str]:
     """Group the points into batches: per group (system of point 0, dt, steps, energy stride, point indices,
     striker impedances, last element lengths, striker velocities). Returns ``([], reason)`` if the grid cannot
@@ -89,11 +101,15 @@ def plan(specs: Sequence[Any], label: Callable[[int], str]) -> tuple[list[Group]
         return [], problem
     system, dt, n_steps, every = points[0]
     groups: dict[int, list[tuple[int, Any]]] = {}
+    seen: dict[Any, Any] = {}          # striker -> discretisation, for grids that repeat a striker
     for i, p in enumerate(points):
+        key = _key(p[0].rods[0])
         try:
-            disc = discretize_rod(p[0].rods[0], dt, 0)
+            disc = seen[key] if key in seen else discretize_rod(p[0].rods[0], dt, 0)
         except Exception as exc:
             return [], f"at {label(i)}: {type(exc).__name__}: {exc}"
+        if key is not None:
+            seen[key] = disc
         groups.setdefault(disc.n_elements, []).append((i, disc, p[0].velocities[0]))
     out = []
     for members in groups.values():
