@@ -244,8 +244,11 @@ def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarra
     each striker's last element ``tail`` (m) and the velocities ``vel``."""
     n_d, n_s = zs.shape
     n_rec = -(-n_steps // stride) if contact_force else 0
-    per_design = 8.0 * (n_rec + 3 * n_s + 5 * system.n_rods + (3 * max_phases + 6) * (system.n_rods - 1))
-    fits_in_memory("strikers", per_design * n_d, f"the results of {n_d} designs",
+    n_j = system.n_rods - 1
+    per_design = 8.0 * (n_rec + 3 * n_s + 5 * system.n_rods + (3 * max_phases + 6) * n_j)
+    # each running design also keeps its per-step junction and end values (events are taken from them)
+    per_thread = 8.0 * (2 * n_j + 4) * n_steps
+    fits_in_memory("strikers", per_design * n_d + per_thread * max(threads, 1), f"the results of {n_d} designs",
                    "record the contact force with a larger record_every (or contact_force=False), or split the batch")
     wall0 = _time.perf_counter()
     plan, end_par, gap_tol = _plan(system, zs, vel, tail, dt, n_steps, stride, n_rec, energy_every, max_phases)

@@ -167,6 +167,8 @@ SYSTEM = ri.System([bar(1), bar(20)], [0.0, 0.0])
     ((SYSTEM, np.ones((2, 5)), [1.0, np.inf]), dict(steps=10, dt=DT), ValueError, "velocities: .*finite"),
     ((SYSTEM, np.ones((2, 5)), "fast"), dict(steps=10, dt=DT), TypeError, "velocities: impact velocities"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(dt=DT), ValueError, "duration: give exactly one"),
+    ((SYSTEM, np.ones((10**6, 5)), 1.0), dict(steps=10**6, dt=DT), ValueError,
+     r"strikers: the results of 1000000 designs would need .* GiB, more than this machine's memory"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, max_phases=0), ValueError, "max_phases: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, threads=0), ValueError, "threads: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, executor="pool"), TypeError, "executor: must be"),
