@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import _grouped, boundaries
+from ._kernels import boundaries
 
 _OPTS = dict(cache=True, error_model="numpy", nogil=True)
 
@@ -188,14 +188,17 @@ def _design(d, n_steps, stride, sync, quiet, Zs, vel, z0, N0, v0, rod_start, tou
     pr_N = np.empty((0, n_steps))
     no_int = np.empty(0, dtype=np.int64)
     acc = np.zeros(8)
-    ends, junctions, specials, probes, outputs, rod_nodes = _grouped(
-        end_code, end_par[d].copy(), np.zeros((2, 2)), end_value, junction_code, np.zeros(n_j, dtype=np.int64),
-        gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)), sp_elem, sp_cap, sp_force, np.zeros(n_sp), np.zeros(n_sp),
-        no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0), junction_N, junction_contact, end_N, end_V,
-        np.empty(n_rods), np.empty(n_rods), np.empty(n_rods), np.empty(n_rods))
-    sp_F = specials[3]
-    sp_V = specials[4]
-    rod_NL, _, rod_NR, _ = rod_nodes
+    sp_F = np.zeros(n_sp)
+    sp_V = np.zeros(n_sp)
+    rod_NL = np.empty(n_rods)
+    rod_NR = np.empty(n_rods)
+    # the argument groups of boundaries() (see _kernels._grouped)
+    ends = (end_code, end_par[d].copy(), np.zeros((2, 2)), end_value)
+    junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)))
+    specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
+    probes = (no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0))
+    outputs = (junction_N, junction_contact, end_N, end_V)
+    rod_nodes = (rod_NL, np.empty(n_rods), rod_NR, np.empty(n_rods))
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
     f2 = f.copy()

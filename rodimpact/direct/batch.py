@@ -211,7 +211,7 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
     executor:
         A ``concurrent.futures.Executor`` or a ``dask.distributed.Client``: batches of ``chunk_size`` designs
         are sent as tasks (each runs its designs in one thread), results are gathered in order. Default:
-        in-process. A process pool or cluster pickles the system, so its histories must be picklable.
+        in-process. Only numpy arrays travel to the workers (the system is turned into kernel arrays first).
     chunk_size:
         Designs per task with an ``executor`` (default: about 32 tasks, between 64 and 4096 designs each).
 
@@ -229,6 +229,8 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
     dt = positive("dt", dt, "s")
     n_steps = _step_count(duration, steps, dt)
     stride = _record_stride(record_every)
+    if not isinstance(contact_force, (bool, np.bool_)):
+        raise TypeError(f"contact_force: must be True or False, got {contact_force!r}")
     if isinstance(max_phases, bool) or not isinstance(max_phases, (int, np.integer)) or max_phases < 1:
         raise ValueError(f"max_phases: must be an integer >= 1, got {max_phases!r}")
     zs, tail = _striker_impedances(strikers, dt, wave_speed)

@@ -53,7 +53,7 @@ def bar(n):
 def test_random_strikers_equal_simulate(right):
     zs = random_strikers(6, 30, seed=1)
     velocities = np.linspace(2.0, 9.0, 6)
-    system = ri.System([bar(1), bar(120)], [0.0, 0.0], right=right)
+    system = ri.System([bar(1), bar(300)], [0.0, 0.0], right=right)
     res = ri.simulate_batch(system, zs, velocities, dt=DT, steps=400, threads=2)
     phases = []
     for d in range(6):
@@ -75,6 +75,22 @@ def test_struck_rod_moving_at_first_or_forced_far_end(right, moving):
     for d in range(3):
         assert_design_equals_run(res, d, alone(system, ri.Rod.from_impedance(zs[d], DT), [3.0, 4.0, 5.0][d],
                                                steps=350))
+
+
+def test_rod_energies_are_summed_as_numpy_reduceat():
+    """simulate() sums the element energies with np.add.reduceat; the batch kernel does the same additions in
+    the same order (short rods, 8-fold blocks, the recursive halving above 128 elements)."""
+    from rodimpact.direct._batch_kernels import _rod_energies
+
+    rng = np.random.default_rng(5)
+    sizes = np.array([1, 2, 7, 8, 9, 16, 17, 127, 128, 129, 130, 255, 256, 257, 600, 1031])
+    rod_start = np.concatenate([[0], np.cumsum(sizes)])
+    N, v = rng.normal(0.0, 1e5, (2, rod_start[-1]))
+    Z = rng.uniform(1e4, 1e5, rod_start[-1])
+    kin, pot = np.zeros((sizes.size, 2)), np.zeros((sizes.size, 2))
+    _rod_energies(N, v, Z, DT, rod_start, kin, pot, 1)
+    assert np.array_equal(kin[:, 1], np.add.reduceat(0.5 * DT * Z * v * v, rod_start[:-1]))
+    assert np.array_equal(pot[:, 1], np.add.reduceat(0.5 * DT * N * N / Z, rod_start[:-1]))
 
 
 def test_stepped_striker_separates_and_recontacts_on_a_loaded_chain():
@@ -170,6 +186,7 @@ SYSTEM = ri.System([bar(1), bar(20)], [0.0, 0.0])
     ((SYSTEM, np.ones((10**6, 5)), 1.0), dict(steps=10**6, dt=DT), ValueError,
      r"strikers: the results of 1000000 designs would need .* GiB, more than this machine's memory"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, max_phases=0), ValueError, "max_phases: must be"),
+    ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, contact_force="yes"), TypeError, "contact_force: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, threads=0), ValueError, "threads: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, executor="pool"), TypeError, "executor: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, executor=ThreadPoolExecutor(1), chunk_size=0),
