@@ -11,7 +11,7 @@ bit for bit (the batch reproduces ``simulate``'s arithmetic).
 
 from __future__ import annotations
 
-from typing import Any, Callable, Mapping, Optional, Sequence
+from typing import Any, Callable, Iterable, Mapping, Optional, Sequence
 
 import numpy as np
 
@@ -83,7 +83,7 @@ def _key(rod: Any) -> Any:
     return key
 
 
-def plan(specs: Sequence[Any], label: Callable[[int], str]) -> tuple[list[Group], str]:
+def plan(specs: Iterable[Any], label: Callable[[int], str]) -> tuple[list[Group], str]:
     """Group the points into batches: per group (system of point 0, dt, steps, energy stride, point indices,
     striker impedances, last element lengths, striker velocities). Returns ``([], reason)`` if the grid cannot
     be batched, naming the point by ``label(index)``."""

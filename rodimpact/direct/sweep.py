@@ -164,11 +164,12 @@ def _batched(build, names, values, points, shape, chosen, workers, executor, chu
 
     if any(DEFAULT_METRICS.get(name, (None,))[0] is not f for name, f in chosen.items()):
         return None, "metrics: only the default metrics are computed from a batch"
+    # built lazily: planning stops at the first point that cannot be batched (the per-point path builds again)
+    specs = (build(**{n: v[i] for n, v, i in zip(names, values, index)}) for index in points)
     try:
-        specs = [build(**{n: v[i] for n, v, i in zip(names, values, index)}) for index in points]
+        groups, reason = BS.plan(specs, lambda i: _show({n: v[k] for n, v, k in zip(names, values, points[i])}))
     except Exception as exc:        # the per-point path reports it, naming the point
         return None, f"build: {type(exc).__name__}: {exc}"
-    groups, reason = BS.plan(specs, lambda i: _show({n: v[k] for n, v, k in zip(names, values, points[i])}))
     if not groups:
         return None, reason
     try:

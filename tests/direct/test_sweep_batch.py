@@ -97,3 +97,14 @@ def test_dask_local_cluster_of_two_processes_gives_the_in_process_dataset():
         on_dask = ri.sweep(small, grid, executor=client, chunk_size=50)
     assert on_dask.attrs["executor"] == "Client"
     same(on_dask, in_process)
+
+
+def test_finding_out_that_a_grid_cannot_be_batched_builds_one_point_only():
+    calls = []
+
+    def with_probe(length):
+        calls.append(length)
+        return {**stepped(length, 3.0), "probes": [ri.Probe("p", 1, 0.1)]}
+
+    ds = ri.sweep(with_probe, {"length": [0.1, 0.16, 0.2]})
+    assert ds.attrs["runner"] == "simulate" and sorted(calls) == [0.1, 0.1, 0.16, 0.2]
