@@ -88,8 +88,8 @@ def test_process_pool_runs_batches_of_designs():
 
 def small(length, velocity):
     """10-28 + 40 elements, 150 steps: a thousand of these are quick."""
-    striker = ri.Rod([ri.Cylinder(length / 2, 0.05), ri.Cylinder(length / 2, 0.03)])
-    return dict(rods=[striker, ri.Rod([ri.Cylinder(0.08, 0.04)])], velocities=[velocity, 0.0], steps=150,
+    striker = ri.Rod([ri.Cylinder(length / 2, 0.012), ri.Cylinder(length / 2, 0.008)])
+    return dict(rods=[striker, ri.Rod([ri.Cylinder(0.08, 0.01)])], velocities=[velocity, 0.0], steps=150,
                 dt=DT, right="nonreflecting")
 
 
