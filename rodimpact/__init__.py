@@ -21,6 +21,7 @@ from .direct.result import EnergyHistory, FieldSnapshots, JunctionEvents, Probe,
 from .direct.recording import Recording
 from .direct.simulate import simulate
 from .direct.sweep import sweep
+from .direct.batch import BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
                       impedance_to_shape, synthesize, transform_force)
@@ -47,7 +48,8 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
-    "simulate", "Recording", "sweep", "SimulationResult", "Probe", "ProbeHistory", "FieldSnapshots", "EnergyHistory",
+    "simulate", "Recording", "sweep", "simulate_batch", "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
+    "FieldSnapshots", "EnergyHistory",
     "JunctionEvents",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",

@@ -22,7 +22,8 @@ MAX_SNAPSHOTS = 100_000
 DEFAULT_ENERGY_SAMPLES = 256
 
 
-def _stride(name: str, every: Any) -> int:
+def step_stride(name: str, every: Any) -> int:
+    """``every`` as a stride in steps (an integer >= 1), or a ValueError naming ``name``."""
     if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
         raise ValueError(f"{name}: must be an integer number of steps >= 1, got {every!r}")
     return int(every)
@@ -74,10 +75,10 @@ class Recording:
                 raise ValueError(f"snapshot_times: must lie in [0, duration of the run] s, got {t.min():.6g} s")
             object.__setattr__(self, "snapshot_times", tuple(float(x) for x in t))
         if self.snapshot_every is not None:
-            object.__setattr__(self, "snapshot_every", _stride("snapshot_every", self.snapshot_every))
+            object.__setattr__(self, "snapshot_every", step_stride("snapshot_every", self.snapshot_every))
         if self.energy_every is not None:
-            object.__setattr__(self, "energy_every", _stride("energy_every", self.energy_every))
-        object.__setattr__(self, "record_every", _stride("record_every", self.record_every))
+            object.__setattr__(self, "energy_every", step_stride("energy_every", self.energy_every))
+        object.__setattr__(self, "record_every", step_stride("record_every", self.record_every))
 
     def snapshot_steps(self, n_steps: int, dt: float) -> np.ndarray:
         """Sorted step indices of the snapshots of a run of ``n_steps`` steps of ``dt``."""

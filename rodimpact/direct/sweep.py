@@ -4,6 +4,11 @@ The compiled kernel releases the GIL, so the runs of a sweep advance on several 
 between processes (and ``build`` may be any function, also one defined in a notebook). Each run is exactly the
 run :func:`~rodimpact.simulate` would do alone; the sweep only collects scalar metrics of every result into an
 :class:`xarray.Dataset` whose dimensions are the grid parameters (``.to_netcdf()`` saves it).
+
+A grid that changes only the striker (rod 0) and its velocity runs as batches of
+:func:`~rodimpact.simulate_batch` designs instead (:mod:`rodimpact.direct._batched_sweep`), with the same
+numbers; ``executor=`` sends batches of designs (or chunks of points) to a ``concurrent.futures`` executor or a
+``dask.distributed`` client.
 """
 
 from __future__ import annotations
@@ -59,7 +64,8 @@ DEFAULT_METRICS: dict[str, tuple[Metric, str]] = {
 
 def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
           metrics: Optional[Mapping[str, Metric]] = None, *, workers: Optional[int] = None,
-          progress: Optional[bool] = None, errors: str = "raise"):
+          progress: Optional[bool] = None, errors: str = "raise", batch: Optional[bool] = None,
+          executor: Any = None, chunk_size: Optional[int] = None):
     """Simulate every combination of the ``grid`` values and collect scalar ``metrics`` of each result.
 
     Parameters
@@ -76,12 +82,25 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
         junction 0, the energy transfer (:attr:`~rodimpact.SimulationResult.efficiency`; NaN when rod 0 starts
         without energy) and the striker's final rigid-body velocity.
     workers:
-        Parallel threads (default: the number of CPUs, at most the number of points).
+        Parallel threads (default: the number of CPUs, at most the number of points); for a batched sweep, the
+        numba threads of :func:`~rodimpact.simulate_batch`.
     progress:
         Show a progress bar over the points (default: on a terminal for more than 10 points).
     errors:
         ``"raise"`` (default): the first failing point stops the sweep with an error naming it. ``"nan"``: a
         failing point gets NaN metrics and is listed (with its error) in the ``failures`` attribute (JSON).
+    batch:
+        ``None`` (default): when every point differs only in rod 0 (the striker) and its velocity and the
+        metrics are default metrics, run the points as batches of :func:`~rodimpact.simulate_batch` designs
+        (same numbers, much faster); otherwise one :func:`~rodimpact.simulate` run per point. ``False``: always
+        per point. ``True``: batch or raise a ValueError saying why the grid cannot be batched.
+    executor:
+        A ``concurrent.futures.Executor`` or a ``dask.distributed.Client`` to run on instead of in-process
+        threads: batches of ``chunk_size`` designs (or points, for per-point runs) are sent as tasks. A process
+        pool or cluster pickles ``build`` and the metrics (dask's cloudpickle also takes lambdas and notebook
+        functions; ``ProcessPoolExecutor`` needs module-level functions).
+    chunk_size:
+        Designs (or points) per executor task; default about 32 tasks, 64-4096 designs each.
 
     Returns
     -------
@@ -105,35 +124,27 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
         workers = os.cpu_count() or 1
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers: must be an integer >= 1, got {workers!r}")
-    out = {name: np.full(shape, np.nan) for name in chosen}
+    if batch not in (None, True, False):
+        raise ValueError(f"batch: must be None (automatic), True or False, got {batch!r}")
     failures: list[dict[str, Any]] = []
     wall0 = _time.perf_counter()
-
-    def run(index: tuple[int, ...]) -> dict[str, float]:
-        point = {n: v[i] for n, v, i in zip(names, values, index)}
+    out, reason = (None, "batch=False") if batch is False else _batched(
+        build, names, values, points, shape, chosen, int(workers), executor, chunk_size, strict=bool(batch))
+    if out is None and batch:
+        raise ValueError(f"batch: this sweep cannot run as a batch of designs: {reason}")
+    runner = "simulate_batch" if out is not None else "simulate"
+    if out is None:
+        out = {name: np.full(shape, np.nan) for name in chosen}
+        bar = _progress_bar(progress, len(points))
         try:
-            result = _simulate(build(**point))
-            return {name: _scalar(name, f(result)) for name, f in chosen.items()}
-        except Exception as exc:
-            message = f"sweep at {_show(point)}: {type(exc).__name__}: {exc}"
-            if errors == "raise":
-                raise ValueError(message) from exc
-            failures.append({"point": point, "error": message})
-            return {}
-
-    bar = _progress_bar(progress, len(points))
-    with ThreadPoolExecutor(max_workers=min(int(workers), len(points))) as pool:
-        futures = {pool.submit(run, index): index for index in points}
-        try:
-            for fut in as_completed(futures):
-                for name, value in fut.result().items():
-                    out[name][futures[fut]] = value
+            for done in _per_point(build, names, values, points, chosen, errors, int(workers), executor, chunk_size):
+                for index, metrics_at, failure in done:
+                    for name, value in metrics_at.items():
+                        out[name][index] = value
+                    if failure is not None:
+                        failures.append(failure)
                 if bar is not None:
-                    bar.update(1)
-        except BaseException:
-            for fut in futures:
-                fut.cancel()
-            raise
+                    bar.update(len(done))
         finally:
             if bar is not None:
                 bar.close()
@@ -142,7 +153,74 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
     return xr.Dataset(data, coords=coords, attrs={
         "title": "rodimpact parameter sweep", "rodimpact_version": __version__, "points": len(points),
         "workers": int(min(workers, len(points))), "wall_time_s": _time.perf_counter() - wall0,
-        "failures": json.dumps(failures, default=str)})
+        "failures": json.dumps(failures, default=str), "runner": runner,
+        "executor": "in-process" if executor is None else type(executor).__name__})
+
+
+def _batched(build, names, values, points, shape, chosen, workers, executor, chunk_size, strict: bool):
+    """The metrics as batches of simulate_batch designs, or ``(None, reason)`` when the grid does not qualify
+    (see :mod:`rodimpact.direct._batched_sweep`)."""
+    from . import _batched_sweep as BS
+
+    if any(DEFAULT_METRICS.get(name, (None,))[0] is not f for name, f in chosen.items()):
+        return None, "metrics: only the default metrics are computed from a batch"
+    # built lazily: planning stops at the first point that cannot be batched (the per-point path builds again)
+    specs = (build(**{n: v[i] for n, v, i in zip(names, values, index)}) for index in points)
+    try:
+        groups, reason = BS.plan(specs, lambda i: _show({n: v[k] for n, v, k in zip(names, values, points[i])}))
+    except Exception as exc:        # the per-point path reports it, naming the point
+        return None, f"build: {type(exc).__name__}: {exc}"
+    if not groups:
+        return None, reason
+    try:
+        flat = BS.run(groups, list(chosen), workers, executor, chunk_size)
+    except Exception as exc:
+        if strict:
+            raise
+        return None, f"{type(exc).__name__}: {exc}"
+    return {name: flat[name].reshape(shape) for name in chosen}, ""
+
+
+def _run_points(build, names, values, indices, chosen, errors) -> list[tuple[tuple[int, ...], dict, Optional[dict]]]:
+    """One simulate() run per grid point of ``indices``: (index, metrics, failure or None) each."""
+    done = []
+    for index in indices:
+        point = {n: v[i] for n, v, i in zip(names, values, index)}
+        try:
+            result = _simulate(build(**point))
+            done.append((index, {name: _scalar(name, f(result)) for name, f in chosen.items()}, None))
+        except Exception as exc:
+            message = f"sweep at {_show(point)}: {type(exc).__name__}: {exc}"
+            if errors == "raise":
+                raise ValueError(message) from exc
+            done.append((index, {}, {"point": point, "error": message}))
+    return done
+
+
+def _per_point(build, names, values, points, chosen, errors, workers, executor, chunk_size):
+    """Yield the finished lists of :func:`_run_points`: one point per task in threads of this process, or chunks
+    of points as tasks of ``executor``."""
+    from .batch import default_chunk_size, gather
+
+    if executor is None:
+        with ThreadPoolExecutor(max_workers=min(workers, len(points))) as pool:
+            futures = [pool.submit(_run_points, build, names, values, [index], chosen, errors) for index in points]
+            try:
+                for fut in as_completed(futures):
+                    yield fut.result()
+            finally:
+                for fut in futures:
+                    fut.cancel()
+        return
+    size = default_chunk_size(len(points)) if chunk_size is None else chunk_size
+    yield from gather(executor, _run_points, [(build, names, values, part, chosen, errors)
+                                              for part in _chunks(points, size)])
+
+
+def _chunks(items: list, size: Any) -> list[list]:
+    if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or size < 1:
+        raise ValueError(f"chunk_size: must be an integer >= 1 (points per task), got {size!r}")
+    return [items[a:a + int(size)] for a in range(0, len(items), int(size))]
 
 
 def _grid(grid: Any) -> tuple[list[str], list[list[Any]]]:

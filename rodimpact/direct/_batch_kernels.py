@@ -1,0 +1,242 @@
+"""Batched kernel: many strikers against one struck system, one compiled call, parallel over designs.
+
+Each design is the run :func:`rodimpact.direct._kernels.run_numba` would do for the system whose rod 0 is that
+design's striker: the same travelling-wave update (f = right-going, g = left-going force wave; N = f + g,
+v = (g - f) / Z, thesis Sec. 2.3.2), the same :func:`~rodimpact.direct._kernels.boundaries` (inlined) for ends,
+junctions and loaded nodes; like ``simulate``, the waves persist for the whole run. Every floating-point operation is the one the single-run
+kernel does in the same order, so each design's results equal :func:`rodimpact.simulate`'s bit for bit.
+The interior update writes into a second pair of wave arrays (double buffering) instead of updating in place:
+the loop carries no dependence, so the compiler vectorises it.
+
+Array layout: that of :mod:`rodimpact.direct._kernels` for the template system (``z``, ``N0``, ``v0`` of all
+elements, rod 0 = the striker slot of ``n_s`` elements), plus per design: ``Zs[d]`` striker impedances (left to
+right), ``vel[d]`` striker velocity, ``end_par[d]`` (the left end's parameters may depend on the striker),
+``gap_tol[d]`` (depends on the striker's last element length).
+
+``quiet``: the elements from ``quiet`` on start at rest and nothing but a wave from the left can move them
+(passive right end, no prescribed load there); a wave moves one element per step, so in step i only the plain
+interior nodes left of ``quiet + i + 1`` are updated: the others would give exactly +0 again.
+
+Outputs per design d (junction index r, rod index q):
+
+* ``hist[d, k]``: junction 0 force at step ``k * stride`` (N; not written if ``hist`` has no columns);
+* ``kin[d, q, 0/1]``, ``pot[d, q, 0/1]``: kinetic 1/2 Z dt v^2 and strain 1/2 N^2 dt / Z energy of rod q at
+  the start and the end (thesis eq. 3.25), summed in the order of ``numpy.add.reduceat`` (first element, then
+  numpy's pairwise sum of the rest) as :func:`rodimpact.simulate` does;
+* ``work[d, 0:4]``: work done by the left end, the right end, the loads and the friction (``acc[0:4]``), J;
+* ``fin_N[d]``, ``fin_v[d]``: the striker's element forces and velocities at the end;
+* junction events (every step, whatever the stride): ``low[d, r]`` most compressive force and ``low_step``
+  its first step, ``peak[d, r]`` largest |force|, ``steps_on[d, r]`` steps in contact, ``n_ph[d, r]`` contact
+  phases, of which the first ``ph_start.shape[2]`` are kept as steps ``[ph_start, ph_stop)`` with their
+  largest |force| ``ph_peak``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+from ._kernels import boundaries
+
+_OPTS = dict(cache=True, error_model="numpy", nogil=True)
+
+
+@njit(**_OPTS)
+def _pairwise(x, a, n):
+    """numpy's pairwise summation of ``x[a:a + n]`` (blocks of 8 partial sums up to 128 values, halves above)."""
+    if n < 8:
+        res = -0.0
+        for i in range(a, a + n):
+            res += x[i]
+        return res
+    if n <= 128:
+        r0, r1, r2, r3 = x[a], x[a + 1], x[a + 2], x[a + 3]
+        r4, r5, r6, r7 = x[a + 4], x[a + 5], x[a + 6], x[a + 7]
+        i = 8
+        while i < n - n % 8:
+            b = a + i
+            r0 += x[b]
+            r1 += x[b + 1]
+            r2 += x[b + 2]
+            r3 += x[b + 3]
+            r4 += x[b + 4]
+            r5 += x[b + 5]
+            r6 += x[b + 6]
+            r7 += x[b + 7]
+            i += 8
+        res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+        while i < n:
+            res += x[a + i]
+            i += 1
+        return res
+    n2 = n // 2
+    n2 -= n2 % 8
+    return _pairwise(x, a, n2) + _pairwise(x, a + n2, n - n2)
+
+
+@njit(**_OPTS)
+def _rod_energies(N, v, Z, dt, rod_start, kin, pot, col):
+    """Kinetic and strain energy of each rod into ``kin[:, col]``, ``pot[:, col]`` (thesis eq. 3.25), with the
+    arithmetic of ``np.add.reduceat(0.5 * dt * Z * v * v, rod_start[:-1])``."""
+    n = N.size
+    tk = np.empty(n)
+    tp = np.empty(n)
+    for j in range(n):
+        tk[j] = 0.5 * dt * Z[j] * v[j] * v[j]
+        tp[j] = 0.5 * dt * N[j] * N[j] / Z[j]
+    for q in range(rod_start.size - 1):
+        s = rod_start[q]
+        m = rod_start[q + 1] - s
+        kin[q, col] = tk[s] + _pairwise(tk, s + 1, m - 1)
+        pot[q, col] = tp[s] + _pairwise(tp, s + 1, m - 1)
+
+
+@njit(**_OPTS)
+def _interior(f, g, f2, g2, R, j, stop):
+    """Plain interior nodes between elements jj and jj + 1 for j <= jj < stop (eqs. 2.39/2.40 in waves).
+    Slices indexed from 0, in a function of its own (not inlined): so compiled, the loop vectorises."""
+    fa = f[j:stop]
+    gb = g[j + 1:stop + 1]
+    r = R[j:stop]
+    go = g2[j:stop]
+    fo = f2[j + 1:stop + 1]
+    for k in range(stop - j):
+        sc = r[k] * (fa[k] - gb[k])
+        go[k] = gb[k] + sc
+        fo[k] = fa[k] + sc
+
+
+@njit(**_OPTS)
+def _events(force, contact, r, n_steps, low, low_step, peak, steps_on, n_ph, ph_start, ph_stop, ph_peak):
+    """Contact phases and extremes of junction ``r`` from its per-step force and contact flag (as
+    :class:`rodimpact.direct.result.EventTracker`)."""
+    lo = np.inf
+    lo_k = 0
+    top = 0.0
+    on = 0
+    count = 0
+    cap = ph_start.size
+    start = -1
+    pk = 0.0
+    for k in range(n_steps):
+        fk = force[r, k]
+        if fk < lo:
+            lo = fk
+            lo_k = k
+        a = abs(fk)
+        if a > top:
+            top = a
+        if contact[r, k] > 0.5:
+            on += 1
+            if start < 0:
+                start = k
+                pk = a
+            elif a > pk:
+                pk = a
+        elif start >= 0:
+            if count < cap:
+                ph_start[count], ph_stop[count], ph_peak[count] = start, k, pk
+            count += 1
+            start = -1
+    if start >= 0:
+        if count < cap:
+            ph_start[count], ph_stop[count], ph_peak[count] = start, n_steps, pk
+        count += 1
+    low[r] = lo
+    low_step[r] = lo_k
+    peak[r] = top
+    steps_on[r] = on
+    n_ph[r] = count
+
+
+@njit(**_OPTS)
+def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+            junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+    """One design (see the module docstring); ``out`` holds the output arrays."""
+    hist, kin, pot, work, fin_N, fin_v, low, low_step, peak, steps_on, n_ph, ph_start, ph_stop, ph_peak = out
+    n_s = Zs.shape[1]
+    n_el = z0.size
+    n_rods = rod_start.size - 1
+    n_j = n_rods - 1
+    n_sp = sp_elem.size
+    Z = z0.copy()
+    N = N0.copy()
+    v = v0.copy()
+    for j in range(n_s):
+        Z[j] = Zs[d, j]
+        N[j] = 0.0
+        v[j] = vel[d]
+    R = (Z[1:] - Z[:-1]) / (Z[1:] + Z[:-1])
+    _rod_energies(N, v, Z, dt, rod_start, kin[d], pot[d], 0)
+    # per-design state and per-step outputs of boundaries() (no probes in a batch)
+    junction_N = np.empty((n_j, n_steps))
+    junction_contact = np.empty((n_j, n_steps))
+    end_N = np.empty((2, n_steps))
+    end_V = np.empty((2, n_steps))
+    pr_N = np.empty((0, n_steps))
+    no_int = np.empty(0, dtype=np.int64)
+    acc = np.zeros(8)
+    sp_F = np.zeros(n_sp)
+    sp_V = np.zeros(n_sp)
+    rod_NL = np.empty(n_rods)
+    rod_NR = np.empty(n_rods)
+    # the argument groups of boundaries() (see _kernels._grouped)
+    ends = (end_code, end_par[d].copy(), np.zeros((2, 2)), end_value)
+    junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)))
+    specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
+    probes = (no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0))
+    outputs = (junction_N, junction_contact, end_N, end_V)
+    rod_nodes = (rod_NL, np.empty(n_rods), rod_NR, np.empty(n_rods))
+    f = 0.5 * (N - Z * v)
+    g = 0.5 * (N + Z * v)
+    f2 = f.copy()
+    g2 = g.copy()
+    for i in range(n_steps):
+        # elements >= lim are still exactly at rest (f = g = +0 in both buffers): their update gives +0 again
+        lim = min(quiet + i + 1, n_el)
+        for t in touch:
+            N[t] = f[t] + g[t]
+            v[t] = (g[t] - f[t]) / Z[t]
+        boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        # one sweep over all nodes as if plain, then the nodes that are not (rod ends, loaded nodes) overwritten
+        # from their node forces, g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b (as _kernels._run_waves)
+        _interior(f, g, f2, g2, R, 0, min(lim, n_el - 1))
+        for r in range(n_rods):
+            s = rod_start[r]
+            e = rod_start[r + 1]
+            f2[s] = rod_NL[r] - g[s]
+            g2[e - 1] = rod_NR[r] - f[e - 1]
+        for p in range(n_sp):
+            a = sp_elem[p]
+            n_plus = N[a] + Z[a] * (sp_V[p] - v[a])
+            g2[a] = n_plus - f[a]
+            f2[a + 1] = n_plus - sp_F[p] - g[a + 1]
+        f, f2 = f2, f
+        g, g2 = g2, g
+    for j in range(n_el):
+        N[j] = f[j] + g[j]
+        v[j] = (g[j] - f[j]) / Z[j]
+    _rod_energies(N, v, Z, dt, rod_start, kin[d], pot[d], 1)
+    for k in range(4):
+        work[d, k] = acc[k]
+    fin_N[d] = N[:n_s]
+    fin_v[d] = v[:n_s]
+    for k in range(hist.shape[1]):
+        hist[d, k] = junction_N[0, k * stride]
+    for r in range(n_j):
+        _events(junction_N, junction_contact, r, n_steps, low[d], low_step[d], peak[d], steps_on[d], n_ph[d],
+                ph_start[d, r], ph_stop[d, r], ph_peak[d, r])
+
+
+def _run(n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+         junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+    """All designs (rows of ``Zs``); the outputs are written into the arrays of ``out`` in place."""
+    for d in prange(Zs.shape[0]):
+        _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+                junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
+
+
+#: designs on all numba threads (``numba.set_num_threads``)
+run_batch_parallel = njit(parallel=True, **_OPTS)(_run)
+#: designs one after another in the calling thread (tasks of an executor; releases the GIL)
+run_batch_serial = njit(**_OPTS)(_run)
