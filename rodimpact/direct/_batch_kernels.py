@@ -21,8 +21,7 @@ Outputs per design d (junction index r, rod index q):
 
 * ``hist[d, k]``: junction 0 force at step ``k * stride`` (N; not written if ``hist`` has no columns);
 * ``kin[d, q, 0/1]``, ``pot[d, q, 0/1]``: kinetic 1/2 Z dt v^2 and strain 1/2 N^2 dt / Z energy of rod q at
-  the start and the end (thesis eq. 3.25), summed in the order of ``numpy.add.reduceat`` (first element, then
-  numpy's pairwise sum of the rest) as :func:`rodimpact.simulate` does;
+  the start and the end (thesis eq. 3.25), summed from the waves as :func:`rodimpact.simulate` does;
 * ``work[d, 0:4]``: work done by the left end, the right end, the loads and the friction (``acc[0:4]``), J;
 * ``fin_N[d]``, ``fin_v[d]``: the striker's element forces and velocities at the end;
 * junction events (every step, whatever the stride): ``low[d, r]`` most compressive force and ``low_step``
@@ -36,59 +35,19 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import boundaries
+from ._kernels import _rod_energy, boundaries
 
 _OPTS = dict(cache=True, error_model="numpy", nogil=True)
 
 
 @njit(**_OPTS)
-def _pairwise(x, a, n):
-    """numpy's pairwise summation of ``x[a:a + n]`` (blocks of 8 partial sums up to 128 values, halves above)."""
-    if n < 8:
-        res = -0.0
-        for i in range(a, a + n):
-            res += x[i]
-        return res
-    if n <= 128:
-        r0, r1, r2, r3 = x[a], x[a + 1], x[a + 2], x[a + 3]
-        r4, r5, r6, r7 = x[a + 4], x[a + 5], x[a + 6], x[a + 7]
-        i = 8
-        while i < n - n % 8:
-            b = a + i
-            r0 += x[b]
-            r1 += x[b + 1]
-            r2 += x[b + 2]
-            r3 += x[b + 3]
-            r4 += x[b + 4]
-            r5 += x[b + 5]
-            r6 += x[b + 6]
-            r7 += x[b + 7]
-            i += 8
-        res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
-        while i < n:
-            res += x[a + i]
-            i += 1
-        return res
-    n2 = n // 2
-    n2 -= n2 % 8
-    return _pairwise(x, a, n2) + _pairwise(x, a + n2, n - n2)
-
-
-@njit(**_OPTS)
-def _rod_energies(N, v, Z, dt, rod_start, kin, pot, col):
-    """Kinetic and strain energy of each rod into ``kin[:, col]``, ``pot[:, col]`` (thesis eq. 3.25), with the
-    arithmetic of ``np.add.reduceat(0.5 * dt * Z * v * v, rod_start[:-1])``."""
-    n = N.size
-    tk = np.empty(n)
-    tp = np.empty(n)
-    for j in range(n):
-        tk[j] = 0.5 * dt * Z[j] * v[j] * v[j]
-        tp[j] = 0.5 * dt * N[j] * N[j] / Z[j]
+def _rod_energies(f, g, inv_Z, dt, rod_start, kin, pot, col):
+    """Kinetic and strain energy of each rod into ``kin[:, col]``, ``pot[:, col]`` (thesis eq. 3.25), from the
+    waves with the sums of :func:`rodimpact.direct._kernels._rod_energy`, as :func:`rodimpact.simulate` does."""
     for q in range(rod_start.size - 1):
-        s = rod_start[q]
-        m = rod_start[q + 1] - s
-        kin[q, col] = tk[s] + _pairwise(tk, s + 1, m - 1)
-        pot[q, col] = tp[s] + _pairwise(tp, s + 1, m - 1)
+        k, p, _ = _rod_energy(f, g, inv_Z, rod_start[q], rod_start[q + 1])
+        kin[q, col] = 0.5 * dt * k
+        pot[q, col] = 0.5 * dt * p
 
 
 @njit(**_OPTS)
@@ -167,7 +126,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
         N[j] = 0.0
         v[j] = vel[d]
     R = (Z[1:] - Z[:-1]) / (Z[1:] + Z[:-1])
-    _rod_energies(N, v, Z, dt, rod_start, kin[d], pot[d], 0)
+    inv_Z = 1.0 / Z
     # per-design state and per-step outputs of boundaries() (no probes in a batch)
     junction_N = np.empty((n_j, n_steps))
     junction_contact = np.empty((n_j, n_steps))
@@ -189,6 +148,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     rod_nodes = (rod_NL, np.empty(n_rods), rod_NR, np.empty(n_rods))
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
+    _rod_energies(f, g, inv_Z, dt, rod_start, kin[d], pot[d], 0)
     f2 = f.copy()
     g2 = g.copy()
     for i in range(n_steps):
@@ -216,7 +176,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     for j in range(n_el):
         N[j] = f[j] + g[j]
         v[j] = (g[j] - f[j]) / Z[j]
-    _rod_energies(N, v, Z, dt, rod_start, kin[d], pot[d], 1)
+    _rod_energies(f, g, inv_Z, dt, rod_start, kin[d], pot[d], 1)
     for k in range(4):
         work[d, k] = acc[k]
     fin_N[d] = N[:n_s]

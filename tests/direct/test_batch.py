@@ -77,22 +77,6 @@ def test_struck_rod_moving_at_first_or_forced_far_end(right, moving):
                                                steps=350))
 
 
-def test_rod_energies_are_summed_as_numpy_reduceat():
-    """simulate() sums the element energies with np.add.reduceat; the batch kernel does the same additions in
-    the same order (short rods, 8-fold blocks, the recursive halving above 128 elements)."""
-    from rodimpact.direct._batch_kernels import _rod_energies
-
-    rng = np.random.default_rng(5)
-    sizes = np.array([1, 2, 7, 8, 9, 16, 17, 127, 128, 129, 130, 255, 256, 257, 600, 1031])
-    rod_start = np.concatenate([[0], np.cumsum(sizes)])
-    N, v = rng.normal(0.0, 1e5, (2, rod_start[-1]))
-    Z = rng.uniform(1e4, 1e5, rod_start[-1])
-    kin, pot = np.zeros((sizes.size, 2)), np.zeros((sizes.size, 2))
-    _rod_energies(N, v, Z, DT, rod_start, kin, pot, 1)
-    assert np.array_equal(kin[:, 1], np.add.reduceat(0.5 * DT * Z * v * v, rod_start[:-1]))
-    assert np.array_equal(pot[:, 1], np.add.reduceat(0.5 * DT * N * N / Z, rod_start[:-1]))
-
-
 def test_stepped_striker_separates_and_recontacts_on_a_loaded_chain():
     """Rods given as geometry, three rods (two contact junctions), a nodal load and bearings on the struck
     rods, a gap at the impact face, a non-reflecting left end (its parameters depend on each striker)."""
