@@ -111,6 +111,9 @@ def plot_existence(result: Any, ax: Optional[Any] = None):
         ax.plot([f.element, f.element], [f.force_reserve / 1e3, abs(f.force_difference) / 1e3], "x", color="C3",
                 ms=8, mew=2, label=f"q = {f.element}: no solution ({f.reason})")
         title += f"; none from q = {f.element} ({f.reason})"
+    from matplotlib.ticker import MaxNLocator
+
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlabel("element q [-]")
     ax.set_ylabel("force [kN]")
     ax.set_ylim(bottom=0.0)
