@@ -145,18 +145,18 @@ def _read_table(text: str, delimiter: str | None, dtype: Any):
     return pd.read_csv(io.StringIO(text), header=None, dtype=dtype, engine="c", **options)
 
 
-def _first_bad_row(rows: list[tuple[int, str]], delimiter: str | None, n_cols: int) -> tuple[np.ndarray | None, int | None]:
+def _first_bad_row(texts: Sequence[str], delimiter: str | None, n_cols: int) -> tuple[np.ndarray | None, int | None]:
     """pandas' reading of the data lines: ``(table, None)`` if every line holds ``n_cols`` finite numbers, else
     ``(None, i)`` with the index of the first line it could not read so (whose check then names the problem)."""
     import pandas as pd
 
-    text = "\n".join(line for _, line in rows)
+    text = "\n".join(texts)
     try:
         data = _read_table(text, delimiter, np.float64).to_numpy()
     except pd.errors.ParserError as exc:           # a line with more fields than the first one
         match = re.search(r"line (\d+)", str(exc))
         bad = int(match.group(1)) - 1 if match else 0
-        earlier = _first_bad_row(rows[:bad], delimiter, n_cols)[1] if bad else None
+        earlier = _first_bad_row(texts[:bad], delimiter, n_cols)[1] if bad else None
         return None, bad if earlier is None else earlier
     except ValueError:                              # a field that is no number
         frame = _read_table(text, delimiter, str)
@@ -167,18 +167,31 @@ def _first_bad_row(rows: list[tuple[int, str]], delimiter: str | None, n_cols: i
     return (data, None) if finite.all() else (None, int(np.argmin(finite)))
 
 
-def _parse_rows(path: PathLike, rows: list[tuple[int, str]], delimiter: str | None, col_names: list[str]) -> np.ndarray:
-    """The numbers of the data lines ``(line number, text)``, shape (lines, columns), read by pandas.
+def _parse_rows(path: PathLike, numbers: Sequence[int], texts: Sequence[str], delimiter: str | None,
+                col_names: list[str]) -> np.ndarray:
+    """The numbers in the data lines ``texts`` (file line ``numbers``), shape (lines, columns), read by pandas.
 
     A file pandas cannot read as a table of finite numbers is checked line by line from its first bad line on:
     that line's :func:`_row_values` raises the error naming the file, line and column. Only where those rules
     accept what pandas refused (e.g. ``1_000``) is the whole table read line by line.
     """
-    data, bad = _first_bad_row(rows, delimiter, len(col_names))
+    data, bad = _first_bad_row(texts, delimiter, len(col_names))
     if bad is None:
         return data
-    _row_values(path, *rows[bad], delimiter, col_names)
-    return np.array([_row_values(path, line_no, line, delimiter, col_names) for line_no, line in rows], dtype=float)
+    _row_values(path, numbers[bad], texts[bad], delimiter, col_names)
+    return np.array([_row_values(path, n, t, delimiter, col_names) for n, t in zip(numbers, texts)], dtype=float)
+
+
+def _content_lines(lines: list[str], comment: str) -> tuple[Sequence[int], list[str]]:
+    """Line numbers (1-based) and texts of the lines that are neither blank nor start with ``comment``.
+    A regular-expression scan finds files without such lines, whose lines are then taken as they are."""
+    if comment and lines and (first := lines[0].lstrip()) and not first.startswith(comment):
+        # every later line follows a newline: search for a newline, blanks, then a newline, the end or the comment
+        skipped = re.compile(rf"\n[^\S\n]*(?:\n|\Z|{re.escape(comment)})")
+        if not skipped.search("\n".join(lines)):
+            return range(1, len(lines) + 1), lines
+    keep = [i for i, ln in enumerate(lines) if (s := ln.lstrip()) and not s.startswith(comment)]
+    return [i + 1 for i in keep], [lines[i] for i in keep]
 
 
 def _time_factor(path: PathLike, line: int, unit: str) -> float:
@@ -222,12 +235,12 @@ def read_csv_recording(
     A first non-comment line with any non-numeric field is taken as the header.
     """
     lines = _read_lines(path)
-    content = [(i + 1, ln) for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith(comment)]
-    if not content:
+    numbers, texts = _content_lines(lines, comment)
+    if not texts:
         raise _fail(path, None, "no data lines")
     if delimiter == "auto":
-        delimiter = _sniff_delimiter(content[0][1])
-    first_no, first = content[0]
+        delimiter = _sniff_delimiter(texts[0])
+    first_no, first = numbers[0], texts[0]
     first_fields = [f.strip() for f in _split(first, delimiter)]
 
     def numeric(text: str) -> bool:
@@ -239,10 +252,9 @@ def read_csv_recording(
 
     if not all(numeric(f) for f in first_fields):
         header = first_fields
-        rows = content[1:]
+        numbers, texts = numbers[1:], texts[1:]
     else:
         header = None
-        rows = content
     if names is not None:
         labels = list(names)
     elif header is not None:
@@ -266,15 +278,14 @@ def read_csv_recording(
         if not -n_cols <= t_index < n_cols:
             raise _fail(path, first_no, f"time_column {time_column} out of range for {n_cols} columns")
         t_index %= n_cols
-    if not rows:
+    if not texts:
         raise _fail(path, first_no, "header but no data lines")
-    data = _parse_rows(path, rows, delimiter, col_names)
-    line_numbers = [line_no for line_no, _ in rows]
+    data = _parse_rows(path, numbers, texts, delimiter, col_names)
     unit_t = time_unit if time_unit is not None else (col_units[t_index] or "s")
     time = data[:, t_index] * _time_factor(path, first_no, unit_t)
     if time.size < 2:
-        raise _fail(path, line_numbers[0], "need at least 2 samples")
-    _check_increasing(path, time, line_numbers)
+        raise _fail(path, numbers[0], "need at least 2 samples")
+    _check_increasing(path, time, numbers)
     channels = {col_names[c]: data[:, c] for c in range(n_cols) if c != t_index}
     channel_units = {col_names[c]: col_units[c] for c in range(n_cols) if c != t_index}
     if units:

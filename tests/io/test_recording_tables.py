@@ -118,3 +118,19 @@ def test_metadata_units_by_pint():
     with pytest.raises(ValueError, match=r"'Incident Bar Diameter \(kg\)': unit 'kg' not understood; expected a "
                                          r"length unit such as mm or m"):
         hoppybar_bar(sheet, bridge="quarter")
+
+
+@pytest.mark.parametrize("text", ["time,a\n0,1\n1,2\n   \n", "time,a\n0,1\n\t# note\n1,2\n", "  # c\ntime,a\n0,1\n1,2",
+                                  "time,a\n\n0,1\n1,2\n", "time,a\n0,1\n1,2\n \t"])
+def test_blank_and_comment_lines_anywhere_are_skipped(tmp_path, text):
+    path = tmp_path / "c.csv"
+    path.write_text(text)
+    rec = read_csv_recording(path)
+    np.testing.assert_array_equal(rec["a"], [1.0, 2.0])
+
+
+def test_line_numbers_count_skipped_lines(tmp_path):
+    path = tmp_path / "c.csv"
+    path.write_text("# 1\ntime,a\n\n0,1\n# 5\n1,x\n")
+    with pytest.raises(ValueError, match=r"line 6: column 2 \(a\): expected a number, found 'x'"):
+        read_csv_recording(path)
