@@ -13,7 +13,6 @@ import math
 import platform
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
@@ -21,9 +20,9 @@ import numpy as np
 from rodimpact.io import read_csv_recording
 
 try:
-    from _report import write_section
+    from _report import best_time, write_section
 except ImportError:  # run from the repository root
-    from benchmarks._report import write_section
+    from benchmarks._report import best_time, write_section
 
 CHANNELS = 10
 
@@ -60,15 +59,6 @@ def write_file(path: Path, rows: int) -> None:
             np.savetxt(fh, np.column_stack([t, values]), delimiter=",", fmt="%.9g")
 
 
-def best_of(fn, repeat: int) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
-
-
 def main() -> None:
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     rows = int(args[0]) if args else 1_000_000
@@ -80,8 +70,8 @@ def main() -> None:
         assert np.array_equal(rec.time, ref[:, 0]) and all(
             np.array_equal(rec[f"ch{c}"], ref[:, c + 1]) for c in range(CHANNELS)), "the readers disagree"
         repeat = 3 if rows <= 200_000 else 1
-        t_new = best_of(lambda: read_csv_recording(path), repeat)
-        t_old = best_of(lambda: baseline(path), repeat)
+        t_new = best_time(lambda: read_csv_recording(path), repeat)
+        t_old = best_time(lambda: baseline(path), repeat)
         size = path.stat().st_size / 1e6
     line = (f"read_csv_recording, {rows} rows x {CHANNELS + 1} columns ({size:.0f} MB): cell by cell "
             f"{t_old:.2f} s, pandas {t_new:.2f} s ({t_old / t_new:.1f}x)")
