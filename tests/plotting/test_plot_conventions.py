@@ -192,3 +192,13 @@ def test_shape_plot_exaggerates_the_radial_scale_and_says_so():
     assert true_scale.get_aspect() == 1.0 and true_scale.get_ylabel() == "radius [mm]"
     with pytest.raises(ValueError, match="radial_scale: must be > 0"):
         plot_shape(shape, radial_scale=0)
+
+
+def test_save_plots_writes_the_strain_plot_or_says_why_not(result, tmp_path):
+    from rodimpact.plotting import save_plots
+
+    written, notes = save_plots(result, tmp_path / "a", ["strain"])
+    assert [p.name for p in written] == ["strain.png"] and notes == []
+    bare = ri.simulate([ri.Rod([ri.Cylinder(0.2, 0.04)])], [1.0], steps=20, dt=1e-6)
+    written, notes = save_plots(bare, tmp_path / "b", ["strain"])
+    assert written == [] and "plot 'strain' skipped: plot_strain: the result holds no probes" in notes[0]
