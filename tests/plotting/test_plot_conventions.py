@@ -18,6 +18,7 @@ from matplotlib.lines import Line2D
 
 import rodimpact as ri
 from rodimpact.inverse.shape import StrikerShape
+from rodimpact.reference import plot_phase_speed
 from rodimpact.plotting import (plot_energy, plot_energy_comparison, plot_forces, plot_profile, plot_snapshots,
                                 plot_strain, plot_xt)
 from rodimpact.plotting.synthesis import (plot_existence, plot_force, plot_impedance, plot_shape,
@@ -60,7 +61,7 @@ def one_axes_plots(result, synthesis):
             lambda ax: plot_energy(result, ax=ax), lambda ax: plot_energy_comparison([result], ["a"], ax=ax),
             lambda ax: plot_xt(result, ax=ax), lambda ax: plot_impedance(synthesis, ax=ax),
             lambda ax: plot_force(synthesis, ax=ax), lambda ax: plot_existence(synthesis, ax=ax),
-            lambda ax: plot_shape(synthesis, ax=ax)]
+            lambda ax: plot_shape(synthesis, ax=ax), lambda ax: plot_phase_speed(ax=ax)]
 
 
 def test_one_axes_plots_return_the_given_or_a_new_axes(result, feasible):
