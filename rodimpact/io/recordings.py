@@ -234,6 +234,8 @@ def read_csv_recording(
 
     A first non-comment line with any non-numeric field is taken as the header.
     """
+    if delimiter != "auto" and delimiter is not None and not (isinstance(delimiter, str) and len(delimiter) == 1):
+        raise ValueError(f"delimiter: must be one character, 'auto' or None (whitespace), got {delimiter!r}")
     lines = _read_lines(path)
     numbers, texts = _content_lines(lines, comment)
     if not texts:

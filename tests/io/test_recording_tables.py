@@ -134,3 +134,12 @@ def test_line_numbers_count_skipped_lines(tmp_path):
     path.write_text("# 1\ntime,a\n\n0,1\n# 5\n1,x\n")
     with pytest.raises(ValueError, match=r"line 6: column 2 \(a\): expected a number, found 'x'"):
         read_csv_recording(path)
+
+
+@pytest.mark.parametrize("delimiter", ["||", "", 3])
+def test_a_delimiter_must_be_one_character(tmp_path, delimiter):
+    path = tmp_path / "d.csv"
+    path.write_text("time,a\n0,1\n1,2\n")
+    with pytest.raises(ValueError, match="delimiter: must be one character, 'auto' or None"):
+        read_csv_recording(path, delimiter=delimiter)
+    assert read_csv_recording(path, delimiter=",").channel_names == ["a"]
