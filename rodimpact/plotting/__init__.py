@@ -6,8 +6,8 @@ figure) and returns that Axes (:func:`plot_forces`, :func:`plot_strain`, :func:`
 ``plot_force``, ``plot_existence``, ``plot_shape``); its figure is ``ax.figure``. A function that draws on
 **several** Axes takes them as ``axes`` and returns the Figure (:func:`plot_profile`, :func:`plot_snapshots`,
 ``plot_synthesis``). New figures are :class:`matplotlib.figure.Figure` objects not registered with pyplot: save
-them with ``ax.figure.savefig(...)``; in a notebook show them by ending a cell with ``ax.figure``, or pass Axes
-from ``plt.subplots()``.
+them with ``ax.figure.savefig(...)``. In a notebook, draw on Axes from ``plt.subplots()`` so that pyplot shows
+the figure as usual.
 
 Units are written ``quantity [unit]`` on every axis: forces in kN, impedances in kN s/m, strains in microstrain
 (µε), lengths along the rods in m (mm for diameters, displacements and striker drawings), times in ms (s above
