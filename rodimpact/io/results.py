@@ -427,13 +427,6 @@ def _read_engine(path: Path) -> str:
     raise RuntimeError(f"{path}: a NetCDF4 file; reading it needs h5py (pip install h5py) or netCDF4")
 
 
-def to_dataset(result: SimulationResult, fields: bool = True):
-    """Everything in ``result`` (except the system) as the :class:`xarray.Dataset` written to ``result.nc``: the
-    layout of :meth:`SimulationResult.to_xarray <rodimpact.SimulationResult.to_xarray>` (described in
-    :mod:`rodimpact.direct.dataset`); ``fields=False`` leaves out the field snapshots."""
-    return result_dataset(result, fields=fields)
-
-
 def _to_json(obj: Any) -> str:
     def clean(o: Any) -> Any:
         if isinstance(o, float) and not math.isfinite(o):
@@ -472,7 +465,7 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
                 files.append("model.toml")
             except ModelWriteError as exc:
                 notes.append(f"model.toml not written: {exc}")
-        ds = to_dataset(result, fields=fields)
+        ds = result_dataset(result, fields=fields)
         ds.to_netcdf(tmp / RESULT_FILE, engine=engine or _engine())
         files.append(RESULT_FILE)
         if csv:
@@ -495,7 +488,7 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
 
 
 def _events(v: dict[str, np.ndarray], n_j: int) -> tuple[JunctionEvents, ...]:
-    """The contact events stored by :func:`to_dataset` (formats 2 and 3)."""
+    """The contact events stored in ``result.nc`` (formats 2 and 3)."""
     owner = v.get("phase_junction", np.zeros(0, dtype=np.int32))
     out = []
     for j in range(n_j):
