@@ -1,7 +1,7 @@
 """One xarray layout (issue 14, item 8): ``SimulationResult.to_xarray()`` and ``result.nc`` are the same dataset,
 with ``probe``, ``junction``, ``end`` and time coordinates, so that ``.sel(probe="SG1")`` works on both; the
 columns of ``to_dataframe()`` are its variables per coordinate; result folders of format 2 (probe names in a JSON
-attribute, written by rodimpact before the change: tests/data/results/format2) still load."""
+attribute, written by rodimpact before the change: tests/data/result-format2) still load."""
 
 import importlib.util
 from pathlib import Path
@@ -14,7 +14,7 @@ import rodimpact as ri
 from rodimpact.io.model import load_model
 from rodimpact.io.results import load, save
 
-OLD = Path(__file__).resolve().parents[1] / "data" / "results" / "format2"
+OLD = Path(__file__).resolve().parents[1] / "data" / "result-format2"
 ENGINES = ["scipy"] + [e for e, mod in (("netcdf4", "netCDF4"), ("h5netcdf", "h5py")) if importlib.util.find_spec(mod)]
 
 
