@@ -23,3 +23,16 @@ def write_section(name: str, body: str) -> None:
     with os.fdopen(fd, "w") as fh:
         fh.write(text)
     os.replace(tmp, PERF)
+
+
+def best_time(fn, repeat: int) -> float:
+    """The shortest wall time of ``repeat`` calls of ``fn()``, s."""
+    import math
+    import time
+
+    best = math.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best

@@ -17,10 +17,8 @@ Run:  python benchmarks/bench_adjoint.py            (n = 50, 200, 1000; writes t
 
 from __future__ import annotations
 
-import math
 import platform
 import sys
-import time
 
 import numba
 import numpy as np
@@ -30,20 +28,11 @@ from rodimpact.design._adjoint import ImpactProblem
 from rodimpact.inverse.struck import as_struck_system, with_striker
 
 try:
-    from _report import write_section
+    from _report import best_time as _best, write_section
 except ImportError:  # run from the repository root
-    from benchmarks._report import write_section
+    from benchmarks._report import best_time as _best, write_section
 
 DT = 1e-6
-
-
-def _best(fn, repeat: int) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def measure(n: int) -> dict:

@@ -307,33 +307,9 @@ class SimulationResult(SimulationTables):
         return float((e0[0] - e0[-1]) / e0[0])
 
     def to_xarray(self):
-        """The recorded signals as an :class:`xarray.Dataset` (coordinates: time, energy_time, x)."""
-        import xarray as xr
+        """Everything recorded (except the system) as an :class:`xarray.Dataset`: coordinates ``time``, ``probe``
+        (the names: ``ds.probe_force.sel(probe="SG1")``), ``junction``, ``end``, ``rod``, ``snapshot_time``, ...;
+        the same layout as ``result.nc`` (see :mod:`rodimpact.direct.dataset`)."""
+        from .dataset import result_dataset
 
-        data: dict[str, Any] = {
-            "junction_force": (("junction", "time"), self.junction_force, {"units": "N"}),
-            "junction_contact": (("junction", "time"), self.junction_contact.astype(np.int8), {}),
-            "end_force": (("end", "time"), np.vstack([self.end_force["left"], self.end_force["right"]]),
-                          {"units": "N"}),
-            "end_velocity": (("end", "time"), np.vstack([self.end_velocity["left"], self.end_velocity["right"]]),
-                             {"units": "m/s"}),
-            "kinetic_energy": (("rod", "energy_time"), self.energy.kinetic, {"units": "J"}),
-            "strain_energy": (("rod", "energy_time"), self.energy.strain, {"units": "J"}),
-            "exchanged_work": (("energy_time",), self.energy.exchanged, {"units": "J"}),
-        }
-        for name, p in self.probes.items():
-            for q, unit in (("force", "N"), ("velocity", "m/s"), ("displacement", "m"), ("strain", "1")):
-                data[f"probe_{name}_{q}"] = (("time",), getattr(p, q), {"units": unit})
-        coords = {"time": ("time", self.time, {"units": "s"}),
-                  "energy_time": ("energy_time", self.energy.time, {"units": "s"}),
-                  "end": ["left", "right"]}
-        if self.snapshots is not None:
-            s = self.snapshots
-            data["force_field"] = (("element_x", "snapshot_time"), s.force, {"units": "N"})
-            data["velocity_field"] = (("element_x", "snapshot_time"), s.velocity, {"units": "m/s"})
-            data["displacement_field"] = (("node_x", "snapshot_time"), s.displacement, {"units": "m"})
-            coords.update(element_x=("element_x", s.element_x, {"units": "m"}),
-                          node_x=("node_x", s.node_x, {"units": "m"}),
-                          snapshot_time=("snapshot_time", s.time, {"units": "s"}))
-        attrs = {k: str(v) for k, v in self.diagnostics.items()}
-        return xr.Dataset(data, coords=coords, attrs=attrs)
+        return result_dataset(self)

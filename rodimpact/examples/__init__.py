@@ -89,8 +89,8 @@ def run_example(name: str, outdir: str | Path, *, overwrite: bool = False, plots
             out.append((file, result, sub))
         if ex.compare_energy and plots:
             rod = out[0][1].system.rods[-1]
-            fig = plot_energy_comparison([r for _, r, _ in out], list(ex.labels),
-                                         round_trip_time=2.0 * rod.total_travel_time)
-            fig.savefig(tmp / "energy-comparison.png", dpi=120)
+            ax = plot_energy_comparison([r for _, r, _ in out], list(ex.labels),
+                                        round_trip_time=2.0 * rod.total_travel_time)
+            ax.figure.savefig(tmp / "energy-comparison.png", dpi=120)
     final = Path(outdir)
     return [(f, r, final if len(ex.models) == 1 else final / Path(f).stem) for f, r, _ in out]

@@ -9,7 +9,9 @@ Formats
 -------
 * **CSV/text** (:func:`read_csv_recording`): one time column and any number of channel
   columns, optional header line of names (a unit in brackets, ``"force [N]"`` or
-  ``"time (ms)"``, is recognised; time units s, ms, us, ns are converted to s).
+  ``"time (ms)"``, is recognised; the time unit, any time unit pint knows such as s, ms, us or ns, is
+  converted to s). The table is read by pandas; a line it cannot read is checked on its own for the error
+  message.
 * **LANL .raw** (:func:`read_lanl_raw`): tab-separated. Columns 1-2 hold a metadata sheet
   (name, value); columns 3-4 hold the incident/reflected and transmitted bar voltages. The
   first row of columns 3-4 names the waveforms, the second gives each waveform's start time
@@ -50,9 +52,6 @@ __all__ = [
 ]
 
 PathLike = str | os.PathLike
-
-_TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "μs": 1e-6, "ns": 1e-9}
-
 
 def _fail(path: PathLike, line: int | None, message: str) -> ValueError:
     where = f"{os.fspath(path)}" + (f", line {line}" if line is not None else "")
@@ -123,6 +122,89 @@ def _split(line: str, delimiter: str | None) -> list[str]:
     return next(csv.reader([line], delimiter=delimiter))
 
 
+def _row_values(path: PathLike, line_no: int, line: str, delimiter: str | None, col_names: list[str]) -> list[float]:
+    """The numbers of one data line; ``ValueError`` naming the file, the line and the column if a column is
+    missing or extra, or a field is no finite number."""
+    n_cols = len(col_names)
+    fields = _split(line, delimiter)
+    if len(fields) < n_cols:
+        raise _fail(path, line_no, f"missing columns: expected {n_cols} ({', '.join(col_names)}), found {len(fields)}")
+    if len(fields) > n_cols:
+        raise _fail(path, line_no, f"extra columns: expected {n_cols}, found {len(fields)}")
+    return [_number(path, line_no, text, f"column {c + 1} ({col_names[c]})") for c, text in enumerate(fields)]
+
+
+def _read_table(text: str, delimiter: str | None, dtype: Any):
+    """``text`` as a pandas DataFrame without header (C parser; fields split like :func:`_split`)."""
+    import pandas as pd
+
+    options: dict[str, Any] = {"sep": r"\s+", "quoting": csv.QUOTE_NONE} if delimiter is None else \
+        {"sep": delimiter, "skipinitialspace": True}
+    if dtype is not str and int(pd.__version__.split(".")[0]) < 3:
+        options["float_precision"] = "round_trip"     # correctly rounded, as float() (the default from pandas 3)
+    return pd.read_csv(io.StringIO(text), header=None, dtype=dtype, engine="c", **options)
+
+
+def _first_bad_row(texts: Sequence[str], delimiter: str | None, n_cols: int) -> tuple[np.ndarray | None, int | None]:
+    """pandas' reading of the data lines: ``(table, None)`` if every line holds ``n_cols`` finite numbers, else
+    ``(None, i)`` with the index of the first line it could not read so (whose check then names the problem)."""
+    import pandas as pd
+
+    text = "\n".join(texts)
+    try:
+        data = _read_table(text, delimiter, np.float64).to_numpy()
+    except pd.errors.ParserError as exc:           # a line with more fields than the first one
+        match = re.search(r"line (\d+)", str(exc))
+        bad = int(match.group(1)) - 1 if match else 0
+        earlier = _first_bad_row(texts[:bad], delimiter, n_cols)[1] if bad else None
+        return None, bad if earlier is None else earlier
+    except ValueError:                              # a field that is no number
+        frame = _read_table(text, delimiter, str)
+        data = frame.apply(pd.to_numeric, errors="coerce").to_numpy(dtype=float)
+    if data.shape[1] != n_cols:
+        return None, 0
+    finite = np.isfinite(data).all(axis=1)
+    return (data, None) if finite.all() else (None, int(np.argmin(finite)))
+
+
+def _parse_rows(path: PathLike, numbers: Sequence[int], texts: Sequence[str], delimiter: str | None,
+                col_names: list[str]) -> np.ndarray:
+    """The numbers in the data lines ``texts`` (file line ``numbers``), shape (lines, columns), read by pandas.
+
+    A file pandas cannot read as a table of finite numbers is checked line by line from its first bad line on:
+    that line's :func:`_row_values` raises the error naming the file, line and column. Only where those rules
+    accept what pandas refused (e.g. ``1_000``) is the whole table read line by line.
+    """
+    data, bad = _first_bad_row(texts, delimiter, len(col_names))
+    if bad is None:
+        return data
+    _row_values(path, numbers[bad], texts[bad], delimiter, col_names)
+    return np.array([_row_values(path, n, t, delimiter, col_names) for n, t in zip(numbers, texts)], dtype=float)
+
+
+def _content_lines(lines: list[str], comment: str) -> tuple[Sequence[int], list[str]]:
+    """Line numbers (1-based) and texts of the lines that are neither blank nor start with ``comment``.
+    A regular-expression scan finds files without such lines, whose lines are then taken as they are."""
+    if comment and lines and (first := lines[0].lstrip()) and not first.startswith(comment):
+        # every later line follows a newline: search for a newline, blanks, then a newline, the end or the comment
+        skipped = re.compile(rf"\n[^\S\n]*(?:\n|\Z|{re.escape(comment)})")
+        if not skipped.search("\n".join(lines)):
+            return range(1, len(lines) + 1), lines
+    keep = [i for i, ln in enumerate(lines) if (s := ln.lstrip()) and not s.startswith(comment)]
+    return [i + 1 for i in keep], [lines[i] for i in keep]
+
+
+def _time_factor(path: PathLike, line: int, unit: str) -> float:
+    """Seconds per ``unit`` (any time unit pint knows: s, ms, us, µs, ns, min, ...)."""
+    from .quantities import ModelError, parse_quantity
+
+    try:
+        return parse_quantity(f"1 {unit}", "time", "time unit")
+    except ModelError:
+        raise _fail(path, line, f"time unit {unit!r} not understood; expected a unit of time such as s, ms, us "
+                                f"or ns") from None
+
+
 def read_csv_recording(
     path: PathLike,
     time_column: int | str = 0,
@@ -152,13 +234,15 @@ def read_csv_recording(
 
     A first non-comment line with any non-numeric field is taken as the header.
     """
+    if delimiter != "auto" and delimiter is not None and not (isinstance(delimiter, str) and len(delimiter) == 1):
+        raise ValueError(f"delimiter: must be one character, 'auto' or None (whitespace), got {delimiter!r}")
     lines = _read_lines(path)
-    content = [(i + 1, ln) for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith(comment)]
-    if not content:
+    numbers, texts = _content_lines(lines, comment)
+    if not texts:
         raise _fail(path, None, "no data lines")
     if delimiter == "auto":
-        delimiter = _sniff_delimiter(content[0][1])
-    first_no, first = content[0]
+        delimiter = _sniff_delimiter(texts[0])
+    first_no, first = numbers[0], texts[0]
     first_fields = [f.strip() for f in _split(first, delimiter)]
 
     def numeric(text: str) -> bool:
@@ -170,10 +254,9 @@ def read_csv_recording(
 
     if not all(numeric(f) for f in first_fields):
         header = first_fields
-        rows = content[1:]
+        numbers, texts = numbers[1:], texts[1:]
     else:
         header = None
-        rows = content
     if names is not None:
         labels = list(names)
     elif header is not None:
@@ -197,26 +280,14 @@ def read_csv_recording(
         if not -n_cols <= t_index < n_cols:
             raise _fail(path, first_no, f"time_column {time_column} out of range for {n_cols} columns")
         t_index %= n_cols
-    if not rows:
+    if not texts:
         raise _fail(path, first_no, "header but no data lines")
-    data = np.empty((len(rows), n_cols))
-    line_numbers = []
-    for r, (line_no, line) in enumerate(rows):
-        fields = _split(line, delimiter)
-        if len(fields) < n_cols:
-            raise _fail(path, line_no, f"missing columns: expected {n_cols} ({', '.join(col_names)}), found {len(fields)}")
-        if len(fields) > n_cols:
-            raise _fail(path, line_no, f"extra columns: expected {n_cols}, found {len(fields)}")
-        for c, text in enumerate(fields):
-            data[r, c] = _number(path, line_no, text, f"column {c + 1} ({col_names[c]})")
-        line_numbers.append(line_no)
+    data = _parse_rows(path, numbers, texts, delimiter, col_names)
     unit_t = time_unit if time_unit is not None else (col_units[t_index] or "s")
-    if unit_t not in _TIME_UNITS:
-        raise _fail(path, first_no, f"time unit {unit_t!r} not understood; valid: {sorted(_TIME_UNITS)}")
-    time = data[:, t_index] * _TIME_UNITS[unit_t]
+    time = data[:, t_index] * _time_factor(path, first_no, unit_t)
     if time.size < 2:
-        raise _fail(path, line_numbers[0], "need at least 2 samples")
-    _check_increasing(path, time, line_numbers)
+        raise _fail(path, numbers[0], "need at least 2 samples")
+    _check_increasing(path, time, numbers)
     channels = {col_names[c]: data[:, c] for c in range(n_cols) if c != t_index}
     channel_units = {col_names[c]: col_units[c] for c in range(n_cols) if c != t_index}
     if units:
@@ -416,15 +487,24 @@ def _entry(metadata: dict[str, Any], name: str) -> tuple[float, str, str]:
     raise ValueError(f"metadata has no entry {name!r}")
 
 
-_LENGTH = {"mm": 1e-3, "m": 1.0}
-_MODULUS = {"gpa": 1e9, "mpa": 1e6, "pa": 1.0}
-_DENSITY = {"kg/m^3": 1.0, "kg/m3": 1.0, "g/cm^3": 1e3, "g/cm3": 1e3}
+_EXAMPLE_UNITS = {"length": "mm or m", "pressure": "GPa or MPa", "density": "kg/m^3 or g/cm^3"}
 
 
-def _convert(value: float, unit: str, table: dict[str, float], key: str) -> float:
-    factor = table.get(unit.strip().lower())
+def _convert(value: float, unit: str, dimension: str, key: str) -> float:
+    """``value`` in ``unit`` converted to SI by pint (:mod:`rodimpact.io.quantities`); a power written without
+    ``^`` (``kg/m3``) is read as one."""
+    from .quantities import ModelError, parse_quantity
+
+    written = re.sub(r"([A-Za-z])(\d)", r"\1^\2", unit.strip())
+    factor = None
+    if written:
+        try:
+            factor = parse_quantity(f"1 {written}", dimension, key)
+        except ModelError:
+            pass
     if factor is None:
-        raise ValueError(f"metadata entry {key!r}: unit {unit!r} not understood; valid: {sorted(table)}")
+        raise ValueError(f"metadata entry {key!r}: unit {unit!r} not understood; expected a {dimension} unit such "
+                         f"as {_EXAMPLE_UNITS[dimension]}")
     return value * factor
 
 
@@ -452,13 +532,13 @@ def hoppybar_bar(
         raise ValueError(f"bar must be 'incident' or 'transmitted', got {bar!r}")
     prefix = "Incident Bar" if bar == "incident" else "Transmitted Bar"
     e_val, e_unit, e_key = _entry(metadata, f"{prefix} Young's Modulus")
-    youngs = _convert(e_val, e_unit, _MODULUS, e_key)
+    youngs = _convert(e_val, e_unit, "pressure", e_key)
     rho_val, rho_unit, rho_key = _entry(metadata, f"{prefix} Density")
     try:
         c_stated, _, _ = _entry(metadata, f"{prefix} Rod Sound Speed")
     except ValueError:
         c_stated = None
-    candidates = [_convert(rho_val, rho_unit, _DENSITY, rho_key)]
+    candidates = [_convert(rho_val, rho_unit, "density", rho_key)]
     candidates += [rho_val * f for f in (1.0, 1e3) if not math.isclose(rho_val * f, candidates[0])]
     if c_stated is not None:
         fitting = [rho for rho in candidates if abs(math.sqrt(youngs / rho) / c_stated - 1) <= 0.01]
@@ -471,7 +551,7 @@ def hoppybar_bar(
     else:
         density = candidates[0]
     d_val, d_unit, d_key = _entry(metadata, f"{prefix} Diameter")
-    diameter = _convert(d_val, d_unit, _LENGTH, d_key)
+    diameter = _convert(d_val, d_unit, "length", d_key)
     gauge_factor, _, _ = _entry(metadata, f"{prefix} Calibrated Gage Factor")
     exc_val, exc_unit, exc_key = _entry(metadata, f"{prefix} Excitation Voltage")
     if exc_unit not in ("V", ""):

@@ -22,8 +22,10 @@ with ``overwrite=True``, and only if rodimpact wrote it: see :func:`check_output
     loads and friction, external impulse.
 ``result.nc``
     NetCDF with everything above plus the lattice, the field snapshots N(x), v(x), u(x) and the final state
-    (xarray; engine h5netcdf when h5py is installed, else netCDF4, else scipy's NetCDF3 writer). This is what
-    :func:`load` reads; the CSV files are for people and spreadsheets.
+    (xarray; engine h5netcdf when h5py is installed, else netCDF4, else scipy's NetCDF3 writer), in the layout of
+    :meth:`SimulationResult.to_xarray` (:mod:`rodimpact.direct.dataset`: ``probe``, ``junction``, ``end``, ``rod``
+    and time coordinates). This is what :func:`load` reads (also format 1 and 2 files, which named the probes in
+    a JSON attribute); the CSV files are for people and spreadsheets.
 ``plots/``
     PNG figures (and ``force.gif`` when the animation is requested and pillow is installed).
 """
@@ -44,12 +46,12 @@ import numpy as np
 
 from .. import __version__
 from .._permissions import normal_mode
+from ..direct.dataset import FORMAT_VERSION, json_default, result_dataset
 from ..direct.result import (EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
                              SimulationResult)
 from ..lattice.discretize import RodDiscretization
 from ..lattice.lattice import Lattice
 
-FORMAT_VERSION = 2   # 2: recording stride, steps and contact events stored
 RESULT_FILE = "result.nc"
 
 
@@ -425,93 +427,6 @@ def _read_engine(path: Path) -> str:
     raise RuntimeError(f"{path}: a NetCDF4 file; reading it needs h5py (pip install h5py) or netCDF4")
 
 
-def to_dataset(result: SimulationResult, fields: bool = True):
-    """Everything in ``result`` (except the system) as an :class:`xarray.Dataset` for ``result.nc``.
-
-    Written so that every NetCDF flavour can hold it: integers as int32/int8, names in JSON attributes, and no
-    variables along empty dimensions (a single rod has no junction; they are re-created empty on loading).
-    """
-    import xarray as xr
-
-    lat = result.lattice
-    data: dict[str, Any] = {}
-    n_j = result.junction_force.shape[0]
-    if n_j:
-        data["junction_force"] = (("junction", "time"), result.junction_force, {"units": "N"})
-        data["junction_contact"] = (("junction", "time"), result.junction_contact.astype(np.int8), {})
-    data["end_force"] = (("end", "time"), np.vstack([result.end_force["left"], result.end_force["right"]]),
-                         {"units": "N", "ends": "left, right"})
-    data["end_velocity"] = (("end", "time"),
-                            np.vstack([result.end_velocity["left"], result.end_velocity["right"]]), {"units": "m/s"})
-    probes = list(result.probes.values())
-    if probes:
-        for q, unit in (("force", "N"), ("velocity", "m/s"), ("displacement", "m"), ("strain", "1")):
-            data[f"probe_{q}"] = (("probe", "time"), np.vstack([getattr(p, q) for p in probes]), {"units": unit})
-        data["probe_rod"] = (("probe",), np.array([p.probe.rod for p in probes], dtype=np.int32), {})
-        data["probe_position"] = (("probe",), np.array([p.probe.position for p in probes]), {"units": "m"})
-        data["probe_node_position"] = (("probe",), np.array([p.node_position for p in probes]), {"units": "m"})
-    e = result.energy
-    data["kinetic_energy"] = (("rod", "energy_time"), e.kinetic, {"units": "J"})
-    data["strain_energy"] = (("rod", "energy_time"), e.strain, {"units": "J"})
-    data["momentum"] = (("rod", "energy_time"), e.momentum, {"units": "N s"})
-    for name in ("work_left", "work_right", "work_loads", "work_friction"):
-        data[name] = (("energy_time",), getattr(e, name), {"units": "J"})
-    data["impulse"] = (("energy_time",), e.impulse, {"units": "N s"})
-    data["energy_time"] = (("energy_time",), e.time, {"units": "s"})
-    data["impedance"] = (("element",), lat.impedance, {"units": "N s/m"})
-    data["element_length"] = (("element",), lat.element_length, {"units": "m"})
-    data["element_x"] = (("element",), lat.element_x, {"units": "m"})
-    data["node_x"] = (("node",), lat.node_x, {"units": "m"})
-    data["rod_start"] = (("rod_bound",), lat.rod_start.astype(np.int32), {})
-    for name in ("time_scale", "true_length", "true_mass", "lattice_mass", "true_travel_time",
-                 "max_boundary_offset"):
-        data[f"rod_{name}"] = (("rod",), np.array([getattr(r, name) for r in lat.rods], dtype=float), {})
-    data["rod_exact"] = (("rod",), np.array([r.exact for r in lat.rods], dtype=np.int8), {})
-    data["final_force"] = (("element",), result.final_force, {"units": "N"})
-    data["final_velocity"] = (("element",), result.final_velocity, {"units": "m/s"})
-    s = result.snapshots
-    if s is not None and fields:
-        data["snapshot_time"] = (("snapshot",), s.time, {"units": "s"})
-        data["force_field"] = (("element", "snapshot"), s.force, {"units": "N"})
-        data["velocity_field"] = (("element", "snapshot"), s.velocity, {"units": "m/s"})
-        data["displacement_field"] = (("node", "snapshot"), s.displacement, {"units": "m"})
-    data["time"] = (("time",), result.time, {"units": "s"})
-    events = result.junction_events or ()
-    if events:
-        data["junction_min_force"] = (("junction",), np.array([e.min_force for e in events]), {"units": "N"})
-        data["junction_min_force_step"] = (("junction",), np.array([e.min_force_step for e in events],
-                                                                   dtype=np.int32), {})
-        data["junction_max_abs_force"] = (("junction",), np.array([e.max_abs_force_run for e in events]),
-                                          {"units": "N"})
-    if sum(e.start.size for e in events):
-        # contact phases of all junctions, one row per phase: [start, stop) in steps
-        data["phase_junction"] = (("phase",), np.concatenate([np.full(e.start.size, j, dtype=np.int32)
-                                                              for j, e in enumerate(events)]), {})
-        data["phase_start"] = (("phase",), np.concatenate([e.start for e in events]).astype(np.int32), {})
-        data["phase_stop"] = (("phase",), np.concatenate([e.stop for e in events]).astype(np.int32), {})
-        data["phase_max_abs_force"] = (("phase",), np.concatenate([e.max_abs_force for e in events]),
-                                       {"units": "N"})
-    attrs = {"title": "rodimpact simulation result", "rodimpact_version": __version__,
-             "format_version": FORMAT_VERSION, "dt": float(result.dt), "steps": int(result.n_steps),
-             "record_every": int(result.record_every),
-             "probe_names": json.dumps([p.probe.name for p in probes]),
-             "rod_methods": json.dumps([r.method for r in lat.rods]),
-             "diagnostics": json.dumps(result.diagnostics, default=_json_default),
-             "conventions": "SI units; normal force positive in tension; node values per step at the step start "
-                            "time k*dt, every record_every-th step kept; contact phases [start, stop) in steps"}
-    return xr.Dataset(data, attrs=attrs)
-
-
-def _json_default(o: Any) -> Any:
-    if isinstance(o, (np.floating, np.integer)):
-        return o.item()
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    if isinstance(o, (tuple, set)):
-        return list(o)
-    return str(o)
-
-
 def _to_json(obj: Any) -> str:
     def clean(o: Any) -> Any:
         if isinstance(o, float) and not math.isfinite(o):
@@ -521,7 +436,7 @@ def _to_json(obj: Any) -> str:
         if isinstance(o, list):
             return [clean(v) for v in o]
         return o
-    return json.dumps(clean(json.loads(json.dumps(obj, default=_json_default))), indent=2) + "\n"
+    return json.dumps(clean(json.loads(json.dumps(obj, default=json_default))), indent=2) + "\n"
 
 
 # ============================================================================================ save / load
@@ -550,7 +465,7 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
                 files.append("model.toml")
             except ModelWriteError as exc:
                 notes.append(f"model.toml not written: {exc}")
-        ds = to_dataset(result, fields=fields)
+        ds = result_dataset(result, fields=fields)
         ds.to_netcdf(tmp / RESULT_FILE, engine=engine or _engine())
         files.append(RESULT_FILE)
         if csv:
@@ -573,7 +488,7 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
 
 
 def _events(v: dict[str, np.ndarray], n_j: int) -> tuple[JunctionEvents, ...]:
-    """The contact events stored by :func:`to_dataset` (format 2)."""
+    """The contact events stored in ``result.nc`` (formats 2 and 3)."""
     owner = v.get("phase_junction", np.zeros(0, dtype=np.int32))
     out = []
     for j in range(n_j):
@@ -651,7 +566,11 @@ def _from_dataset(ds, folder: Path, nc: Path) -> SimulationResult:
     if jf.shape[0] != n_j:
         raise ValueError(f"{nc}: {jf.shape[0]} junction rows for {n_rods} rods; the file is damaged")
     probes: dict[str, ProbeHistory] = {}
-    for i, name in enumerate(json.loads(ds.attrs["probe_names"])):
+    if int(ds.attrs.get("format_version", 0)) >= 3:       # a probe coordinate (absent without probes)
+        names = [str(n) for n in ds["probe"].values] if "probe" in ds.coords else []
+    else:                                                 # formats 1-2: the names in a JSON attribute
+        names = json.loads(ds.attrs["probe_names"])
+    for i, name in enumerate(names):
         p = Probe(name, int(v["probe_rod"][i]), float(v["probe_position"][i]))
         probes[name] = ProbeHistory(p, float(v["probe_node_position"][i]), v["probe_force"][i].copy(),
                                     v["probe_velocity"][i].copy(), v["probe_displacement"][i].copy(),

@@ -256,7 +256,7 @@ SIMULATION = Table("simulation", "How long and how finely to simulate. Give `dur
           minimum=1),
 ), '[simulation]\nduration = "1 ms"\ndt = "0.5 us"')
 
-PLOT_NAMES = ("forces", "profile", "snapshots", "xt", "energy", "animation")
+PLOT_NAMES = ("forces", "strain", "profile", "snapshots", "xt", "energy", "animation")
 OUTPUT = Table("output", "What to record and write besides the signals.", (
     Field("snapshot_times", "quantities", "Times of field snapshots N(x), v(x), u(x) (plotted like thesis "
                                           "Figs. 3.6, 3.8).", dimension="time", sign="non_negative"),

@@ -1,6 +1,17 @@
 """Plots of rodimpact results (matplotlib only; headless-safe: figures are created without pyplot).
 
-Every function takes a result (or system) and an optional Axes and returns the figure.
+The rule, as in matplotlib and pandas: a function that draws on **one** Axes takes it as ``ax`` (``None``: a new
+figure) and returns that Axes (:func:`plot_forces`, :func:`plot_strain`, :func:`plot_energy`,
+:func:`plot_energy_comparison`, :func:`plot_xt`, and in :mod:`rodimpact.plotting.synthesis` ``plot_impedance``,
+``plot_force``, ``plot_existence``, ``plot_shape``); its figure is ``ax.figure``. A function that draws on
+**several** Axes takes them as ``axes`` and returns the Figure (:func:`plot_profile`, :func:`plot_snapshots`,
+``plot_synthesis``). New figures are :class:`matplotlib.figure.Figure` objects not registered with pyplot: save
+them with ``ax.figure.savefig(...)``. In a notebook, draw on Axes from ``plt.subplots()`` so that pyplot shows
+the figure as usual.
+
+Units are written ``quantity [unit]`` on every axis: forces in kN, impedances in kN s/m, strains in microstrain
+(µε), lengths along the rods in m (mm for diameters, displacements and striker drawings), times in ms (s above
+1 s). Forces are positive in tension.
 """
 
 from __future__ import annotations
@@ -11,14 +22,14 @@ from typing import Any, Optional, Sequence
 from ._common import check_dpi, check_figure_pixels, check_output_folder, check_result, check_snapshot_times
 from .animation import animate_force, pillow_available
 from .fields import plot_snapshots, plot_xt
-from .histories import plot_energy, plot_energy_comparison, plot_forces
+from .histories import plot_energy, plot_energy_comparison, plot_forces, plot_strain
 from .profile import plot_profile
 
-__all__ = ["plot_forces", "plot_energy", "plot_energy_comparison", "plot_profile", "plot_snapshots", "plot_xt",
+__all__ = ["plot_forces", "plot_strain", "plot_energy", "plot_energy_comparison", "plot_profile", "plot_snapshots", "plot_xt",
            "animate_force", "pillow_available", "save_plots", "PLOT_FILES"]
 
 #: File written by :func:`save_plots` for each plot name.
-PLOT_FILES = {"forces": "forces.png", "profile": "profile.png", "snapshots": "snapshots.png", "xt": "xt.png",
+PLOT_FILES = {"forces": "forces.png", "strain": "strain.png", "profile": "profile.png", "snapshots": "snapshots.png", "xt": "xt.png",
               "energy": "energy.png", "animation": "force.gif"}
 
 
@@ -27,7 +38,7 @@ def save_plots(result: Any, folder: str | Path, which: Sequence[str] = ("forces"
                *, snapshot_times: Optional[Sequence[float]] = None, dpi: int = 120,
                overwrite: bool = False) -> tuple[list[Path], list[str]]:
     """Write the named plots into ``folder``; returns the files written and notes on plots that were skipped
-    (no snapshots recorded, pillow missing for the animation). Existing plot files are refused unless
+    (no snapshots recorded, no probes for the strain plot, pillow missing for the animation). Existing plot files are refused unless
     ``overwrite=True``. ``snapshot_times`` (s) must lie within the recorded snapshot times (see
     :func:`plot_snapshots`). Arguments are checked before anything is written."""
     check_result(result)
@@ -52,15 +63,17 @@ def save_plots(result: Any, folder: str | Path, which: Sequence[str] = ("forces"
                 written.append(animate_force(result, path, overwrite=overwrite))
                 continue
             if name == "forces":
-                fig = plot_forces(result)
+                fig = plot_forces(result).figure
+            elif name == "strain":
+                fig = plot_strain(result).figure
             elif name == "profile":
                 fig = plot_profile(result)
             elif name == "snapshots":
                 fig = plot_snapshots(result, snapshot_times)
             elif name == "xt":
-                fig = plot_xt(result)
+                fig = plot_xt(result).figure
             else:
-                fig = plot_energy(result)
+                fig = plot_energy(result).figure
         except (ValueError, ImportError) as exc:
             notes.append(f"plot {name!r} skipped: {exc}")
             continue

@@ -61,7 +61,7 @@ def animate_force(result: Any, path: str | Path, *, fps: int = 15, max_frames: i
         ax.axvline(xf, color="0.5", ls="--", lw=0.8)
     ax.set_ylim(-1.05 * lim, 1.05 * lim)
     ax.set_xlabel("x [m]")
-    ax.set_ylabel("N [kN] (tension > 0)")
+    ax.set_ylabel("normal force N [kN] (tension > 0)")
     k, unit = time_scale(float(s.time[-1]))
     title = ax.set_title("")
 

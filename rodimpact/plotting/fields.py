@@ -23,7 +23,7 @@ def plot_snapshots(result: Any, times: Optional[Sequence[float]] = None, axes: A
     nearest to ``times`` (s; default three spread over the run), one row per time, as in thesis Figs. 3.6 and
     3.8. Each rod is drawn separately, so a displacement jump at a contact face shows the separation; contact
     faces are dashed. ``times`` must lie within the recorded snapshot times (to one time step). ``axes``: one row
-    of two Axes per distinct snapshot shown, or ``None``. Returns the figure."""
+    of two Axes per distinct snapshot shown, or ``None``. Draws on several Axes, so it returns the Figure."""
     check_result(result)
     s = result.snapshots
     if s is None:
@@ -50,8 +50,8 @@ def plot_snapshots(result: Any, times: Optional[Sequence[float]] = None, axes: A
                 ax.axvline(xf, color="0.5", ls="--", lw=0.8)
             ax.axhline(0.0, color="0.8", lw=0.6)
         tk, unit = time_scale(float(s.time[-1]))
-        ax_u.set_ylabel("u [mm]")
-        ax_n.set_ylabel("N [kN]")
+        ax_u.set_ylabel("displacement u [mm]")
+        ax_n.set_ylabel("normal force N [kN]")
         ax_u.set_title(f"t = {s.time[k] * tk:.4g} {unit}", fontsize="medium", loc="left")
     axes[-1, 0].set_xlabel("x [m]")
     axes[-1, 1].set_xlabel("x [m]")
@@ -89,8 +89,8 @@ def _check_cmap(cmap: Any) -> None:
 def plot_xt(result: Any, ax: Any = None, *, cmap: str = "RdBu_r", limit: Optional[float] = None):
     """The Lagrangian x-t diagram: the normal force (colour, kN; red tension, blue compression) over the
     reference position x and time, from the recorded snapshots. Wave fronts are straight lines of slope 1/c;
-    contact faces are dashed. ``limit``: colour scale +-limit in kN (default: the largest |N|). Returns the
-    figure."""
+    contact faces are dashed. ``limit``: colour scale +-limit in kN (default: the largest |N|). Returns the Axes
+    of the diagram (the colour bar is a second Axes of ``ax.figure``)."""
     check_result(result)
     if limit is not None:
         limit = positive("limit", limit, "kN")
@@ -118,4 +118,4 @@ def plot_xt(result: Any, ax: Any = None, *, cmap: str = "RdBu_r", limit: Optiona
     ax.set_xlabel("x [m] (reference position)")
     ax.set_ylabel(f"time [{unit}]")
     ax.set_title("x-t diagram of the normal force")
-    return fig
+    return ax

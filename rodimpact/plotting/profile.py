@@ -16,7 +16,11 @@ def plot_profile(obj: Any, axes: Any = None, *, samples: int = 400):
     ``obj`` is a :class:`~rodimpact.System` or a result (then the lattice impedance, one value per
     equal-travel-time element, is drawn as steps over the true profile). ``axes``: two Axes or ``None``.
     Contact faces are marked by dashed lines. ``samples``: points per rod for the true profile (2 to 100000).
+    Draws on two Axes, so it returns the Figure (``fig.axes[:2]`` are the impedance and diameter Axes).
     """
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import StepPatch
+
     from ..direct.result import SimulationResult
     from ..rods.system import System
 
@@ -49,16 +53,21 @@ def plot_profile(obj: Any, axes: Any = None, *, samples: int = 400):
             for ax in (ax_z, ax_d):
                 ax.axvline(offsets[i], color="0.5", ls="--", lw=0.8)
     if lattice is not None:
+        # on top of the true profile and dotted, so that it stays visible where both agree
+        style = dict(color="k", lw=1.2, ls=":", zorder=3)
         for r in range(lattice.n_rods):
             a, b = lattice.rod_start[r], lattice.rod_start[r + 1]
             nodes = lattice.node_x[lattice.node_index(r, 0): lattice.node_index(r, 0) + (b - a) + 1]
-            ax_z.stairs(lattice.impedance[a:b] / 1e3, nodes, color="k", lw=0.7, alpha=0.6, baseline=None,
-                        label="lattice (equal travel time)" if r == 0 else None)
+            ax_z.stairs(lattice.impedance[a:b] / 1e3, nodes, baseline=None,
+                        label="lattice (equal travel time)" if r == 0 else None, **style)
     ax_z.set_ylabel("impedance [kN s/m]")
     ax_z.set_ylim(bottom=0.0)
     ax_d.set_ylabel("equivalent diameter [mm]")
     ax_d.set_ylim(bottom=0.0)
     ax_d.set_xlabel("x [m]")
-    ax_z.legend(fontsize="small")
+    handles, labels = ax_z.get_legend_handles_labels()
+    # a line in the lattice's own style instead of the default patch handle of a step patch
+    handles = [Line2D([], [], color="k", lw=1.2, ls=":") if isinstance(h, StepPatch) else h for h in handles]
+    ax_z.legend(handles, labels, fontsize="small")
     ax_z.set_title("Profile")
     return fig

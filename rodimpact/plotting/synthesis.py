@@ -1,13 +1,16 @@
-"""Plots of synthesis results (matplotlib only). Every function takes a result and an optional Axes and returns
-``(fig, ax)``; without an Axes a new :class:`matplotlib.figure.Figure` is made without pyplot (headless-safe,
-see :func:`rodimpact.plotting._common.new_axes`)."""
+"""Plots of synthesis results (matplotlib only). The functions that draw one Axes take an optional ``ax`` and
+return that Axes; :func:`plot_synthesis` draws four and returns the Figure. Without an Axes a new
+:class:`matplotlib.figure.Figure` is made without pyplot (headless-safe, see
+:func:`rodimpact.plotting._common.new_axes`). Forces in kN, impedances in kN s/m, as in the other plots."""
 
 from __future__ import annotations
 
+import math
 from typing import Any, Optional
 
 import numpy as np
 
+from .._validate import positive
 from ._common import new_axes
 
 
@@ -20,25 +23,25 @@ def _check_synthesis(result: Any, name: str = "result") -> None:
 
 def plot_impedance(result: Any, ax: Optional[Any] = None, x: str = "s", log: Optional[bool] = None):
     """Impedance Z_q of the synthesized striker (steps) against ``x`` = "s" (distance from the impact face, m),
-    "theta" (travel time, s) or "q" (element number). The failing element, if any, is marked. ``log``: log
-    scale for Z (default: when Z spans more than a factor 100)."""
+    "theta" (travel time) or "q" (element number), in kN s/m. The failing element, if any, is marked. ``log``:
+    log scale for Z (default: when Z spans more than a factor 100). Returns the Axes."""
     _check_synthesis(result)
-    fig, ax = new_axes(ax)
+    _, ax = new_axes(ax)
     m = result.n_feasible
     if x == "s":
         edges = result.material.wave_speed * result.dt * np.arange(m + 1)
-        label = "distance from impact face s / m"
+        label = "distance from impact face s [m]"
     elif x == "theta":
-        edges = result.dt * np.arange(m + 1)
-        label = r"travel time $\theta$ / s"
+        edges = result.dt * np.arange(m + 1) * 1e6
+        label = r"travel time $\theta$ [µs]"
     elif x == "q":
         edges = np.arange(m + 1) + 0.5
-        label = "element q"
+        label = "element q [-]"
     else:
         raise ValueError(f"x: must be 's', 'theta' or 'q', got {x!r}")
     z = result.impedance
     if m:
-        ax.stairs(z, edges, baseline=None, label="synthesized $Z_q$")
+        ax.stairs(z / 1e3, edges, baseline=None, label="synthesized $Z_q$")
     if result.failure is not None:
         ax.axvline(edges[-1], color="C3", ls="--", label=f"no solution from q = {result.failure.element}")
     if log is None:
@@ -46,22 +49,22 @@ def plot_impedance(result: Any, ax: Optional[Any] = None, x: str = "s", log: Opt
     if log:
         ax.set_yscale("log")
     ax.set_xlabel(label)
-    ax.set_ylabel("impedance Z / (N s/m)")
+    ax.set_ylabel("impedance Z [kN s/m]")
     ax.legend(loc="best")
-    return fig, ax
+    return ax
 
 
 def plot_force(result: Any, verification: Optional[Any] = None, ax: Optional[Any] = None):
     """Target window values (and, with a :class:`~rodimpact.inverse.result.VerificationReport`, the force the
-    synthesized striker achieves) against time. For a position target the prescribed quantity there is shown
-    (time from the wavefront's arrival) together with the transformed impact force."""
+    synthesized striker achieves) in kN against time in ms. For a position target the prescribed quantity there is
+    shown (time from the wavefront's arrival) together with the transformed impact force. Returns the Axes."""
     _check_synthesis(result)
     if verification is not None:
         from ..inverse.result import VerificationReport
 
         if not isinstance(verification, VerificationReport):
             raise TypeError(f"verification: must be a VerificationReport or None, got {type(verification).__name__}")
-    fig, ax = new_axes(ax)
+    _, ax = new_axes(ax)
     dt = result.dt
     n = result.window_values.size
     edges = 2.0 * dt * np.arange(n + 1) * 1e3
@@ -77,32 +80,64 @@ def plot_force(result: Any, verification: Optional[Any] = None, ax: Optional[Any
         t0 = 0.0 if tr is None else tr.dead_time
         ax.plot((verification.time - t0) * 1e3, verification.achieved / 1e3, ".", ms=3,
                 label="achieved (direct solver)")
-    ax.set_xlabel("time / ms" if tr is None else "time after arrival / ms")
-    ax.set_ylabel("force / kN")
+    ax.set_xlabel("time [ms]" if tr is None else "time after arrival [ms]")
+    ax.set_ylabel("force [kN]")
     ax.legend(loc="best")
-    return fig, ax
+    return ax
 
 
 def plot_existence(result: Any, ax: Optional[Any] = None):
-    """Force difference |Delta N_q| against the force reserve |K_q N_0| (thesis eq. 4.20) per element."""
+    """Force difference |Delta N_q| and force reserve |K_q N_0| (kN) per element q: element q exists while
+    |Delta N_q| < |K_q N_0| (thesis eq. 4.20). When the target is infeasible the curves run up to and include
+    the failing element m + 1 (its values from ``result.failure``), which is shaded and marked with crosses; the
+    title says how many elements exist. Markers are drawn on short strikers (a one-element curve is a point).
+    Returns the Axes."""
     _check_synthesis(result)
-    fig, ax = new_axes(ax)
+    _, ax = new_axes(ax)
     q = result.element
-    ax.plot(q, result.force_reserve / 1e3, label=r"force reserve $|K_q N_0|$")
-    ax.plot(q, np.abs(result.force_difference) / 1e3, label=r"force difference $|\Delta N_q|$")
+    reserve = result.force_reserve
+    difference = np.abs(result.force_difference)
     f = result.failure
     if f is not None:
-        ax.plot([f.element], [f.force_reserve / 1e3], "x", color="C0")
-        ax.plot([f.element], [abs(f.force_difference) / 1e3], "x", color="C1", label=f"q = {f.element}: no solution")
-    ax.set_xlabel("element q")
-    ax.set_ylabel("force / kN")
+        q = np.append(q, f.element)
+        reserve = np.append(reserve, f.force_reserve)
+        difference = np.append(difference, abs(f.force_difference))
+    marker = "o" if q.size <= 60 else None
+    ax.plot(q, reserve / 1e3, marker=marker, ms=3, label=r"force reserve $|K_q N_0|$")
+    ax.plot(q, difference / 1e3, marker=marker, ms=3, label=r"force difference $|\Delta N_q|$")
+    title = f"{result.n_feasible} of {result.n_requested} elements exist"
+    if f is not None:
+        ax.axvspan(f.element - 0.5, f.element + 0.5, color="C3", alpha=0.15, lw=0)
+        ax.plot([f.element, f.element], [f.force_reserve / 1e3, abs(f.force_difference) / 1e3], "x", color="C3",
+                ms=8, mew=2, label=f"q = {f.element}: no solution ({f.reason})")
+        title += f"; none from q = {f.element} ({f.reason})"
+    from matplotlib.ticker import MaxNLocator
+
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_xlabel("element q [-]")
+    ax.set_ylabel("force [kN]")
+    ax.set_ylim(bottom=0.0)
     ax.legend(loc="best")
-    return fig, ax
+    ax.set_title(title, fontsize="small")
+    return ax
 
 
-def plot_shape(shape: Any, ax: Optional[Any] = None):
+def _nice_scale(x: float) -> float:
+    """The largest of 1, 2, 5, 10, 20, 50, ... not above ``x`` (1 for x <= 1)."""
+    if x <= 1.0:
+        return 1.0
+    k = math.floor(math.log10(x))
+    return max(m * 10.0**k for m in (1, 2, 5) if m * 10.0**k <= x)
+
+
+def plot_shape(shape: Any, ax: Optional[Any] = None, *, radial_scale: Optional[float] = None):
     """Drawing-style side view of a :class:`~rodimpact.inverse.shape.StrikerShape` (or of a synthesis result
-    as a solid steel striker): outline +-d/2 against the distance from the impact face, bore dashed."""
+    as a solid steel striker): outline +-d/2 in mm against the distance from the impact face, bore dashed.
+
+    A striker is long and slim, so at true scale its diameter changes are hard to see: the radial direction is
+    drawn ``radial_scale`` times larger than the axial one (default: the largest of 1, 2, 5, 10, ... that keeps the
+    drawing at most a third as high as long; 1 = true scale), and the y label says so. Returns the Axes.
+    """
     from ..inverse.result import SynthesisResult
     from ..inverse.shape import StrikerShape
 
@@ -110,7 +145,11 @@ def plot_shape(shape: Any, ax: Optional[Any] = None):
         shape = shape.shape()
     elif not isinstance(shape, StrikerShape):
         raise TypeError(f"shape: must be a StrikerShape or a SynthesisResult, got {type(shape).__name__}")
-    fig, ax = new_axes(ax)
+    if radial_scale is None:
+        radial_scale = _nice_scale(shape.length / 3.0 / float(np.max(shape.outer_diameter)))
+    else:
+        radial_scale = positive("radial_scale", radial_scale)
+    _, ax = new_axes(ax)
     s = shape.boundaries * 1e3
     r = 0.5 * shape.outer_diameter * 1e3
     ax.stairs(r, s, color="k", baseline=None)
@@ -119,16 +158,17 @@ def plot_shape(shape: Any, ax: Optional[Any] = None):
     if shape.bore > 0:
         ax.hlines([0.5 * shape.bore * 1e3, -0.5 * shape.bore * 1e3], s[0], s[-1], color="k", ls="--", lw=0.8)
     ax.axhline(0.0, color="0.5", ls="-.", lw=0.6)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("distance from impact face / mm")
-    ax.set_ylabel("radius / mm")
+    ax.set_aspect(radial_scale, adjustable="datalim")
+    ax.set_xlabel("distance from impact face [mm]")
+    ax.set_ylabel("radius [mm]" + (f" (radial scale x{radial_scale:g})" if radial_scale != 1.0 else ""))
     ax.set_title(f"length {shape.length * 1e3:.4g} mm, mass {shape.mass:.4g} kg, diameter ratio "
                  f"{shape.diameter_ratio:.3g}", fontsize="small")
-    return fig, ax
+    return ax
 
 
 def plot_synthesis(result: Any, verification: Optional[Any] = None):
-    """Summary figure: impedance, force (target/achieved), existence margin and shape. Returns (fig, axes)."""
+    """Summary figure: impedance, force (target/achieved), existence margin and shape on a 2 x 2 grid. Draws on
+    several Axes, so it returns the Figure (``fig.axes`` in reading order)."""
     _check_synthesis(result)
     fig, axes = new_axes(None, nrows=2, ncols=2, figsize=(11.0, 7.0))
     plot_impedance(result, axes[0, 0])
@@ -136,4 +176,4 @@ def plot_synthesis(result: Any, verification: Optional[Any] = None):
     plot_existence(result, axes[1, 0])
     if result.n_feasible:
         plot_shape(result.shape(), axes[1, 1])
-    return fig, axes
+    return fig

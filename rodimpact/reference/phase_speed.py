@@ -25,32 +25,32 @@ def plot_phase_speed(
     omega_max: float | None = None,
     ax: Any = None,
     n_points: int = 600,
-) -> tuple[Any, Any]:
+) -> Any:
     """Plot c_p(omega) (eq. 2.18) of the four Tab. 2.1 families, as in thesis Fig. 2.2 (default xi = 1 1/m).
 
     Curves start just above each cutoff (eq. 2.19, dotted vertical lines); below it no wave propagates.
-    ``omega_max`` defaults to 8 c0 xi. Returns ``(figure, axes)``.
+    ``omega_max`` defaults to 8 c0 xi. Draws on ``ax`` (default: a new figure, made without pyplot) and returns
+    that Axes, like the functions of :mod:`rodimpact.plotting`.
     """
-    import matplotlib.pyplot as plt
 
     xi = positive("xi", xi, "1/m")
     c0 = positive("wave_speed", wave_speed, "m/s")
     wmax = 8.0 * c0 * xi if omega_max is None else positive("omega_max", omega_max, "rad/s")
     if ax is None:
-        fig, ax = plt.subplots(figsize=(6.0, 4.0))
-    else:
-        fig = ax.figure
+        from matplotlib.figure import Figure
+
+        ax = Figure(figsize=(6.0, 4.0), layout="constrained").subplots()
     for prof in AnalyticProfile.table(1.0, xi, c0):
         wc = prof.cutoff_angular_frequency
         w = np.linspace(wc, wmax, n_points)[1:] if wc > 0 else np.linspace(0.0, wmax, n_points)[1:]
         line, = ax.plot(w, prof.phase_velocity(w), label=_LABELS[prof.family])
         if wc > 0:
             ax.axvline(wc, color=line.get_color(), ls=":", lw=0.8)
-    ax.set_xlabel(r"angular frequency $\omega$ in rad/s")
-    ax.set_ylabel(r"phase speed $c_p$ in m/s")
+    ax.set_xlabel(r"angular frequency $\omega$ [rad/s]")
+    ax.set_ylabel(r"phase speed $c_p$ [m/s]")
     ax.set_ylim(0.0, 3.0 * c0)
     ax.set_xlim(0.0, wmax)
     ax.axhline(c0, color="0.5", lw=0.6)
     ax.set_title(rf"Phase speed, $\xi$ = {xi:g} 1/m, $c_0$ = {c0:.0f} m/s")
     ax.legend()
-    return fig, ax
+    return ax

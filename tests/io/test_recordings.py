@@ -116,7 +116,8 @@ def test_csv_without_header_whitespace_and_named_time_column(tmp_path):
         ("time,a\n0,1\n1,x1.5\n", r"line 3: column 2 \(a\): expected a number, found 'x1.5'"),
         ("time,a\n0,1\n1,2\n1,3\n", r"line 4: time 1.0 s does not increase"),
         ("time,a\n0,1\n2,2\n1,3\n", r"line 4: time 1.0 s does not increase"),
-        ("time (h),a\n0,1\n1,2\n", r"line 1: time unit 'h' not understood"),
+        ("time (kg),a\n0,1\n1,2\n", r"line 1: time unit 'kg' not understood; expected a unit of time"),
+        ("time (xyz),a\n0,1\n1,2\n", r"line 1: time unit 'xyz' not understood"),
     ],
 )
 def test_malformed_csv(tmp_path, content, match):

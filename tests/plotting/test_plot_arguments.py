@@ -7,7 +7,7 @@ import pytest
 import rodimpact as ri
 from rodimpact import io as rio
 from rodimpact.plotting import (animate_force, plot_energy, plot_energy_comparison, plot_forces, plot_profile,
-                                plot_snapshots, plot_xt, save_plots)
+                                plot_snapshots, plot_strain, plot_xt, save_plots)
 
 NOT_A_RESULT = r"result: must be a SimulationResult \(from rodimpact.simulate or rodimpact.io.load\), got NoneType"
 
@@ -81,7 +81,7 @@ def test_save_plots_checks_every_name_before_writing(result, tmp_path):
     assert [p.name for p in written] == ["forces.png"]
 
 
-@pytest.mark.parametrize("plot", [plot_forces, plot_energy, plot_snapshots, plot_xt])
+@pytest.mark.parametrize("plot", [plot_forces, plot_strain, plot_energy, plot_snapshots, plot_xt])
 def test_plot_functions_need_a_result(plot):
     with pytest.raises(TypeError, match=NOT_A_RESULT):
         plot(None)
@@ -151,8 +151,8 @@ def test_other_plot_arguments(result):
         plot_xt(result, cmap="no-such-map")
     with pytest.raises(ValueError, match="probes: 'SG2' was not recorded; recorded probes: 'SG'"):
         plot_forces(result, probes=["SG2"])
-    fig = plot_forces(result, probes="SG")                               # a single name, not its letters
-    assert any(ln.get_label().startswith("SG (") for ln in fig.axes[0].get_lines())
+    ax = plot_forces(result, probes="SG")                                # a single name, not its letters
+    assert any(ln.get_label().startswith("SG (") for ln in ax.get_lines())
     with pytest.raises(ValueError, match="samples: must be an integer from 2"):
         plot_profile(result, samples=0)
     with pytest.raises(ValueError, match="round_trip_time: must be > 0"):

@@ -25,15 +25,15 @@ def result():
 
 
 def test_forces_plot_shows_contact_and_probe_forces_in_kN(result):
-    fig = plot_forces(result)
-    lines = {ln.get_label(): ln for ln in fig.axes[0].get_lines()}
+    ax = plot_forces(result)
+    lines = {ln.get_label(): ln for ln in ax.get_lines()}
     contact = lines["contact striker | bar"]
     np.testing.assert_array_equal(contact.get_xdata(), result.time * 1e3)
     np.testing.assert_array_equal(contact.get_ydata(), result.contact_force / 1e3)
     assert contact.get_drawstyle() == "steps-post"           # node values hold during each step
     probe = lines["SG1 (bar, x = 100 mm)"]
     np.testing.assert_array_equal(probe.get_ydata(), result.probe("SG1").force / 1e3)
-    assert fig.axes[0].get_xlabel() == "time [ms]"
+    assert ax.get_xlabel() == "time [ms]"
 
 
 def test_profile_plot_against_hand_impedances(result):
@@ -68,8 +68,7 @@ def test_snapshot_plot_has_one_row_per_requested_time(result):
 
 
 def test_xt_diagram_colours_are_the_recorded_forces(result):
-    fig = plot_xt(result)
-    mesh = fig.axes[0].collections[0]
+    mesh = plot_xt(result).collections[0]
     s = result.snapshots
     values = np.ma.getdata(mesh.get_array()).reshape(s.time.size, -1)
     # the gap between the rods is a masked column; the others are the element forces in kN
@@ -85,11 +84,10 @@ def test_xt_diagram_colours_are_the_recorded_forces(result):
 
 
 def test_energy_plots(result):
-    fig = plot_energy(result)
-    total = [ln for ln in fig.axes[0].get_lines() if ln.get_label().startswith("total E_tot")][0]
+    total = [ln for ln in plot_energy(result).get_lines() if ln.get_label().startswith("total E_tot")][0]
     np.testing.assert_array_equal(total.get_ydata(), result.energy.total)
-    fig = plot_energy_comparison([result, result], ["a", "b"], round_trip_time=2e-4)
-    np.testing.assert_array_equal(fig.axes[0].get_lines()[0].get_xdata(), result.energy.time / 2e-4)
+    ax = plot_energy_comparison([result, result], ["a", "b"], round_trip_time=2e-4)
+    np.testing.assert_array_equal(ax.get_lines()[0].get_xdata(), result.energy.time / 2e-4)
     with pytest.raises(ValueError, match="labels: need one per result"):
         plot_energy_comparison([result], ["a", "b"])
 
