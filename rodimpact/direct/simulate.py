@@ -5,13 +5,12 @@ from __future__ import annotations
 import math
 import sys
 import time as _time
-import warnings
 from typing import Any, Callable, Iterable, Literal, Optional, Sequence
 
 import numpy as np
 
 from .. import __version__
-from .._validate import caller_stacklevel, positive
+from .._validate import positive
 from ..lattice import tolerance
 from ..lattice.lattice import Lattice, build_lattice, default_time_step
 from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
@@ -95,7 +94,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     record = _recording(record, probes=probes, snapshot_times=snapshot_times, snapshot_every=snapshot_every,
                         energy_every=energy_every, record_every=record_every)
     lattice = build_lattice(system, dt)
-    rough = _check_discretization(system, lattice, allow_discretization_error)
+    rough = tolerance.check(system, lattice, allow_discretization_error)
     probe_list = [_named_rod(p, i, system) for i, p in enumerate(record.probes)]
     wall0 = _time.perf_counter()
     state = _initial_state(system, lattice)
@@ -183,23 +182,6 @@ def _named_rod(probe: Any, i: int, system: System) -> Any:
 
 def _missing(name: str):
     raise ValueError(f"{name}: required when rods are given as a list (one initial velocity per rod, m/s)")
-
-
-def _check_discretization(system: System, lattice: Lattice, allow: bool) -> list[str]:
-    """Raise (or, with ``allow``, warn) if the lattice misrepresents a rod by more than the tolerance
-    (:mod:`rodimpact.lattice.tolerance`); returns the problems that were allowed."""
-    if not isinstance(allow, (bool, np.bool_)):
-        raise TypeError(f"allow_discretization_error: must be True or False, got {allow!r}")
-    found = tolerance.problems(system, lattice)
-    if not found:
-        return []
-    good = tolerance.resolving_time_step(system, lattice.dt)
-    text = f"dt: {'; '.join(found)}. dt = {good:.6g} s represents every rod within {tolerance.TOLERANCE:.0%}"
-    if not allow:
-        raise ValueError(text + " (or allow the error: allow_discretization_error=True, in a model file "
-                                "simulation.allow_discretization_error = true)")
-    warnings.warn(text, stacklevel=caller_stacklevel())
-    return found
 
 
 def _time_step(system: System, dt, elements, resolution) -> float:

@@ -31,6 +31,7 @@ import numpy as np
 from numba import njit
 
 from ..direct import _kernels as DK
+from ..lattice import tolerance
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import BitRockEnd, Bonded, FixedEnd, FreeEnd, NonReflectingEnd, SpringEnd
 from ..rods.system import System
@@ -125,10 +126,12 @@ def chain_response(system: System, node: int, dt: float, steps: int,
     if (system.loads or any(s is not None for s in system.initial) or any(v != 0.0 for v in system.velocities)
             or not all(isinstance(j, Bonded) for j in system.junctions)):
         return None
-    z = build_lattice(system, dt).impedance
+    lattice = build_lattice(system, dt)
+    z = lattice.impedance
     end = _far_end(system, float(z[-1]))
     if end is None:
         return None
+    tolerance.check(system, lattice, True)     # the synthesis runs at the user's dt: a warning, as in simulate
     refl = np.zeros(z.size)
     refl[1:] = (z[1:] - z[:-1]) / (z[1:] + z[:-1])
     force, velocity = _sweep_numba(z, refl, int(node), int(steps), end[0], end[1], end[2], float(dt),

@@ -12,6 +12,11 @@ own default time step always satisfies this tolerance (:func:`resolving_time_ste
 from __future__ import annotations
 
 import math
+import warnings
+
+import numpy as np
+
+from .._validate import caller_stacklevel
 
 from ..rods.system import System
 from .lattice import Lattice
@@ -86,3 +91,20 @@ def resolving_time_step(system: System, dt: float, tolerance: float = TOLERANCE)
                 best = candidate
                 break
     return best
+
+
+def check(system: System, lattice: Lattice, allow: bool) -> list[str]:
+    """Raise (or, with ``allow``, warn) if the lattice misrepresents a rod by more than the tolerance
+    (:mod:`rodimpact.lattice.tolerance`); returns the problems that were allowed."""
+    if not isinstance(allow, (bool, np.bool_)):
+        raise TypeError(f"allow_discretization_error: must be True or False, got {allow!r}")
+    found = problems(system, lattice)
+    if not found:
+        return []
+    good = resolving_time_step(system, lattice.dt)
+    text = f"dt: {'; '.join(found)}. dt = {good:.6g} s represents every rod within {TOLERANCE:.0%}"
+    if not allow:
+        raise ValueError(text + " (or allow the error: allow_discretization_error=True, in a model file "
+                                "simulation.allow_discretization_error = true)")
+    warnings.warn(text, stacklevel=caller_stacklevel())
+    return found
