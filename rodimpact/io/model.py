@@ -18,7 +18,9 @@ from __future__ import annotations
 
 import csv
 import math
+import os
 import re
+import stat
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -122,9 +124,19 @@ class Model:
         return None
 
     def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None) -> SimulationResult:
-        """Run :func:`rodimpact.simulate` with this model's settings."""
+        """Run :func:`rodimpact.simulate` with this model's settings; errors name the model file's keys
+        (``simulation.dt``, ``rods[1].initial.force``), see :mod:`rodimpact.io.keypaths`."""
         from ..direct.simulate import simulate
+        from .keypaths import MODEL_KEYS, translated
 
+        try:
+            return self._simulate(simulate, progress, backend)
+        except ModelError:
+            raise
+        except (ValueError, TypeError) as exc:
+            raise translated(exc, MODEL_KEYS) from None
+
+    def _simulate(self, simulate, progress: Optional[bool], backend: Optional[str]) -> SimulationResult:
         return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
                         snapshot_times=list(self.output.snapshot_times) or None,
                         snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
@@ -132,23 +144,109 @@ class Model:
 
 
 # ============================================================================================ reading
-def read_text_file(path: Path, label: str, kind: str, encoding: str = "utf-8-sig") -> str:
-    """The text of ``path``; every way of failing becomes a :class:`ModelError` that starts with ``label`` (the
-    key path, or the file itself) and says what kind of file was expected. A UTF-8 byte-order mark is dropped."""
-    name = repr(str(path))
+#: Largest model, spec or table file read, bytes; the environment variable ``RODIMPACT_MAX_INPUT_MB`` (MiB) lifts it.
+MAX_INPUT_BYTES = 64 * 2**20
+
+
+def max_input_bytes() -> int:
+    """The input file size limit in bytes: :data:`MAX_INPUT_BYTES`, or ``RODIMPACT_MAX_INPUT_MB`` MiB if set."""
+    text = os.environ.get("RODIMPACT_MAX_INPUT_MB", "").strip()
     try:
-        return path.read_text(encoding=encoding)
+        return int(float(text) * 2**20) if text else MAX_INPUT_BYTES
+    except (ValueError, OverflowError):
+        raise ModelError(f"RODIMPACT_MAX_INPUT_MB: expected a number of MiB, got {text[:40]!r}") from None
+
+
+def read_bytes_limited(path: Path, label: str, kind: str) -> bytes:
+    """The bytes of ``path`` after checking it is a regular file (not a folder, FIFO, socket or device such as
+    /dev/zero: opened without blocking and checked before reading) of at most :func:`max_input_bytes` bytes; every
+    failure is a :class:`ModelError` starting with ``label`` (the key path, or the file itself)."""
+    name = repr(str(path))
+    who = "" if label == str(path) else f" {name}"
+    limit = max_input_bytes()
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0) | getattr(os, "O_NOCTTY", 0)
+    try:
+        fd = os.open(path, flags)
     except FileNotFoundError:
-        raise ModelError(f"{label}: no such {kind}" + ("" if label == str(path) else f" {name}")) from None
+        raise ModelError(f"{label}: no such {kind}{who}") from None
     except IsADirectoryError:
-        raise ModelError(f"{label}: " + ("is" if label == str(path) else f"{name} is") + f" a folder, not a {kind}") \
-            from None
+        raise ModelError(f"{label}: " + ("is" if not who else f"{name} is") + f" a folder, not a {kind}") from None
     except PermissionError:
         raise ModelError(f"{label}: no permission to read {name}") from None
-    except UnicodeDecodeError as exc:
-        raise ModelError(f"{label}: {name} is not a text file ({exc.reason}); expected a {kind}") from None
     except OSError as exc:
         raise ModelError(f"{label}: cannot read {name} ({exc.strerror or exc})") from None
+    try:
+        st = os.fstat(fd)
+        if stat.S_ISDIR(st.st_mode):
+            raise ModelError(f"{label}: " + ("is" if not who else f"{name} is") + f" a folder, not a {kind}")
+        if not stat.S_ISREG(st.st_mode):
+            raise ModelError(f"{label}: {name} is not a regular file (a device, pipe or socket); expected a {kind}")
+        if st.st_size > limit:
+            raise ModelError(f"{label}: {name} has {st.st_size:,} bytes, more than the limit of {limit:,} for a "
+                             f"{kind}; set RODIMPACT_MAX_INPUT_MB to read larger files")
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+        chunks, total = [], 0
+        while True:
+            chunk = os.read(fd, min(1 << 20, limit + 1 - total))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            total += len(chunk)
+            if total > limit:      # the file grew while we read it
+                raise ModelError(f"{label}: {name} has more than {limit:,} bytes, the limit for a {kind}; set "
+                                 f"RODIMPACT_MAX_INPUT_MB to read larger files")
+        return b"".join(chunks)
+    except OSError as exc:
+        raise ModelError(f"{label}: cannot read {name} ({exc.strerror or exc})") from None
+    finally:
+        os.close(fd)
+
+
+def read_text_file(path: Path, label: str, kind: str, encoding: str = "utf-8-sig") -> str:
+    """The text of ``path`` (read by :func:`read_bytes_limited`); every way of failing becomes a
+    :class:`ModelError` that starts with ``label`` (the key path, or the file itself) and says what kind of file
+    was expected. A UTF-8 byte-order mark is dropped; the content is never shown in messages."""
+    data = read_bytes_limited(Path(path), label, kind)
+    try:
+        return data.decode(encoding)
+    except UnicodeDecodeError as exc:
+        raise ModelError(f"{label}: {str(path)!r} is not a text file ({exc.reason} at byte {exc.start}); expected "
+                         f"a {kind}") from None
+
+
+#: Deepest nesting of arrays and tables accepted in a model or spec file (the schema needs 5).
+MAX_NESTING = 32
+
+
+def parse_toml(text: str, name: str) -> dict:
+    """Parse TOML ``text``; every failure (syntax, nesting too deep for the parser, an integer beyond the
+    conversion limit) and nesting deeper than :data:`MAX_NESTING` is a :class:`ModelError` naming ``name`` and,
+    for nesting, the key path."""
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise ModelError(f"{name}: arrays or tables nested too deeply (at most {MAX_NESTING} levels)") from None
+    except (ValueError, MemoryError, OverflowError) as exc:
+        raise ModelError(f"{name}: not valid TOML: {type(exc).__name__}: {str(exc)[:200]}") from None
+    _check_nesting(raw)
+    return raw
+
+
+def _check_nesting(raw: dict) -> None:
+    """Raise a :class:`ModelError` naming the key path where ``raw`` nests deeper than :data:`MAX_NESTING`
+    (iteratively, so that the check itself cannot overflow the stack)."""
+    stack: list[tuple[Any, str, int]] = [(raw, "", 0)]
+    while stack:
+        value, path, depth = stack.pop()
+        if depth > MAX_NESTING:
+            raise ModelError(f"{path}: arrays or tables nested too deeply (at most {MAX_NESTING} levels)")
+        if isinstance(value, dict):
+            stack.extend((v, f"{path}.{k}" if path else str(k), depth + 1) for k, v in value.items())
+        elif isinstance(value, list):
+            stack.extend((v, f"{path}[{i}]", depth + 1) for i, v in enumerate(value))
 
 
 def load_model(path: str | Path) -> Model:
@@ -162,10 +260,7 @@ def load_model(path: str | Path) -> Model:
 
 def loads_model(text: str, base_dir: str | Path | None = None, name: str = "model") -> Model:
     """Read a model from TOML text (``base_dir``: folder for relative file names, default the current one)."""
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    raw = parse_toml(text, name)
     return model_from_dict(raw, base_dir=Path(base_dir) if base_dir is not None else Path("."))
 
 
@@ -367,6 +462,10 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
     if dt is None:
         raise ModelError(f"{path}.dt: missing; give the element travel time dt or element_length here, or "
                          f"simulation.dt")
+    if not 0.0 < dt < math.inf or not 0.0 < c * dt < math.inf:
+        key = "dt" if e["dt"] is not None or e["element_length"] is None else "element_length"
+        raise ModelError(f"{path}.{key}: gives an element travel time of {dt:.6g} s and an element length of "
+                         f"{c * dt:.6g} m; both must be finite and > 0 (out of the range of floating point numbers)")
     given = [k for k in ("impedance", "runs", "file") if e[k] is not None]
     if len(given) != 1:
         raise ModelError(f"{path}: give exactly one of impedance, runs or file, got "
@@ -410,6 +509,9 @@ def _run_count(run: dict, path: str, element_length: float) -> int:
     if run["count"] is not None:
         return run["count"]
     x = run["length"] / element_length
+    if not x < 2**62:
+        raise ModelError(f"{path}.length: {run['length']:.6g} m is {x:.3g} elements of length c*dt = "
+                         f"{element_length:.6g} m; far too many (use a shorter run or longer elements)")
     k = int(round(x))
     if k < 1 or abs(x - k) > 1e-6 * max(x, 1.0):
         raise ModelError(f"{path}.length: {run['length']:.6g} m is {x:.6g} elements of length c*dt = "
@@ -501,23 +603,34 @@ def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, ne
             cols[name] = (i, unit)
     for n in list(needed) + list(positional):
         if n not in cols:
-            raise ModelError(f"{key}: {path} has no column {n!r} (header: {', '.join(header)})")
+            raise ModelError(f"{key}: {path} has no column {n!r} among the {len(header)} column(s) of its header "
+                             f"line; expected a CSV file whose first line names the columns"
+                             + (f" ({', '.join(positional)})" if positional else f", e.g. '{n} [unit]'"))
     out = {}
     for name, (i, unit) in cols.items():
         dim = dims[name] if dims is not None else name if name in DIMENSIONS else "time"
-        scale = 1.0 if not unit else parse_quantity(f"1 {unit}", dim, f"{key} (column {header[i]!r})")
+        try:
+            scale = 1.0 if not unit else parse_quantity(f"1 {unit}", dim, key)
+        except ModelError:
+            raise ModelError(f"{key}: {path}, column {i + 1}: the unit in its header is not {_a(dim)} unit (such as "
+                             f"{DIMENSIONS[dim].si}); the file's content is not shown") from None
         vals = []
         for line_no, r in enumerate(rows[1:], start=2):
             try:
                 vals.append(float(r[i]) * scale)
             except (IndexError, ValueError):
-                raise ModelError(f"{key}: {path}, data row {line_no - 1}, column {header[i]!r}: expected a number, "
-                                 f"got {r[i] if i < len(r) else 'nothing'!r}") from None
+                got = "text that is not a number" if i < len(r) else "no value"
+                raise ModelError(f"{key}: {path}, data row {line_no - 1}, column {i + 1} ({name}): expected a number, got "
+                                 f"{got} (the file's content is not shown)") from None
         arr = np.array(vals)
         if not np.all(np.isfinite(arr)):
-            raise ModelError(f"{key}: {path}, column {header[i]!r} contains a non-finite value")
+            raise ModelError(f"{key}: {path}, column {i + 1} ({name}) contains a non-finite value")
         out[name] = arr
     return out
+
+
+def _a(dimension: str) -> str:
+    return ("an " if dimension[0] in "aeiou" else "a ") + dimension
 
 
 # ============================================================================================ writing

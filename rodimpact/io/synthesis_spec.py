@@ -12,7 +12,6 @@ Keys are listed in ``docs/cli.md`` (generated from :data:`SPEC` by :func:`spec_r
 from __future__ import annotations
 
 import json
-import tomllib
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -25,7 +24,8 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.material import STEEL
 from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression
-from .model import _end, _history, _material, _materials, _rod, _rod_index, read_csv_columns, read_text_file
+from .model import (_end, _history, _material, _materials, _rod, _rod_index, parse_toml, read_csv_columns,
+                    read_text_file)
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
                      validate_table)
@@ -153,7 +153,18 @@ class SynthesisSpec:
     source: Optional[Path] = None
 
     def synthesize(self):
-        """Run :func:`rodimpact.synthesize` with these settings."""
+        """Run :func:`rodimpact.synthesize` with these settings; errors name the spec's keys (``synthesis.dt``,
+        ``striker.elements``), see :mod:`rodimpact.io.keypaths`."""
+        from .keypaths import SPEC_KEYS, translated
+
+        try:
+            return self._synthesize()
+        except ModelError:
+            raise
+        except (ValueError, TypeError) as exc:
+            raise translated(exc, SPEC_KEYS) from None
+
+    def _synthesize(self):
         from ..inverse import synthesize
 
         return synthesize(self.target, list(self.struck), self.striker_velocity, self.n, self.dt,
@@ -173,10 +184,7 @@ def load_spec(path: str | Path) -> SynthesisSpec:
 
 def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> SynthesisSpec:
     """Read a synthesis spec from TOML text."""
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    raw = parse_toml(text, name)
     base = Path(base_dir)
     d = validate_table(SPEC, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
