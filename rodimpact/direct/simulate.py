@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import sys
 import time as _time
 import warnings
 from typing import Any, Callable, Iterable, Literal, Optional, Sequence
@@ -11,7 +10,7 @@ from typing import Any, Callable, Iterable, Literal, Optional, Sequence
 import numpy as np
 
 from .. import __version__
-from .._validate import finite_array, fits_in_memory, positive
+from .._validate import finite_array, positive
 from ..lattice.lattice import Lattice, build_lattice, default_time_step
 from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
                                SpringEnd, VelocityEnd)
@@ -19,6 +18,7 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
 from . import _kernels as K
+from . import guards
 from .result import EnergyHistory, EventTracker, FieldSnapshots, Probe, ProbeHistory, SimulationResult
 
 Backend = Literal["numba", "numpy"]
@@ -35,7 +35,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
              initial: Optional[Sequence[Optional[InitialState]]] = None, probes: Iterable[Probe] = (),
              snapshot_times: Optional[Sequence[float]] = None, snapshot_every: Optional[int] = None,
              energy_every: Optional[int] = None, record_every: int = 1, backend: Backend = "numba",
-             progress: bool | None = None) -> SimulationResult:
+             progress: bool | None = None, max_element_updates: Optional[float] = None) -> SimulationResult:
     """Simulate the longitudinal impact of rods with the exact wave propagation method (thesis Sec. 3.1).
 
     Parameters
@@ -75,7 +75,12 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     backend:
         "numba" (compiled, default) or "numpy" (readable reference path; slow).
     progress:
-        Show a progress bar (default: only on a terminal for runs of more than about 10^8 element updates).
+        Report progress on stderr (default: for runs of more than 10^9 element updates; a bar on a terminal,
+        else a line every 10 %).
+    max_element_updates:
+        Refuse runs of more elements x steps than this (default 1e11, see
+        :data:`rodimpact.direct.guards.DEFAULT_MAX_ELEMENT_UPDATES`; ``math.inf``: no limit). The memory the
+        histories and snapshots need is checked against the available memory before the run as well.
     """
     system = rods if isinstance(rods, System) else System(
         rods, velocities if velocities is not None else _missing("velocities"), junctions, left, right,
@@ -93,8 +98,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     state = _initial_state(system, lattice)
     arrays = _kernel_arrays(system, lattice, state, probe_list)
     rows = sum(arrays[key].shape[0] for key in _HISTORIES) + len(probe_list)      # + strain per probe
-    fits_in_memory("steps", 8.0 * rows * -(-n_steps // stride), f"the histories of {n_steps} steps ({rows} signals)",
-                   "keep every n-th step with record_every=n, or split the run")
+    guards.check_simulation(lattice.n_elements, n_steps, rows, stride, len(snap_steps), max_element_updates)
     history = _History(arrays, n_steps, stride)
     run = K.run_numba if backend == "numba" else K.run_numpy
 
@@ -105,7 +109,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     rs = lattice.rod_start
     energy_steps = sorted(set(range(0, n_steps + 1, every)) | {n_steps})
     events = sorted(set(energy_steps) | set(snap_steps) | set(range(0, n_steps, _MAX_CHUNK)))
-    bar = _progress_bar(progress, n_steps, lattice.n_elements)
+    bar = guards.progress(progress, n_steps, lattice.n_elements)
     e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
     snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
     static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key != "step_inputs"}
@@ -231,6 +235,8 @@ def _snapshot_steps(times, every, n_steps: int, dt: float) -> list[int]:
     if every is not None:
         if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
             raise ValueError(f"snapshot_every: must be an integer number of steps >= 1, got {every!r}")
+        if n_steps // int(every) + 1 > 100_000:      # checked before the steps are listed (they could be billions)
+            raise ValueError(f"snapshot_every: {every} gives {n_steps // int(every) + 1} snapshots; use a larger stride")
         out |= set(range(0, n_steps + 1, int(every)))
         if len(out) > 100_000:
             raise ValueError(f"snapshot_every: {every} gives {len(out)} snapshots; use a larger stride")
@@ -242,7 +248,13 @@ def _energy_stride(every, n_steps: int) -> int:
         return max(1, -(-n_steps // 256))
     if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
         raise ValueError(f"energy_every: must be an integer number of steps >= 1, got {every!r}")
+    if n_steps // int(every) > _MAX_ENERGY_SAMPLES:
+        raise ValueError(f"energy_every: {every} gives {n_steps // int(every) + 1} energy samples of {n_steps} steps; "
+                         f"at most {_MAX_ENERGY_SAMPLES:,} (use a larger stride)")
     return int(every)
+
+
+_MAX_ENERGY_SAMPLES = 1_000_000
 
 
 def _record_stride(every) -> int:
@@ -293,15 +305,6 @@ class _History:
             for key, buf in self._buf.items():
                 self.recorded[key][:, target] = buf[:, local]
         self._first, self._filled = first + n, 0
-
-
-def _progress_bar(progress, n_steps: int, n_el: int):
-    if progress is None:
-        progress = sys.stderr.isatty() and n_steps * n_el > 1e8
-    if not progress:
-        return None
-    from tqdm.auto import tqdm
-    return tqdm(total=n_steps, unit="step", desc="simulate")
 
 
 def _field(value, x: np.ndarray, n: int, name: str) -> np.ndarray:

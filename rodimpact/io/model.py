@@ -67,9 +67,11 @@ class OutputSpec:
     record_every: int = 1
 
     def __post_init__(self) -> None:
-        for p in self.plots:
+        for i, p in enumerate(self.plots):
             if p not in PLOT_NAMES:
                 raise ValueError(f"output.plots: unknown plot {p!r}; valid: {', '.join(PLOT_NAMES)}")
+            if p in self.plots[:i]:
+                raise ValueError(f"output.plots[{i}]: {p!r} is listed twice")
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,24 +125,24 @@ class Model:
             return max(1, self.n_steps // self.output.snapshot_count)
         return None
 
-    def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None) -> SimulationResult:
-        """Run :func:`rodimpact.simulate` with this model's settings; errors name the model file's keys
-        (``simulation.dt``, ``rods[1].initial.force``), see :mod:`rodimpact.io.keypaths`."""
+    def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None,
+                 max_element_updates: Optional[float] = None) -> SimulationResult:
+        """Run :func:`rodimpact.simulate` with this model's settings (``max_element_updates``: see there); errors
+        name the model file's keys (``simulation.dt``, ``rods[1].initial.force``), see
+        :mod:`rodimpact.io.keypaths`."""
         from ..direct.simulate import simulate
         from .keypaths import MODEL_KEYS, translated
 
         try:
-            return self._simulate(simulate, progress, backend)
+            return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
+                            snapshot_times=list(self.output.snapshot_times) or None,
+                            snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
+                            record_every=self.output.record_every, backend=backend or self.backend,
+                            progress=progress, max_element_updates=max_element_updates)
         except ModelError:
             raise
         except (ValueError, TypeError) as exc:
             raise translated(exc, MODEL_KEYS) from None
-
-    def _simulate(self, simulate, progress: Optional[bool], backend: Optional[str]) -> SimulationResult:
-        return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
-                        snapshot_times=list(self.output.snapshot_times) or None,
-                        snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
-                        record_every=self.output.record_every, backend=backend or self.backend, progress=progress)
 
 
 # ============================================================================================ reading
@@ -331,8 +333,9 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
             if t > sim["duration"] * (1 + 1e-12):
                 raise ModelError(f"output.snapshot_times[{i}]: {t:.6g} s lies after the end of the run "
                                  f"(simulation.duration = {sim['duration']:.6g} s)")
-    output = OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"], out["snapshot_count"],
-                        tuple(out["plots"]), out["csv"], out["fields"], out["record_every"])
+    output = _wrap("model", lambda: OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"],
+                                               out["snapshot_count"], tuple(out["plots"]), out["csv"], out["fields"],
+                                               out["record_every"]))
     system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
                                            initial if any(s is not None for s in initial) else None))
     return Model(system, sim["duration"], sim["steps"], sim["dt"], tuple(probes), output, sim["backend"],
