@@ -166,7 +166,11 @@ def check_run(model: Any, folder: Path, plots: Sequence[str], max_element_update
     from ..io.quantities import ModelError
 
     dt = model.time_step
-    n_el = max(1, int(round(sum(r.total_travel_time for r in model.system.rods) / dt)))
+    n_el_float = sum(r.total_travel_time for r in model.system.rods) / dt
+    if not n_el_float < 2**62:
+        raise ModelError(f"simulation.dt: the rods would need {n_el_float:.3g} elements of travel time {dt:.3g} s; "
+                         f"use a larger dt")
+    n_el = max(1, int(round(n_el_float)))
     n_steps = model.n_steps
     n_rods, n_probes = model.system.n_rods, len(model.probes)
     rows = 2 * (n_rods - 1) + 4 + 4 * n_probes
@@ -194,7 +198,7 @@ class Progress:
     def __init__(self, n_steps: int, stream: Any = None) -> None:
         self.n, self.done, self.stream = n_steps, 0, stream or sys.stderr
         self.t0 = time.perf_counter()
-        self.next_report = 0.1
+        self.next_tenth = 1
         self.bar = None
         if getattr(self.stream, "isatty", lambda: False)():
             from tqdm.auto import tqdm
@@ -206,13 +210,14 @@ class Progress:
         if self.bar is not None:
             self.bar.update(steps)
             return
-        frac = self.done / self.n
-        if frac >= self.next_report or self.done == self.n:
+        tenths = 10 * self.done // self.n                  # whole tenths done (integers: no rounding)
+        if tenths >= self.next_tenth:
+            frac = self.done / self.n
             elapsed = time.perf_counter() - self.t0
-            left = elapsed * (1 - frac) / frac if frac > 0 else math.inf
+            left = elapsed * (1 - frac) / frac
             print(f"simulate: {frac:4.0%} ({self.done:,} of {self.n:,} steps, {_duration(elapsed)} elapsed, about "
                   f"{_duration(left)} left)", file=self.stream, flush=True)
-            self.next_report = math.floor(frac * 10 + 1e-9) / 10 + 0.1
+            self.next_tenth = tenths + 1
 
     def close(self) -> None:
         if self.bar is not None:

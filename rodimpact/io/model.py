@@ -341,6 +341,11 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
             raise ModelError(f"{path}.material: an impedance-level rod has no material; give "
                              f"{path}.elements.wave_speed and density if they matter")
         rod = _elements(r["elements"], f"{path}.elements", r["name"], sim_dt, base_dir)
+    with np.errstate(all="ignore"):
+        travel = rod.total_travel_time
+    if not 0.0 < travel < math.inf or not rod.length < math.inf:
+        raise ModelError(f"{path}: its length ({rod.length:.6g} m) or wave travel time ({travel:.6g} s) is out of the "
+                         f"range of floating point numbers; check the lengths of its segments")
     st = None
     if r["initial"] is not None and (r["initial"]["force"] is not None or r["initial"]["velocity"] is not None):
         ini = r["initial"]
