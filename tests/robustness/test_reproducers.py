@@ -29,9 +29,9 @@ from rodimpact.io.quantities import ModelError
 from rodimpact.io.recordings import read_lanl_raw, read_tdms
 from rodimpact.io.templates import TEMPLATES
 
-from robust_inputs import ROOT, SMALL_MODEL
+from robust_inputs import DT_LINE, ROOT, small_model
 
-MODEL = SMALL_MODEL.format(title="t")
+MODEL = small_model("t")
 
 
 def fails(text: str, pattern: str, base_dir: Path | None = None, *, seconds: float = 5.0) -> str:
@@ -102,7 +102,7 @@ def test_a_file_above_the_size_limit_is_refused_and_the_limit_can_be_lifted(tmp_
 def _big_snapshot_model() -> str:
     # 12,802 elements x 41,404 steps with a snapshot at every step: the issue's 12.7 GB case
     return MODEL.replace('length = "0.4 m"', 'length = "66.25 m"').replace(
-        'steps = 150\ndt = "2 us"', 'steps = 41404\ndt = "1 us"').replace(
+        'steps = 150\n', 'steps = 41404\n').replace(DT_LINE, 'dt = "1 us"').replace(
         "snapshot_count = 5", "snapshot_every = 1")
 
 
@@ -125,7 +125,7 @@ def test_snapshots_at_every_step_are_refused_before_the_run(monkeypatch):
 def test_the_output_of_a_long_run_is_counted_before_it_starts(monkeypatch, tmp_path):
     """A 10 s bar shot wrote a 471 MB CSV that no check counted: the CLI's pre-run check estimates the files
     (about 24 bytes per CSV value) and refuses them when the disk is too small."""
-    text = MODEL.replace('steps = 150\ndt = "2 us"', 'duration = "10 s"\ndt = "2 us"')
+    text = MODEL.replace('steps = 150\n', 'duration = "10 s"\n').replace(DT_LINE, 'dt = "2 us"')
     model = loads_model(text)
     assert model.n_steps == 5_000_000
     # signals.csv: time, contact force and flag, force and velocity of both ends = 7 columns x 24 bytes x 5e6 rows
@@ -268,7 +268,7 @@ def test_run_time_errors_name_the_model_keys_not_the_api_arguments():
     model = loads_model(text)
     with pytest.raises(ModelError, match=r"^rods\[1\]\.initial\.force: needs one value per lattice element"):
         model.simulate()
-    model = loads_model(MODEL.replace('dt = "2 us"', 'dt = "2 us"\nenergy_every = 1\nbackend = "numpy"')
+    model = loads_model(MODEL.replace(DT_LINE, DT_LINE + '\nenergy_every = 1\nbackend = "numpy"')
                         .replace("steps = 150", "steps = 3_000_000"))
     with pytest.raises(ModelError, match=r"^simulation\.energy_every: 1 gives"):
         model.simulate()
