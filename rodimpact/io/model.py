@@ -186,7 +186,8 @@ def _check_nesting(raw: dict) -> None:
         if depth > MAX_NESTING:
             raise ModelError(f"{path}: arrays or tables nested too deeply (at most {MAX_NESTING} levels)")
         if isinstance(value, dict):
-            stack.extend((v, f"{path}.{k}" if path else str(k), depth + 1) for k, v in value.items())
+            stack.extend((v, f"{path}.{_toml.key(str(k))}" if path else _toml.key(str(k)), depth + 1)
+                         for k, v in value.items())
         elif isinstance(value, list):
             stack.extend((v, f"{path}[{i}]", depth + 1) for i, v in enumerate(value))
 
@@ -289,14 +290,16 @@ def _wrap(path: str, build):
     except ModelError:
         raise
     except (ValueError, TypeError) as exc:
+        from .keypaths import MODEL_KEYS, translate
+
         msg = str(exc)
-        raise ModelError(msg if path == "model" else f"{path}: {msg}") from None
+        raise ModelError(translate(msg, MODEL_KEYS) if path == "model" else f"{path}: {msg}") from None
 
 
 def _materials(table: dict[str, dict]) -> dict[str, Material]:
     known: dict[str, Material] = dict(MATERIALS)
     for name, m in table.items():
-        path = f"materials.{name}"
+        path = f"materials.{_toml.key(name)}"
         if name in MATERIALS:
             raise ModelError(f"{path}: {name!r} is a preset name; choose another name")
         if m["base"] is not None:

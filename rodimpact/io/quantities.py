@@ -144,12 +144,9 @@ def pint_quantity(text: str, path: str, expected: str = "a quantity such as \"50
     :func:`_check_text`; every failure is a :class:`ModelError` starting with ``path``."""
     import pint
 
-    ureg = _registry()
     stripped = _check_text(text, path, expected)
     try:
-        q = ureg.Quantity(stripped)
-        if not isinstance(q, ureg.Quantity):      # a bare number in a string, e.g. "3"
-            q = ureg.Quantity(float(q))
+        q = _pint_parse(stripped)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
         raise ModelError(f"{path}: cannot read \"{_clip(stripped)}\" as a quantity ({_clip(str(exc))}); "
                          f"expected {expected}") from None
@@ -159,6 +156,15 @@ def pint_quantity(text: str, path: str, expected: str = "a quantity such as \"50
         raise ModelError(f"{path}: cannot read \"{_clip(stripped)}\" as a quantity ({type(exc).__name__}); "
                          f"expected {expected}") from None
     return q
+
+
+@lru_cache(maxsize=4096)
+def _pint_parse(text: str):
+    """pint's parse of a checked quantity string (cached: model files repeat their units, and parsing takes
+    about a millisecond)."""
+    ureg = _registry()
+    q = ureg.Quantity(text)
+    return q if isinstance(q, ureg.Quantity) else ureg.Quantity(float(q))    # a bare number, e.g. "3"
 
 
 def si_magnitude(q, target: str, text: str, path: str, expected: str) -> float:

@@ -15,6 +15,7 @@ import sys
 from dataclasses import dataclass
 from typing import Any, Optional
 
+from . import _toml
 from .quantities import (DIMENSIONS, ModelError, check_sign, parse_quantity, pint_quantity, show_as_written,
                          si_magnitude)
 
@@ -305,8 +306,10 @@ abs sign floor ceil min max where clip heaviside`. Everything is in SI units."""
 
 # ============================================================================================ validation
 def _p(path: str, key: str | int) -> str:
+    """The key path of ``key`` inside ``path`` (keys that are not bare TOML keys are quoted, long ones clipped)."""
     if isinstance(key, int):
         return f"{path}[{key}]"
+    key = _toml.key(key if len(key) <= 60 else key[:57] + "...")
     return f"{path}.{key}" if path else key
 
 
@@ -317,8 +320,7 @@ def _unknown(table: Table, data: dict, path: str, extra: tuple[str, ...] = ()) -
             near = difflib.get_close_matches(k, allowed, n=1) if len(k) <= 100 else []
             hint = f" (did you mean {near[0]!r}?)" if near else ""
             valid = ", ".join(allowed) if allowed else "none"
-            shown = k if len(k) <= 60 else k[:57] + "..."
-            raise ModelError(f"{_p(path, shown)}: unknown key{hint}; valid keys in {path or 'the top level'}: {valid}")
+            raise ModelError(f"{_p(path, k)}: unknown key{hint}; valid keys in {path or 'the top level'}: {valid}")
 
 
 def validate_table(table: Table, data: Any, path: str, *, extra: tuple[str, ...] = ()) -> dict[str, Any]:
