@@ -265,7 +265,7 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
         if p["position"] > rods[k].length * (1 + 1e-12):
             raise ModelError(f"{path}.position: must lie within rod {k}, 0 <= x <= {rods[k].length:.6g} m, "
                              f"got {p['position']:.6g} m")
-        probes.append(Probe(p["name"], k, p["position"]))
+        probes.append(_wrap(path, lambda: Probe(p["name"], k, p["position"])))
     if (sim["duration"] is None) == (sim["steps"] is None):
         raise ModelError("simulation: give exactly one of duration (e.g. \"1 ms\") or steps")
     out = d["output"] or {f.name: f.default for f in MODEL.field("output").table.fields}

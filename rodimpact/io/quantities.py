@@ -17,7 +17,19 @@ from typing import Any
 
 
 class ModelError(ValueError):
-    """Bad input in a model file; the message starts with the key path (``rods[1].segments[2].diameter``)."""
+    """Bad input in a model file; the message starts with the key path (``rods[1].segments[2].diameter``).
+
+    Values quoted in the message (``'...'`` or ``"..."``) longer than 80 characters are shortened, so that a
+    hostile file cannot make the message itself huge."""
+
+    def __init__(self, message: str = "") -> None:
+        if isinstance(message, str) and len(message) > 300:
+            message = _LONG_QUOTE.sub(lambda m: m.group()[:60] + "..." + m.group()[0] + f" ({len(m.group()):,} "
+                                      f"characters)", message)
+        super().__init__(message)
+
+
+_LONG_QUOTE = re.compile(r"'[^'\n]{80,}'|\"[^\"\n]{80,}\"")
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,7 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.material import STEEL
 from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression
-from .model import (_end, _history, _material, _materials, _rod, _rod_index, parse_toml, read_csv_columns,
+from .model import (_end, _history, _material, _materials, _rod, _rod_index, _wrap, parse_toml, read_csv_columns,
                     read_text_file)
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
@@ -209,16 +209,17 @@ def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> Syn
     for i, ld in enumerate(d["loads"] or []):
         k = _rod_index(ld["rod"], names, len(rods), f"loads[{i}].rod")
         if ld["type"] == "force":
-            loads.append(NodalForce(k, ld["position"], _history(ld["force"], f"loads[{i}].force", params, base,
-                                                               "force"), ld["interpolation"]))
+            loads.append(_wrap(f"loads[{i}]", lambda: NodalForce(k, ld["position"], _history(
+                ld["force"], f"loads[{i}].force", params, base, "force"), ld["interpolation"])))
         else:
-            loads.append(Bearings(k, ld["spans"], ld["friction_coefficient"], ld["gravity"], ld["normal_load"]))
+            loads.append(_wrap(f"loads[{i}]", lambda: Bearings(k, ld["spans"], ld["friction_coefficient"],
+                                                               ld["gravity"], ld["normal_load"])))
     st = d["striker"]
     if not st["velocity"] > 0:
         raise ModelError(f"striker.velocity: must be > 0 (towards the struck system), got {st['velocity']:g} m/s")
     mat = _material(st["material"], materials, "striker.material") or STEEL
     t = d["target"]
-    target = _target(t, params, base)
+    target = _wrap("target", lambda: _target(t, params, base))
     out = d["output"] or {"plots": True}
     return SynthesisSpec(target=target, struck=tuple(rods), striker_velocity=st["velocity"], n=st["elements"],
                          dt=syn["dt"], far_end=far_end, struck_velocity=tuple(vel), junctions=junctions,
