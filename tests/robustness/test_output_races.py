@@ -180,3 +180,24 @@ def test_sigterm_is_handled_like_ctrl_c(tmp_path):
     assert (tmp_path / "stderr").read_text() == "rodimpact: error: terminated; no partial results were written\n"
     assert _title(out) == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["flag", "m.toml", "out", "stderr"]
+
+
+def test_only_leftovers_of_this_folder_are_removed(tmp_path):
+    """The next run into OUT removes hidden ``.OUT.tmp-XXXXXXXX`` folders that hold rodimpact's marker, and
+    nothing else: not folders of other targets, not folders without the marker, not names of another form."""
+    def folder(name: str, marker: bool) -> Path:
+        p = tmp_path / name
+        p.mkdir()
+        if marker:
+            (p / results.MARKER).write_text("This folder was written by rodimpact\n")
+        (p / "data.txt").write_text("x")
+        return p
+
+    removed = folder(".out.tmp-abcd1234", True)
+    kept = [folder(".out.tmp-abcd12345", True), folder(".out.tmp-zzzz9999", False), folder(".other.tmp-abcd1234", True),
+            folder(".out.tmp-abc.tmp-abcd1234", True), folder("out.tmp-abcd1234", True)]
+    res = _small_result()
+    ri.save(res, tmp_path / "out", model=model_from_result(res, title="t"))
+    assert not removed.exists()
+    assert all((p / "data.txt").is_file() for p in kept)
+

@@ -179,6 +179,20 @@ def test_the_default_limit_refuses_and_the_option_lifts_it():
         ri.simulate(rods, [5.0, 0.0], steps=41, elements=(1, 80), max_element_updates=88 * 40)
 
 
+def test_max_element_updates_on_the_command_line(tmp_path, capsys):
+    (tmp_path / "m.toml").write_text(small_model("t"))
+    # 10 + 40 elements (1 cm each) x 150 steps = 7,500 element updates
+    assert cli.main(["simulate", str(tmp_path / "m.toml"), "-o", str(tmp_path / "a"), "--quiet",
+                     "--max-element-updates", "7499"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("rodimpact: error: simulation.duration: the run needs 50 elements x 150 steps = 7.5e+03 "
+                          "element updates, more than the limit of 7.5e+03"), err
+    assert err.rstrip().endswith("or lift the limit with --max-element-updates") and not (tmp_path / "a").exists()
+    assert cli.main(["simulate", str(tmp_path / "m.toml"), "-o", str(tmp_path / "b"), "--quiet",
+                     "--max-element-updates", "7500"]) == 0
+    assert cli.main(["simulate", str(tmp_path / "m.toml"), "-o", str(tmp_path / "c"), "--quiet",
+                     "--max-element-updates", "inf"]) == 0
+
 def test_long_runs_report_progress_without_a_terminal(capsys):
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(2.0, 0.04)])]
     ri.simulate(rods, [5.0, 0.0], steps=1000, elements=(1, 80), progress=True)
