@@ -30,6 +30,7 @@ with ``overwrite=True``, and only if rodimpact wrote it: see :func:`check_output
 
 from __future__ import annotations
 
+import errno
 import importlib.util
 import json
 import math
@@ -226,11 +227,15 @@ class OutputClaim:
                                         f"choose another output folder") from None
             try:
                 _os_lock(fd)
-            except OSError:
+            except OSError as exc:
                 os.close(fd)
-                raise OutputExistsError(f"{self.target}: another rodimpact run is writing this output folder now "
-                                        f"(it holds {self.lock}); wait for it to finish or choose another output "
-                                        f"folder") from None
+                if isinstance(exc, (BlockingIOError, PermissionError)) or exc.errno in (errno.EAGAIN, errno.EACCES):
+                    raise OutputExistsError(f"{self.target}: another rodimpact run is writing this output folder "
+                                            f"now (it holds {self.lock}); wait for it to finish or choose another "
+                                            f"output folder") from None
+                raise OutputExistsError(f"{self.target}: cannot lock {self.lock} ({exc.strerror or exc}); the file "
+                                        f"system offers no locks, so choose an output folder on a local disk") \
+                    from None
             try:    # the previous holder may have removed the lock file between our open and our lock: retry
                 same = os.path.samestat(os.fstat(fd), os.stat(self.lock, follow_symlinks=False))
             except OSError:
