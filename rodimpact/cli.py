@@ -4,7 +4,9 @@ Commands: ``simulate MODEL.toml``, ``init [simulate|synthesize]``, ``examples [l
 ``synthesize SPEC.toml`` (when the inverse problem is available) and ``--version``; see docs/cli.md.
 
 Exit codes: 0 success, 2 bad input (model file, arguments, existing output; the message says what and where),
-1 internal error (a bug: please report it with the traceback shown by ``RODIMPACT_DEBUG=1``).
+1 internal error (a bug: please report it with the traceback shown by ``RODIMPACT_DEBUG=1``), 130 interrupted
+(Ctrl-C), 143 terminated (SIGTERM, handled like Ctrl-C). The output folder is claimed for the whole command
+(:func:`rodimpact.io.results.claim_output`); limits and guarantees: docs/security.md.
 """
 
 from __future__ import annotations
@@ -233,8 +235,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("model", metavar="MODEL.toml", help="model file (rodimpact init simulate writes a template)")
     output_flags(s, "MODEL-NAME")
     s.add_argument("--max-element-updates", type=float, metavar="N", default=None,
-                   help="refuse runs of more than N element updates (elements x steps; default 1e11, about an "
-                        "hour); raise it for longer runs (docs/security.md)")
+                   help="refuse runs of more than N element updates (elements x steps; default 1e11, about 17 "
+                        "min at 1e8 updates/s; inf: no limit); see docs/security.md")
     s.set_defaults(func=cmd_simulate)
 
     i = sub.add_parser("init", help="write a commented template that runs as it is",
@@ -279,7 +281,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     if getattr(args, "func", None) is None:
         parser.print_help()
         return EXIT_INPUT
-    previous = _handle_sigterm()
+    restore_sigterm = _handle_sigterm()
     try:
         return args.func(args)
     except InputError as exc:
@@ -301,7 +303,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
              f"to see the traceback and please report it)")
         return EXIT_INTERNAL
     finally:
-        previous()
+        restore_sigterm()
 
 
 class Terminated(KeyboardInterrupt):
