@@ -231,10 +231,11 @@ class PeakMemory(threading.Thread):
 
         self.process = psutil.Process()
         self.base = self.peak = float(self.process.memory_info().rss)
+        self.stopped = False
         self.start()
 
     def run(self) -> None:
-        while True:
+        while not self.stopped:
             self.peak = max(self.peak, float(self.process.memory_info().rss))
             time.sleep(0.003)
 
@@ -247,6 +248,13 @@ class PeakMemory(threading.Thread):
 
 
 WATCH: list[PeakMemory] = []
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _stop_watch():
+    yield
+    while WATCH:
+        WATCH.pop().stopped = True
 
 
 @settings(max_examples=CASES, deadline=None, database=None,
