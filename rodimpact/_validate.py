@@ -82,7 +82,14 @@ def _unit(unit: str, sep: str = " ") -> str:
 
 
 def physical_memory() -> float | None:
-    """Installed memory in bytes (POSIX ``sysconf``), or ``None`` where it cannot be read."""
+    """Installed memory in bytes (psutil on every platform, else POSIX ``sysconf``), or ``None`` where neither
+    can read it."""
+    try:
+        import psutil
+
+        return float(psutil.virtual_memory().total)
+    except Exception:    # psutil missing or unable to read the platform's numbers
+        pass
     try:
         return float(os.sysconf("SC_PAGE_SIZE")) * float(os.sysconf("SC_PHYS_PAGES"))
     except (AttributeError, OSError, ValueError):

@@ -4,7 +4,9 @@ Commands: ``simulate MODEL.toml``, ``init [simulate|synthesize]``, ``examples [l
 ``synthesize SPEC.toml`` (when the inverse problem is available) and ``--version``; see docs/cli.md.
 
 Exit codes: 0 success, 2 bad input (model file, arguments, existing output; the message says what and where),
-1 internal error (a bug: please report it with the traceback shown by ``RODIMPACT_DEBUG=1``).
+1 internal error (a bug: please report it with the traceback shown by ``RODIMPACT_DEBUG=1``), 130 interrupted
+(Ctrl-C), 143 terminated (SIGTERM, handled like Ctrl-C). The output folder is claimed for the whole command
+(:func:`rodimpact.io.results.claim_output`); limits and guarantees: docs/security.md.
 """
 
 from __future__ import annotations
@@ -12,7 +14,9 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
+import threading
 import traceback
 from pathlib import Path
 from typing import Any, Callable, Optional, Sequence
@@ -40,10 +44,9 @@ def _input_phase(fn: Callable[[], Any]) -> Any:
 
 
 def _progress(args: argparse.Namespace) -> Optional[bool]:
-    """Progress bar only on a terminal (the solver shows it for long runs) and never with --quiet/--json."""
-    if args.quiet or args.json or not sys.stderr.isatty():
-        return False
-    return None
+    """Progress on stderr for long runs (a bar on a terminal, else a line every 10 %; the solver decides what is
+    long), never with --quiet."""
+    return False if args.quiet else None
 
 
 def _report(summary: dict, text: str, args: argparse.Namespace, extra: str = "") -> None:
@@ -55,13 +58,15 @@ def _report(summary: dict, text: str, args: argparse.Namespace, extra: str = "")
             print(extra)
 
 
-def _check_out(path: Path, force: bool) -> None:
-    """Refuse an output folder before any work is done: non-empty without --force, holding files rodimpact did
-    not write, or the current working folder (see :func:`rodimpact.io.results.check_output_folder`)."""
-    from .io.results import OutputExistsError, check_output_folder
+def _claim_out(path: Path, force: bool):
+    """Claim the output folder before any work is done, for the whole command (a context manager): refused when
+    another run is writing it, when its parent cannot be created (``-o some_file/sub``), when it is non-empty
+    without --force, holds files rodimpact did not write, or is the current working folder (see
+    :func:`rodimpact.io.results.claim_output`)."""
+    from .io.results import OutputExistsError, claim_output
 
     try:
-        check_output_folder(path, force)
+        return claim_output(path, force)
     except OutputExistsError as exc:
         raise InputError(str(exc)) from None
 
@@ -94,17 +99,20 @@ def _write_file(path: Path, text: str, force: bool, what: str = "file") -> None:
 
 # ============================================================================================ simulate
 def cmd_simulate(args: argparse.Namespace) -> int:
+    from .direct.guards import check_run
     from .io.model import load_model
     from .io.results import format_summary, save, summarize
 
     model_path = Path(args.model)
     out = Path(args.output) if args.output else Path("results") / model_path.stem
-    _check_out(out, args.force)
-    model = _input_phase(lambda: load_model(model_path))
-    result = _input_phase(lambda: model.simulate(progress=_progress(args)))
-    save(result, out, model=model, overwrite=args.force, plots=() if args.no_plots else model.output.plots,
-         csv=model.output.csv, fields=model.output.fields,
-         snapshot_times=list(model.output.snapshot_times) or None)
+    with _claim_out(out, args.force):
+        model = _input_phase(lambda: load_model(model_path))
+        plots = () if args.no_plots else model.output.plots
+        _input_phase(lambda: check_run(model, out, plots, args.max_element_updates))
+        result = _input_phase(lambda: model.simulate(progress=_progress(args),
+                                                     max_element_updates=args.max_element_updates))
+        save(result, out, model=model, overwrite=args.force, plots=plots, csv=model.output.csv,
+             fields=model.output.fields, snapshot_times=list(model.output.snapshot_times) or None)
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     notes = "".join(f"note: {n}\n" for n in summary.get("notes", []))
     _report(summary, format_summary(summarize(result), model.title or model_path.name),
@@ -180,8 +188,8 @@ def cmd_examples(args: argparse.Namespace) -> int:
     from .io.results import format_summary, summarize
 
     out = Path(args.output) if args.output else Path("results") / ex.name
-    _check_out(out, args.force)
-    runs = run_example(ex.name, out, overwrite=args.force, plots=not args.no_plots, progress=_progress(args))
+    with _claim_out(out, args.force):
+        runs = run_example(ex.name, out, overwrite=args.force, plots=not args.no_plots, progress=_progress(args))
     summaries = {Path(f).stem: summarize(r) for f, r, _ in runs}
     text = "\n\n".join(format_summary(s, f"{ex.title}" + (f" -- {k}" if len(runs) > 1 else ""))
                        for k, s in summaries.items())
@@ -196,10 +204,10 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
 
     spec_path = Path(args.spec)
     out = Path(args.output) if args.output else Path("results") / spec_path.stem
-    _check_out(out, args.force)
-    spec = _input_phase(lambda: syn.load_spec(spec_path))
-    result = _input_phase(lambda: syn.run(spec))
-    summary = syn.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
+    with _claim_out(out, args.force):
+        spec = _input_phase(lambda: syn.load_spec(spec_path))
+        result = _input_phase(lambda: syn.run(spec))
+        summary = syn.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
     _report(summary, syn.format_summary(summary, spec), args, f"results written to {out}")
     return EXIT_OK
 
@@ -226,6 +234,9 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Run MODEL.toml and write results, plots and summary.json to OUTDIR.")
     s.add_argument("model", metavar="MODEL.toml", help="model file (rodimpact init simulate writes a template)")
     output_flags(s, "MODEL-NAME")
+    s.add_argument("--max-element-updates", type=float, metavar="N", default=None,
+                   help="refuse runs of more than N element updates (elements x steps; default 1e11, about 17 "
+                        "min at 1e8 updates/s; inf: no limit); see docs/security.md")
     s.set_defaults(func=cmd_simulate)
 
     i = sub.add_parser("init", help="write a commented template that runs as it is",
@@ -270,11 +281,15 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     if getattr(args, "func", None) is None:
         parser.print_help()
         return EXIT_INPUT
+    restore_sigterm = _handle_sigterm()
     try:
         return args.func(args)
     except InputError as exc:
         _err(str(exc))
         return EXIT_INPUT
+    except Terminated:
+        _err("terminated; no partial results were written")
+        return 128 + 15
     except KeyboardInterrupt:
         _err("interrupted; no partial results were written")
         return 130
@@ -287,6 +302,28 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         _err(f"internal error: {type(exc).__name__}: {exc}\n(this is a bug in rodimpact; set RODIMPACT_DEBUG=1 "
              f"to see the traceback and please report it)")
         return EXIT_INTERNAL
+    finally:
+        restore_sigterm()
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM arrived: unwound like Ctrl-C, so that temporary output is removed and nothing half-written stays."""
+
+
+def _raise_terminated(signum: int, frame: Any) -> None:
+    raise Terminated()
+
+
+def _handle_sigterm() -> Callable[[], None]:
+    """Handle SIGTERM like SIGINT; returns a function that restores the previous handler (a no-op where signals
+    cannot be set, e.g. outside the main thread)."""
+    if not hasattr(signal, "SIGTERM") or threading.current_thread() is not threading.main_thread():
+        return lambda: None
+    try:
+        old = signal.signal(signal.SIGTERM, _raise_terminated)
+    except (ValueError, OSError):
+        return lambda: None
+    return lambda: signal.signal(signal.SIGTERM, old if old is not None else signal.SIG_DFL)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import sys
 import time as _time
 from typing import Any, Callable, Iterable, Literal, Optional, Sequence
 
@@ -19,6 +18,7 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
 from . import _kernels as K
+from . import guards
 from .recording import Recorder, Recording, check_probes
 from .result import Probe, ProbeHistory, SimulationResult
 
@@ -37,7 +37,8 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
              probes: Optional[Iterable[Probe]] = None, snapshot_times: Optional[Sequence[float]] = None,
              snapshot_every: Optional[int] = None, energy_every: Optional[int] = None,
              record_every: Optional[int] = None, backend: Backend = "numba",
-             progress: bool | None = None, allow_discretization_error: bool = False) -> SimulationResult:
+             progress: bool | None = None, allow_discretization_error: bool = False,
+             max_element_updates: Optional[float] = None) -> SimulationResult:
     """Simulate the longitudinal impact of rods with the exact wave propagation method (thesis Sec. 3.1).
 
     Parameters
@@ -76,11 +77,16 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     backend:
         "numba" (compiled, default) or "numpy" (readable reference path; slow).
     progress:
-        Show a progress bar (default: only on a terminal for runs of more than about 10^8 element updates).
+        Report progress on stderr (default: for runs of more than 10^9 element updates; a bar on a terminal,
+        else a line every 10 %).
     allow_discretization_error:
         Run even if the lattice represents a rod's travel time or mass with an error above 1 % or smears a
         segment shorter than one element (:mod:`rodimpact.lattice.tolerance`); the error is then a warning.
         Default ``False``: a ``ValueError`` that names the rod, the error and a dt that would satisfy it.
+    max_element_updates:
+        Refuse runs of more elements x steps than this (default 1e11, see
+        :data:`rodimpact.direct.guards.DEFAULT_MAX_ELEMENT_UPDATES`; ``math.inf``: no limit). The memory the
+        histories and snapshots need is checked against the available memory before the run as well.
 
     Physical quantities may be numbers in SI units, unit strings (``"2 ms"``) or pint Quantities.
     """
@@ -95,11 +101,12 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
                         energy_every=energy_every, record_every=record_every)
     lattice = build_lattice(system, dt)
     rough = tolerance.check(system, lattice, allow_discretization_error)
+    guards.check_element_updates(lattice.n_elements, n_steps, max_element_updates)
     probe_list = [_named_rod(p, i, system) for i, p in enumerate(record.probes)]
     wall0 = _time.perf_counter()
     state = _initial_state(system, lattice)
     arrays = _kernel_arrays(system, lattice, state, probe_list)
-    bar = _progress_bar(progress, n_steps, lattice.n_elements)
+    bar = guards.progress(progress, n_steps, lattice.n_elements)
     capacity = max(1, min(n_steps, _MAX_CHUNK, int(1e8 // lattice.n_elements) if bar is not None else _MAX_CHUNK))
     recorder = Recorder(record, lattice, arrays, state["N"].copy(), n_steps, capacity)
     _advance(K.run_numba if backend == "numba" else K.run_numpy, n_steps, capacity, lattice, arrays, state,
@@ -221,15 +228,6 @@ def _step_count(duration: Optional[float], steps: Optional[int], dt: float) -> i
                          f"{_MAX_STEPS:.0e} per run")
     n = int(round(x)) if abs(x - round(x)) <= 1e-9 * max(x, 1.0) else int(math.ceil(x))
     return max(n, 1)
-
-
-def _progress_bar(progress, n_steps: int, n_el: int):
-    if progress is None:
-        progress = sys.stderr.isatty() and n_steps * n_el > 1e8
-    if not progress:
-        return None
-    from tqdm.auto import tqdm
-    return tqdm(total=n_steps, unit="step", desc="simulate")
 
 
 def _field(value, x: np.ndarray, n: int, name: str) -> np.ndarray:

@@ -35,6 +35,7 @@ _NAMES = {
     "summarize": "results",
     "format_summary": "results",
     "OutputExistsError": "results",
+    "claim_output": "results",
 }
 
 __all__ = list(_NAMES)

@@ -16,7 +16,7 @@ from __future__ import annotations
 import ast
 from typing import Any, Mapping, Optional
 
-from .quantities import DIMENSIONS, ModelError, _registry
+from .quantities import DIMENSIONS, ModelError, _registry, pint_quantity
 
 Dim = Optional[Any]     # a pint UnitsContainer, or None for "any dimension"
 
@@ -37,7 +37,7 @@ class Parameters(dict):
     def __init__(self, values: Mapping[str, float], raw: Mapping[str, Any]) -> None:
         super().__init__(values)
         self.dimensions: dict[str, Dim] = {
-            name: _registry().Quantity(v.strip()).dimensionality if isinstance(v, str) else None
+            name: pint_quantity(v, f"parameters.{name}").dimensionality if isinstance(v, str) else None
             for name, v in raw.items()}
 
 

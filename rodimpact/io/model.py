@@ -40,6 +40,7 @@ from ..rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, Ex
                              QuadraticHorn, Segment, TabulatedProfile, Tube)
 from ..rods.system import InitialState, System
 from . import _toml
+from ._files import read_bytes_limited
 from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression, expression_area
 from .quantities import DIMENSIONS, ModelError, parse_quantity
@@ -66,9 +67,11 @@ class OutputSpec:
     record_every: int = 1
 
     def __post_init__(self) -> None:
-        for p in self.plots:
+        for i, p in enumerate(self.plots):
             if p not in PLOT_NAMES:
                 raise ValueError(f"output.plots: unknown plot {p!r}; valid: {', '.join(PLOT_NAMES)}")
+            if p in self.plots[:i]:
+                raise ValueError(f"output.plots[{i}]: {p!r} is listed twice")
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,35 +126,73 @@ class Model:
             return max(1, self.n_steps // self.output.snapshot_count)
         return None
 
-    def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None) -> SimulationResult:
-        """Run :func:`rodimpact.simulate` with this model's settings."""
+    def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None,
+                 max_element_updates: Optional[float] = None) -> SimulationResult:
+        """Run :func:`rodimpact.simulate` with this model's settings (``max_element_updates``: see there); errors
+        name the model file's keys (``simulation.dt``, ``rods[1].initial.force``), see
+        :mod:`rodimpact.io.keypaths`."""
         from ..direct.simulate import simulate
+        from .keypaths import MODEL_KEYS, translated
 
-        return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
-                        snapshot_times=list(self.output.snapshot_times) or None,
-                        snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
-                        record_every=self.output.record_every, backend=backend or self.backend, progress=progress,
-                        allow_discretization_error=self.allow_discretization_error)
+        try:
+            return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
+                            snapshot_times=list(self.output.snapshot_times) or None,
+                            snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
+                            record_every=self.output.record_every, backend=backend or self.backend,
+                            progress=progress, max_element_updates=max_element_updates,
+                            allow_discretization_error=self.allow_discretization_error)
+        except ModelError:
+            raise
+        except (ValueError, TypeError) as exc:
+            raise translated(exc, MODEL_KEYS) from None
 
 
 # ============================================================================================ reading
 def read_text_file(path: Path, label: str, kind: str, encoding: str = "utf-8-sig") -> str:
-    """The text of ``path``; every way of failing becomes a :class:`ModelError` that starts with ``label`` (the
-    key path, or the file itself) and says what kind of file was expected. A UTF-8 byte-order mark is dropped."""
-    name = repr(str(path))
+    """The text of ``path`` (read by :func:`read_bytes_limited`); every way of failing becomes a
+    :class:`ModelError` that starts with ``label`` (the key path, or the file itself) and says what kind of file
+    was expected. A UTF-8 byte-order mark is dropped; the content is never shown in messages."""
+    data = read_bytes_limited(Path(path), label, kind)
     try:
-        return path.read_text(encoding=encoding)
-    except FileNotFoundError:
-        raise ModelError(f"{label}: no such {kind}" + ("" if label == str(path) else f" {name}")) from None
-    except IsADirectoryError:
-        raise ModelError(f"{label}: " + ("is" if label == str(path) else f"{name} is") + f" a folder, not a {kind}") \
-            from None
-    except PermissionError:
-        raise ModelError(f"{label}: no permission to read {name}") from None
+        return data.decode(encoding)
     except UnicodeDecodeError as exc:
-        raise ModelError(f"{label}: {name} is not a text file ({exc.reason}); expected a {kind}") from None
-    except OSError as exc:
-        raise ModelError(f"{label}: cannot read {name} ({exc.strerror or exc})") from None
+        raise ModelError(f"{label}: {str(path)!r} is not a text file ({exc.reason} at byte {exc.start}); expected "
+                         f"a {kind}") from None
+
+
+#: Deepest nesting of arrays and tables accepted in a model or spec file (the schema needs 5).
+MAX_NESTING = 32
+
+
+def parse_toml(text: str, name: str) -> dict:
+    """Parse TOML ``text``; every failure (syntax, nesting too deep for the parser, an integer beyond the
+    conversion limit) and nesting deeper than :data:`MAX_NESTING` is a :class:`ModelError` naming ``name`` and,
+    for nesting, the key path."""
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise ModelError(f"{name}: arrays or tables nested too deeply (at most {MAX_NESTING} levels)") from None
+    except (ValueError, MemoryError, OverflowError) as exc:
+        raise ModelError(f"{name}: not valid TOML: {type(exc).__name__}: {str(exc)[:200]}") from None
+    _check_nesting(raw)
+    return raw
+
+
+def _check_nesting(raw: dict) -> None:
+    """Raise a :class:`ModelError` naming the key path where ``raw`` nests deeper than :data:`MAX_NESTING`
+    (iteratively, so that the check itself cannot overflow the stack)."""
+    stack: list[tuple[Any, str, int]] = [(raw, "", 0)]
+    while stack:
+        value, path, depth = stack.pop()
+        if depth > MAX_NESTING:
+            raise ModelError(f"{path}: arrays or tables nested too deeply (at most {MAX_NESTING} levels)")
+        if isinstance(value, dict):
+            stack.extend((v, f"{path}.{_toml.key(str(k))}" if path else _toml.key(str(k)), depth + 1)
+                         for k, v in value.items())
+        elif isinstance(value, list):
+            stack.extend((v, f"{path}[{i}]", depth + 1) for i, v in enumerate(value))
 
 
 def load_model(path: str | Path) -> Model:
@@ -165,10 +206,7 @@ def load_model(path: str | Path) -> Model:
 
 def loads_model(text: str, base_dir: str | Path | None = None, name: str = "model") -> Model:
     """Read a model from TOML text (``base_dir``: folder for relative file names, default the current one)."""
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    raw = parse_toml(text, name)
     return model_from_dict(raw, base_dir=Path(base_dir) if base_dir is not None else Path("."))
 
 
@@ -230,7 +268,7 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
         if p["position"] > rods[k].length * (1 + 1e-12):
             raise ModelError(f"{path}.position: must lie within rod {k}, 0 <= x <= {rods[k].length:.6g} m, "
                              f"got {p['position']:.6g} m")
-        probes.append(Probe(p["name"], k, p["position"]))
+        probes.append(_wrap(path, lambda: Probe(p["name"], k, p["position"])))
     if (sim["duration"] is None) == (sim["steps"] is None):
         raise ModelError("simulation: give exactly one of duration (e.g. \"1 ms\") or steps")
     out = d["output"] or {f.name: f.default for f in MODEL.field("output").table.fields}
@@ -239,8 +277,9 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
             if t > sim["duration"] * (1 + 1e-12):
                 raise ModelError(f"output.snapshot_times[{i}]: {t:.6g} s lies after the end of the run "
                                  f"(simulation.duration = {sim['duration']:.6g} s)")
-    output = OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"], out["snapshot_count"],
-                        tuple(out["plots"]), out["csv"], out["fields"], out["record_every"])
+    output = _wrap("model", lambda: OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"],
+                                               out["snapshot_count"], tuple(out["plots"]), out["csv"], out["fields"],
+                                               out["record_every"]))
     with KeyPath("model"):
         system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
                                                initial if any(s is not None for s in initial) else None))
@@ -256,14 +295,16 @@ def _wrap(path: str, build):
     except ModelError:
         raise
     except (ValueError, TypeError) as exc:
+        from .keypaths import MODEL_KEYS, translate
+
         msg = str(exc)
-        raise ModelError(msg if path == "model" else f"{path}: {msg}") from None
+        raise ModelError(translate(msg, MODEL_KEYS) if path == "model" else f"{path}: {msg}") from None
 
 
 def _materials(table: dict[str, dict]) -> dict[str, Material]:
     known: dict[str, Material] = dict(MATERIALS)
     for name, m in table.items():
-        path = f"materials.{name}"
+        path = f"materials.{_toml.key(name)}"
         if name in MATERIALS:
             raise ModelError(f"{path}: {name!r} is a preset name; choose another name")
         if m["base"] is not None:
@@ -309,6 +350,11 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
             raise ModelError(f"{path}.material: an impedance-level rod has no material; give "
                              f"{path}.elements.wave_speed and density if they matter")
         rod = _elements(r["elements"], f"{path}.elements", r["name"], sim_dt, base_dir)
+    with np.errstate(all="ignore"):
+        travel = rod.total_travel_time
+    if not 0.0 < travel < math.inf or not rod.length < math.inf:
+        raise ModelError(f"{path}: its length ({rod.length:.6g} m) or wave travel time ({travel:.6g} s) is out of the "
+                         f"range of floating point numbers; check the lengths of its segments")
     st = None
     if r["initial"] is not None and (r["initial"]["force"] is not None or r["initial"]["velocity"] is not None):
         ini = r["initial"]
@@ -373,6 +419,10 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
     if dt is None:
         raise ModelError(f"{path}.dt: missing; give the element travel time dt or element_length here, or "
                          f"simulation.dt")
+    if not 0.0 < dt < math.inf or not 0.0 < c * dt < math.inf:
+        key = "dt" if e["dt"] is not None or e["element_length"] is None else "element_length"
+        raise ModelError(f"{path}.{key}: gives an element travel time of {dt:.6g} s and an element length of "
+                         f"{c * dt:.6g} m; both must be finite and > 0 (out of the range of floating point numbers)")
     given = [k for k in ("impedance", "runs", "file") if e[k] is not None]
     if len(given) != 1:
         raise ModelError(f"{path}: give exactly one of impedance, runs or file, got "
@@ -416,6 +466,9 @@ def _run_count(run: dict, path: str, element_length: float) -> int:
     if run["count"] is not None:
         return run["count"]
     x = run["length"] / element_length
+    if not x < 2**62:
+        raise ModelError(f"{path}.length: {run['length']:.6g} m is {x:.3g} elements of length c*dt = "
+                         f"{element_length:.6g} m; far too many (use a shorter run or longer elements)")
     k = int(round(x))
     if k < 1 or abs(x - k) > 1e-6 * max(x, 1.0):
         raise ModelError(f"{path}.length: {run['length']:.6g} m is {x:.6g} elements of length c*dt = "
@@ -507,23 +560,34 @@ def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, ne
             cols[name] = (i, unit)
     for n in list(needed) + list(positional):
         if n not in cols:
-            raise ModelError(f"{key}: {path} has no column {n!r} (header: {', '.join(header)})")
+            raise ModelError(f"{key}: {path} has no column {n!r} among the {len(header)} column(s) of its header "
+                             f"line; expected a CSV file whose first line names the columns"
+                             + (f" ({', '.join(positional)})" if positional else f", e.g. '{n} [unit]'"))
     out = {}
     for name, (i, unit) in cols.items():
         dim = dims[name] if dims is not None else name if name in DIMENSIONS else "time"
-        scale = 1.0 if not unit else parse_quantity(f"1 {unit}", dim, f"{key} (column {header[i]!r})")
+        try:
+            scale = 1.0 if not unit else parse_quantity(f"1 {unit}", dim, key)
+        except ModelError:
+            raise ModelError(f"{key}: {path}, column {i + 1}: the unit in its header is not {_a(dim)} unit (such as "
+                             f"{DIMENSIONS[dim].si}); the file's content is not shown") from None
         vals = []
         for line_no, r in enumerate(rows[1:], start=2):
             try:
                 vals.append(float(r[i]) * scale)
             except (IndexError, ValueError):
-                raise ModelError(f"{key}: {path}, data row {line_no - 1}, column {header[i]!r}: expected a number, "
-                                 f"got {r[i] if i < len(r) else 'nothing'!r}") from None
+                got = "text that is not a number" if i < len(r) else "no value"
+                raise ModelError(f"{key}: {path}, data row {line_no - 1}, column {i + 1} ({name}): expected a number, got "
+                                 f"{got} (the file's content is not shown)") from None
         arr = np.array(vals)
         if not np.all(np.isfinite(arr)):
-            raise ModelError(f"{key}: {path}, column {header[i]!r} contains a non-finite value")
+            raise ModelError(f"{key}: {path}, column {i + 1} ({name}) contains a non-finite value")
         out[name] = arr
     return out
+
+
+def _a(dimension: str) -> str:
+    return ("an " if dimension[0] in "aeiou" else "a ") + dimension
 
 
 # ============================================================================================ writing

@@ -10,13 +10,26 @@ number in m), got "5 kg" (a mass)``.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
 
 
 class ModelError(ValueError):
-    """Bad input in a model file; the message starts with the key path (``rods[1].segments[2].diameter``)."""
+    """Bad input in a model file; the message starts with the key path (``rods[1].segments[2].diameter``).
+
+    Values quoted in the message (``'...'`` or ``"..."``) longer than 80 characters are shortened, so that a
+    hostile file cannot make the message itself huge."""
+
+    def __init__(self, message: str = "") -> None:
+        if isinstance(message, str) and len(message) > 300:
+            message = _LONG_QUOTE.sub(lambda m: m.group()[:60] + "..." + m.group()[0] + f" ({len(m.group()):,} "
+                                      f"characters)", message)
+        super().__init__(message)
+
+
+_LONG_QUOTE = re.compile(r"'[^'\n]{80,}'|\"[^\"\n]{80,}\"")
 
 
 @dataclass(frozen=True)
@@ -81,7 +94,10 @@ def parse_quantity(value: Any, dimension: str, path: str) -> float:
     if isinstance(value, bool):
         raise ModelError(f"{path}: expected {_expected(dim)}, got the boolean {str(value).lower()}")
     if isinstance(value, (int, float)):
-        x = float(value)
+        try:
+            x = float(value)
+        except OverflowError:          # an integer beyond the float range
+            x = math.inf
     elif isinstance(value, str):
         x = _parse_string(value, dim, path)
     else:
@@ -91,31 +107,104 @@ def parse_quantity(value: Any, dimension: str, path: str) -> float:
     return x
 
 
-def _parse_string(text: str, dim: Dimension, path: str) -> float:
-    import pint
+#: Longest quantity string accepted: pint's parser takes time growing with the square of the length.
+MAX_QUANTITY_LENGTH = 200
+#: Largest exponent accepted after ``**`` or ``^`` (units such as ``m^2``, ``kg/m^3``, ``m**-1``).
+MAX_EXPONENT = 12
+_POWER = re.compile(r"\*\*|\^")
+_EXPONENT = re.compile(r"\s*([+-]?\s*(?:\d+(?:\.\d*)?|\.\d+))")
 
-    ureg = _registry()
+
+def _check_text(text: str, path: str, expected: str) -> str:
+    """``text`` stripped, after checking that pint can parse it quickly and safely.
+
+    pint evaluates number powers exactly (``10**10**10`` does not finish) and its parser slows down with the
+    square of the length, so a quantity string is limited to :data:`MAX_QUANTITY_LENGTH` characters and a power
+    (``**`` or ``^``) must raise a unit (or a parenthesised group of units) to a plain number of at most
+    :data:`MAX_EXPONENT` in size; powers of numbers and towers of powers are refused.
+    """
     stripped = text.strip()
     if not stripped:
-        raise ModelError(f"{path}: expected {_expected(dim)}, got an empty string")
+        raise ModelError(f"{path}: expected {expected}, got an empty string")
+    if len(stripped) > MAX_QUANTITY_LENGTH:
+        raise ModelError(f"{path}: a quantity string may have at most {MAX_QUANTITY_LENGTH} characters, got "
+                         f"{len(stripped):,}; expected {expected}")
+    for m in _POWER.finditer(stripped):
+        before = stripped[:m.start()].rstrip()
+        base_ok = bool(before) and (before[-1].isalpha() or before[-1] in "_µμΩ°")
+        if before.endswith(")"):
+            depth, i = 0, len(before) - 1
+            while i >= 0:
+                depth += {")": 1, "(": -1}.get(before[i], 0)
+                if depth == 0:
+                    break
+                i -= 1
+            base_ok = i >= 0 and not any(c.isdigit() for c in before[i:])
+        if not base_ok:
+            raise ModelError(f"{path}: \"{_clip(stripped)}\": a power ({m.group()}) may only raise a unit, such as "
+                             f"m^2; write numbers in e-notation (1e10, not 10**10); expected {expected}")
+        ex = _EXPONENT.match(stripped, m.end())
+        rest = stripped[ex.end():].lstrip() if ex else ""
+        if ex is None or abs(float(ex.group(1).replace(" ", ""))) > MAX_EXPONENT or _POWER.match(rest):
+            raise ModelError(f"{path}: \"{_clip(stripped)}\": a unit power needs a plain number exponent of at most "
+                             f"{MAX_EXPONENT} (no towers such as m**2**3); expected {expected}")
+    return stripped
+
+
+def pint_quantity(text: str, path: str, expected: str = "a quantity such as \"50 mm\""):
+    """``text`` parsed by pint (a Quantity; a bare number becomes a dimensionless one), after
+    :func:`_check_text`; every failure is a :class:`ModelError` starting with ``path``."""
+    import pint
+
+    stripped = _check_text(text, path, expected)
     try:
-        q = ureg.Quantity(stripped)
+        q = _pint_parse(stripped)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
-        raise ModelError(f"{path}: cannot read \"{text}\" as a quantity ({exc}); expected {_expected(dim)}") from None
+        raise ModelError(f"{path}: cannot read \"{_clip(stripped)}\" as a quantity ({_clip(str(exc))}); "
+                         f"expected {expected}") from None
+    except OverflowError:
+        raise ModelError(f"{path}: \"{_clip(stripped)}\" is too large a number; expected {expected}") from None
     except Exception as exc:  # pint's tokenizer raises assorted errors on garbage
-        raise ModelError(f"{path}: cannot read \"{text}\" as a quantity ({type(exc).__name__}); "
-                         f"expected {_expected(dim)}") from None
-    if not isinstance(q, ureg.Quantity):      # a bare number in a string, e.g. "3"
-        q = ureg.Quantity(float(q))
+        raise ModelError(f"{path}: cannot read \"{_clip(stripped)}\" as a quantity ({type(exc).__name__}); "
+                         f"expected {expected}") from None
+    return q
+
+
+@lru_cache(maxsize=4096)
+def _pint_parse(text: str):
+    """pint's parse of a checked quantity string (cached: model files repeat their units, and parsing takes
+    about a millisecond)."""
+    ureg = _registry()
+    q = ureg.Quantity(text)
+    return q if isinstance(q, ureg.Quantity) else ureg.Quantity(float(q))    # a bare number, e.g. "3"
+
+
+def si_magnitude(q, target: str, text: str, path: str, expected: str) -> float:
+    """The magnitude of pint quantity ``q`` in ``target`` units (or SI base units if ``target`` is ``None``) as a
+    finite float; overflow and non-finite values are :class:`ModelError`."""
+    try:
+        mag = q.to_base_units().magnitude if target is None else q.to(target).magnitude
+        x = float(mag)
+    except OverflowError:
+        x = math.inf
+    except (TypeError, ValueError):
+        raise ModelError(f"{path}: expected a single value, got \"{_clip(text.strip())}\"") from None
+    if not math.isfinite(x):
+        raise ModelError(f"{path}: must be finite, got \"{_clip(text.strip())}\" (out of the range of floating "
+                         f"point numbers); expected {expected}")
+    return x
+
+
+def _parse_string(text: str, dim: Dimension, path: str) -> float:
+    q = pint_quantity(text, path, _expected(dim))
     ok = q.dimensionless if dim.name == "dimensionless" else q.check(dim.pint)
     if not ok:
-        raise ModelError(f"{path}: expected {_expected(dim)}, got \"{text}\" ({_dimension_name(q)})")
-    target = "dimensionless" if dim.name == "dimensionless" else dim.pint
-    mag = q.to(target).magnitude
-    try:
-        return float(mag)
-    except (TypeError, ValueError):
-        raise ModelError(f"{path}: expected a single value, got \"{text}\"") from None
+        raise ModelError(f"{path}: expected {_expected(dim)}, got \"{_clip(text.strip())}\" ({_dimension_name(q)})")
+    return si_magnitude(q, "dimensionless" if dim.name == "dimensionless" else dim.pint, text, path, _expected(dim))
+
+
+def _clip(text: str, n: int = 80) -> str:
+    return text if len(text) <= n else text[:n - 3] + "..."
 
 
 def _expected(dim: Dimension) -> str:
@@ -131,13 +220,25 @@ def _describe(value: Any) -> str:
 
 def _show(value: Any) -> str:
     """The value as the user wrote it (strings quoted, numbers plain)."""
-    text = f'"{value}"' if isinstance(value, str) else repr(value)
+    text = f'"{value}"' if isinstance(value, str) else _repr(value)
     return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _repr(value: Any) -> str:
+    """``repr(value)`` that never fails: huge integers and deeply nested lists give a short description."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > 10**80:
+        return f"an integer of about {len(str(value)) if value.bit_length() < 10_000 else 'many'} digits"
+    if isinstance(value, (list, dict)):
+        try:
+            return _clip(repr(value), 200)
+        except (RecursionError, ValueError):
+            return f"a deeply nested {'list' if isinstance(value, list) else 'table'}"
+    return repr(value)
 
 
 def show_as_written(value: Any) -> str:
     """A value for error messages: a unit string without quotes (``-5 mm``), numbers as they are."""
-    return value.strip() if isinstance(value, str) else repr(value)
+    return _clip(value.strip()) if isinstance(value, str) else _clip(_repr(value))
 
 
 def check_sign(x: float, rule: str | None, value: Any, path: str) -> float:

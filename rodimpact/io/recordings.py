@@ -33,6 +33,7 @@ import io
 import math
 import os
 import re
+import stat
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -41,6 +42,7 @@ import numpy as np
 
 from ..signals.gauges import Bridge, GaugedBar
 from ..signals.recording import Recording
+from ._files import read_bytes_limited
 
 __all__ = [
     "hoppybar_bar",
@@ -53,14 +55,38 @@ __all__ = [
 
 PathLike = str | os.PathLike
 
+def _regular_file(path: PathLike) -> None:
+    """Refuse what is not a regular file (a folder, FIFO or device) before a binary reader opens it."""
+    try:
+        st = os.stat(path)
+    except OSError as exc:
+        raise _fail(path, None, f"cannot be read ({exc.strerror or exc})") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise _fail(path, None, "not a regular file (a folder, device, pipe or socket)")
+
+
+def _recording(path: PathLike, *args: Any) -> Recording:
+    """``Recording(*args)``; its checks (non-finite samples, lengths, time order) fail with the file's name."""
+    try:
+        return Recording(*args)
+    except (ValueError, TypeError) as exc:
+        raise _fail(path, None, str(exc)) from None
+
+
 def _fail(path: PathLike, line: int | None, message: str) -> ValueError:
     where = f"{os.fspath(path)}" + (f", line {line}" if line is not None else "")
     return ValueError(f"{where}: {message}")
 
 
-def _read_lines(path: PathLike) -> list[str]:
-    """Text lines of a file (UTF-8, falling back to Windows-1252), BOM and line ends removed."""
-    raw = Path(path).read_bytes()
+def _read_lines(path: PathLike, complete: bool = False) -> list[str]:
+    """Text lines of a file (UTF-8, falling back to Windows-1252), BOM and line ends removed. The file must be a
+    regular file within the input size limit (:func:`rodimpact.io._files.read_bytes_limited`). ``complete``: the
+    format ends every line with a line end, so a last line without one means the file was cut off."""
+    raw = read_bytes_limited(Path(path), os.fspath(path), "recording")
+    if complete and raw and not raw.endswith((b"\n", b"\r")):
+        n = raw.count(b"\n") + 1
+        raise _fail(path, n, "the file ends in the middle of this line: it is truncated (the format ends every line "
+                             "with a line end); copy it again from the original")
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -72,10 +98,14 @@ def _number(path: PathLike, line: int, text: str, what: str) -> float:
     try:
         value = float(text)
     except ValueError:
-        raise _fail(path, line, f"{what}: expected a number, found {text.strip()!r}") from None
+        raise _fail(path, line, f"{what}: expected a number, found {_clip(text.strip())!r}") from None
     if not math.isfinite(value):
-        raise _fail(path, line, f"{what}: value {text.strip()!r} is not finite")
+        raise _fail(path, line, f"{what}: value {_clip(text.strip())!r} is not finite")
     return value
+
+
+def _clip(text: str, n: int = 40) -> str:
+    return text if len(text) <= n else text[:n - 3] + "..."
 
 
 def _value(text: str) -> float | str:
@@ -295,7 +325,7 @@ def read_csv_recording(
             if name not in channels:
                 raise ValueError(f"{os.fspath(path)}: unit given for unknown channel {name!r}; channels: {list(channels)}")
             channel_units[name] = unit
-    return Recording(time, channels, channel_units, {"format": "csv"}, os.fspath(path))
+    return _recording(path, time, channels, channel_units, {"format": "csv"}, os.fspath(path))
 
 
 # -- LANL .raw ---------------------------------------------------------------------------------
@@ -309,7 +339,7 @@ def read_lanl_raw(path: PathLike) -> Recording:
     metadata sheet of columns 1-2 becomes ``metadata`` (numbers as floats), the original
     waveform names are kept under ``metadata["channel_labels"]``.
     """
-    lines = _read_lines(path)
+    lines = _read_lines(path, complete=True)
     while lines and not lines[-1].strip():
         lines.pop()
     if len(lines) < 5:
@@ -347,7 +377,8 @@ def read_lanl_raw(path: PathLike) -> Recording:
                 metadata[key] = value
     metadata["channel_labels"] = dict(zip(_LANL_CHANNELS, labels))
     metadata["format"] = "lanl-raw"
-    return Recording(
+    return _recording(
+        path,
         time,
         {"incident": data[:, 0], "transmitted": data[:, 1]},
         {"incident": "V", "transmitted": "V"},
@@ -442,7 +473,7 @@ def read_tektronix_csv(paths: PathLike | Sequence[PathLike], names: Sequence[str
         "headers": headers,
         "header_units": header_units,
     }
-    return Recording(time_ref, channels, units, metadata, os.fspath(paths[0]))
+    return _recording(paths[0], time_ref, channels, units, metadata, os.fspath(paths[0]))
 
 
 # -- HopPyBar input sheet ------------------------------------------------------------------------
@@ -583,6 +614,7 @@ def read_tdms(path: PathLike, group: str | None = None, time_channel: str | None
     """
     from nptdms import TdmsFile
 
+    _regular_file(path)
     try:
         tdms = TdmsFile.read(os.fspath(path))
     except Exception as exc:  # npTDMS raises various types for corrupt files
@@ -635,4 +667,4 @@ def read_tdms(path: PathLike, group: str | None = None, time_channel: str | None
         "group_properties": dict(grp.properties),
         "channel_properties": {ch.name: dict(ch.properties) for ch in chans},
     }
-    return Recording(time, data, units, metadata, os.fspath(path))
+    return _recording(path, time, data, units, metadata, os.fspath(path))

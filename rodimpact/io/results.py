@@ -32,10 +32,12 @@ with ``overwrite=True``, and only if rodimpact wrote it: see :func:`check_output
 
 from __future__ import annotations
 
+import errno
 import importlib.util
 import json
 import math
 import os
+import re
 import shutil
 import tempfile
 import warnings
@@ -174,45 +176,204 @@ def check_output_folder(outdir: str | Path, overwrite: bool) -> Path:
     return out
 
 
+_LOCK_SUFFIX = ".rodimpact-lock"
+_TMP_NAME = re.compile(r"\.tmp-[a-z0-9_]{8}$")
+_OLD_NAME = re.compile(r"\.old-[a-z0-9_]{8}$")
+
+
+def _os_lock(fd: int) -> None:
+    """Lock the open file ``fd`` exclusively without waiting (``OSError`` if another process holds it). The operating
+    system releases the lock when the process ends, however it ends (also on SIGKILL)."""
+    if os.name == "nt":  # pragma: no cover - Windows
+        import msvcrt
+
+        msvcrt.locking(fd, msvcrt.LK_NBLCK, 1)
+    else:
+        import fcntl
+
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+
+
+class OutputClaim:
+    """An exclusive claim of the output folder ``target`` by this process, so that two runs can never both write
+    it: an operating-system lock on the file ``.NAME.rodimpact-lock`` beside the folder, held until
+    :meth:`release` (or the end of the process). A second run that tries to claim the same folder is refused at
+    once with :class:`OutputExistsError`. While the claim is held, leftovers of runs that were killed while
+    writing ``target`` (hidden ``.NAME.tmp-XXXXXXXX`` folders holding rodimpact's marker) are removed, and a
+    previous result that a killed run had moved aside (``.NAME.old-XXXXXXXX``) is put back when ``target`` is
+    missing. Claims are re-entrant within a process (:func:`claim_output`)."""
+
+    def __init__(self, target: Path) -> None:
+        self.target = target
+        self.lock = target.parent / f".{target.name}{_LOCK_SUFFIX}"
+        self.count = 0
+        self.fd: Optional[int] = None
+
+    def acquire(self) -> None:
+        if self.count:
+            self.count += 1
+            return
+        parent = self.target.parent
+        try:
+            parent.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise OutputExistsError(f"{self.target}: its parent folder {parent} cannot be created "
+                                    f"({exc.strerror or exc}); is a file in the way?") from None
+        if not parent.is_dir():
+            raise OutputExistsError(f"{self.target}: {parent} is not a folder; choose another output folder")
+        while True:
+            try:
+                fd = os.open(self.lock, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o644)
+            except OSError as exc:
+                raise OutputExistsError(f"{self.target}: cannot write into {parent} ({exc.strerror or exc}); "
+                                        f"choose another output folder") from None
+            try:
+                _os_lock(fd)
+            except OSError as exc:
+                os.close(fd)
+                if isinstance(exc, (BlockingIOError, PermissionError)) or exc.errno in (errno.EAGAIN, errno.EACCES):
+                    raise OutputExistsError(f"{self.target}: another rodimpact run is writing this output folder "
+                                            f"now (it holds {self.lock}); wait for it to finish or choose another "
+                                            f"output folder") from None
+                raise OutputExistsError(f"{self.target}: cannot lock {self.lock} ({exc.strerror or exc}); the file "
+                                        f"system offers no locks, so choose an output folder on a local disk") \
+                    from None
+            try:    # the previous holder may have removed the lock file between our open and our lock: retry
+                same = os.path.samestat(os.fstat(fd), os.stat(self.lock, follow_symlinks=False))
+            except OSError:
+                same = False
+            if same:
+                break
+            os.close(fd)
+        self.fd = fd
+        self.count = 1
+        try:
+            self.clean_leftovers()
+        except BaseException:
+            self.release()
+            raise
+
+    def clean_leftovers(self) -> list[Path]:
+        """Remove what killed runs into this target left behind (see the class docstring); returns what was
+        removed or restored."""
+        done = []
+        prefix = f".{self.target.name}"
+        try:
+            entries = list(self.target.parent.iterdir())
+        except OSError:
+            return done
+        for p in entries:
+            rest = p.name[len(prefix):] if p.name.startswith(prefix) else ""
+            if not rest or p.is_symlink() or not p.is_dir():
+                continue
+            if _OLD_NAME.fullmatch(rest) and not (self.target.exists() or self.target.is_symlink()) \
+                    and _written_entries(p) is not None:
+                os.replace(p, self.target)          # killed between moving the old result aside and the new in
+                done.append(p)
+            elif (_TMP_NAME.fullmatch(rest) or _OLD_NAME.fullmatch(rest)) and (p / MARKER).is_file():
+                shutil.rmtree(p, ignore_errors=True)
+                done.append(p)
+        return done
+
+    def release(self) -> None:
+        self.count -= 1
+        if self.count > 0 or self.fd is None:
+            return
+        _CLAIMS.pop(self.target, None)
+        try:
+            if os.name != "nt":   # remove the lock file while still holding the lock (see acquire's retry)
+                os.unlink(self.lock)
+        except OSError:
+            pass
+        finally:
+            os.close(self.fd)
+            self.fd = None
+
+    def __enter__(self) -> "OutputClaim":
+        return self
+
+    def __exit__(self, *exc: Any) -> bool:
+        self.release()
+        return False
+
+
+_CLAIMS: dict[Path, OutputClaim] = {}
+
+
+def _absolute(target: str | Path) -> Path:
+    """``target`` as an absolute path with its parent resolved (the target itself may not exist yet)."""
+    p = Path(os.path.abspath(target))
+    return p.parent.resolve() / p.name
+
+
+def claim_output(target: str | Path, overwrite: bool = False) -> OutputClaim:
+    """Claim the output folder ``target`` for this process (:class:`OutputClaim`; use it as a context manager
+    or call ``release()``) after checking that it may be written (:func:`check_output_folder`). Raises
+    :class:`OutputExistsError` if another run holds it, if its parent cannot be created, or if the folder may not
+    be written. Claiming a folder this process already holds just counts up."""
+    path = _absolute(target)
+    claim = _CLAIMS.get(path)
+    if claim is None:
+        claim = _CLAIMS[path] = OutputClaim(path)
+    try:
+        claim.acquire()
+    except BaseException:
+        if not claim.count:
+            _CLAIMS.pop(path, None)
+        raise
+    try:
+        check_output_folder(target, overwrite)
+    except BaseException:
+        claim.release()
+        raise
+    return claim
+
+
 class AtomicFolder:
     """Context manager: yields a temporary folder; on success it replaces ``target`` in one rename.
 
-    The folder gets a :data:`MARKER` file listing what was written, so that a later ``overwrite=True`` can tell
-    rodimpact's results from a user's files (:func:`check_output_folder`, checked on entry and again just before
-    the rename).
+    The target is claimed for the whole time (:func:`claim_output`: a second run into the same folder is refused
+    at once, leftovers of killed runs are cleaned up). The folder gets a :data:`MARKER` file listing what was
+    written, so that a later ``overwrite=True`` can tell rodimpact's results from a user's files
+    (:func:`check_output_folder`, checked on entry and again just before the rename).
     """
 
     def __init__(self, target: str | Path, overwrite: bool = False) -> None:
         self.target = check_output_folder(target, overwrite)
         self.overwrite = overwrite
         self.tmp: Optional[Path] = None
+        self.claim: Optional[OutputClaim] = None
 
     def __enter__(self) -> Path:
-        parent = self.target.resolve().parent
-        parent.mkdir(parents=True, exist_ok=True)
-        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.target.name}.tmp-", dir=parent))
+        self.claim = claim_output(self.target, self.overwrite)
         try:
+            self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.claim.target.name}.tmp-", dir=self.claim.target.parent))
             _write_marker(self.tmp)
         except BaseException:
-            shutil.rmtree(self.tmp, ignore_errors=True)
+            if self.tmp is not None:
+                shutil.rmtree(self.tmp, ignore_errors=True)
+            self.claim.release()
             raise
         return self.tmp
 
     def __exit__(self, exc_type, exc, tb) -> bool:
+        assert self.tmp is not None and self.claim is not None
+        try:
+            self._finish(exc_type)
+        finally:
+            self.claim.release()
+        return False
+
+    def _finish(self, exc_type) -> None:
         assert self.tmp is not None
         if exc_type is not None:
             shutil.rmtree(self.tmp, ignore_errors=True)
-            return False
+            return
         try:
             _write_marker(self.tmp, _entries(self.tmp) - {MARKER})
             check_output_folder(self.target, self.overwrite)    # files may have appeared while we computed
         except OutputExistsError as err:
-            kept = Path(tempfile.mkdtemp(prefix=f"{self.target.name}-new-", dir=self.tmp.parent))
-            os.rmdir(kept)
-            os.replace(self.tmp, kept)
-            os.chmod(kept, normal_mode(folder=True))
-            raise OutputExistsError(f"{err} (it changed while rodimpact was working; the new results are in "
-                                    f"{kept})") from None
+            self._keep(err)
         except BaseException:
             shutil.rmtree(self.tmp, ignore_errors=True)
             raise
@@ -229,8 +390,21 @@ class AtomicFolder:
                 raise
             shutil.rmtree(old, ignore_errors=True)
         else:
-            os.replace(self.tmp, target)
-        return False
+            try:
+                os.replace(self.tmp, target)
+            except OSError as exc:    # a folder with files appeared there (written by something else)
+                self._keep(OutputExistsError(f"{target}: appeared while rodimpact was working "
+                                             f"({exc.strerror or exc})"))
+
+    def _keep(self, err: OutputExistsError) -> None:
+        """Keep the finished results beside the target under a new name and raise ``err`` saying where."""
+        assert self.tmp is not None
+        kept = Path(tempfile.mkdtemp(prefix=f"{self.target.name}-new-", dir=self.tmp.parent))
+        os.rmdir(kept)
+        os.replace(self.tmp, kept)
+        os.chmod(kept, normal_mode(folder=True))
+        raise OutputExistsError(f"{err} (it changed while rodimpact was working; the new results are in "
+                                f"{kept})") from None
 
 
 # ============================================================================================ summary
@@ -359,17 +533,19 @@ def format_summary(summary: dict[str, Any], title: str = "") -> str:
 
 
 # ============================================================================================ CSV
-def _csv_text(header: list[str], columns: list[np.ndarray]) -> str:
+def _write_csv(path: Path, header: list[str], columns: list[np.ndarray], chunk: int = 8192) -> None:
+    """Write the columns as CSV (shortest round-trip float text) in chunks of rows, so that the memory needed does
+    not grow with the length of the run."""
     import csv
-    import io
 
-    buf = io.StringIO()
-    csv.writer(buf, lineterminator="\n").writerow(header)
-    if columns:
-        rows = np.column_stack([np.asarray(c, dtype=float) for c in columns]).tolist()
-        buf.write("\n".join(",".join(map(repr, r)) for r in rows))
-        buf.write("\n")
-    return buf.getvalue()
+    with open(path, "w", encoding="utf-8", newline="") as fh:
+        csv.writer(fh, lineterminator="\n").writerow(header)
+        cols = [np.asarray(c, dtype=float) for c in columns]
+        n = cols[0].size if cols else 0
+        for a in range(0, n, chunk):
+            rows = np.column_stack([c[a:a + chunk] for c in cols]).tolist()
+            fh.write("\n".join(",".join(map(repr, r)) for r in rows))
+            fh.write("\n")
 
 
 def signal_columns(result: SimulationResult) -> tuple[list[str], list[np.ndarray]]:
@@ -454,6 +630,10 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
     """
     from .model import ModelWriteError, dump_model, model_from_result
 
+    names = [plots] if isinstance(plots, str) else list(plots)
+    for i, p in enumerate(names):          # checked before anything is written
+        if p in names[:i]:
+            raise ValueError(f"plots: {p!r} is listed twice")
     files: list[str] = []
     notes: list[str] = []
     with AtomicFolder(outdir, overwrite) as tmp:
@@ -470,7 +650,7 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
         files.append(RESULT_FILE)
         if csv:
             for name, (h, c) in (("signals.csv", signal_columns(result)), ("energy.csv", energy_columns(result))):
-                (tmp / name).write_text(_csv_text(h, c), encoding="utf-8")
+                _write_csv(tmp / name, h, c)
                 files.append(name)
         if plots:
             from ..plotting import save_plots

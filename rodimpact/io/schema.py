@@ -15,7 +15,9 @@ import sys
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from .quantities import DIMENSIONS, ModelError, check_sign, parse_quantity, show_as_written
+from . import _toml
+from .quantities import (DIMENSIONS, ModelError, check_sign, parse_quantity, pint_quantity, show_as_written,
+                         si_magnitude)
 
 _MISSING = object()
 
@@ -311,8 +313,10 @@ abs sign floor ceil min max where clip heaviside`. Everything is in SI units."""
 
 # ============================================================================================ validation
 def _p(path: str, key: str | int) -> str:
+    """The key path of ``key`` inside ``path`` (keys that are not bare TOML keys are quoted, long ones clipped)."""
     if isinstance(key, int):
         return f"{path}[{key}]"
+    key = _toml.key(key if len(key) <= 60 else key[:57] + "...")
     return f"{path}.{key}" if path else key
 
 
@@ -320,7 +324,7 @@ def _unknown(table: Table, data: dict, path: str, extra: tuple[str, ...] = ()) -
     allowed = list(extra) + [f.name for f in table.fields]
     for k in data:
         if k not in allowed:
-            near = difflib.get_close_matches(k, allowed, n=1)
+            near = difflib.get_close_matches(k, allowed, n=1) if len(k) <= 100 else []
             hint = f" (did you mean {near[0]!r}?)" if near else ""
             valid = ", ".join(allowed) if allowed else "none"
             raise ModelError(f"{_p(path, k)}: unknown key{hint}; valid keys in {path or 'the top level'}: {valid}")
@@ -438,7 +442,10 @@ def validate_variant(variants: Variants, raw: Any, path: str) -> dict[str, Any]:
     kind = raw.get(variants.key, variants.default)
     if kind is None:
         raise ModelError(f"{_p(path, variants.key)}: missing; one of {names}")
-    kind = dict(variants.aliases).get(kind, kind) if isinstance(kind, str) else kind
+    if not isinstance(kind, str):
+        raise ModelError(f"{_p(path, variants.key)}: expected a string, one of {names}; got "
+                         f"{show_as_written(kind)}")
+    kind = dict(variants.aliases).get(kind, kind)
     if kind not in variants.options:
         near = difflib.get_close_matches(str(kind), list(variants.options), n=1)
         hint = f" (did you mean {near[0]!r}?)" if near else ""
@@ -496,7 +503,6 @@ _RESERVED = {"s", "L", "t", "x", "pi", "e"}
 
 def _parameters(raw: Any, path: str) -> dict[str, float]:
     from .expressions import FUNCTIONS
-    from .quantities import _registry
 
     if not isinstance(raw, dict):
         raise ModelError(f"{path}: expected a table of name = value")
@@ -510,15 +516,10 @@ def _parameters(raw: Any, path: str) -> dict[str, float]:
             raise ModelError(f"{where}: expected a number or a quantity such as \"1.26e-3 m^2\", got "
                              f"{show_as_written(v)}")
         if isinstance(v, str):
-            try:
-                q = _registry().Quantity(v.strip())
-                x = float(q.to_base_units().magnitude) if hasattr(q, "to_base_units") else float(q)
-            except Exception as exc:
-                raise ModelError(f"{where}: cannot read \"{v}\" as a quantity ({type(exc).__name__})") from None
+            expected = "a number or a quantity such as \"1.26e-3 m^2\""
+            x = si_magnitude(pint_quantity(v, where, expected), None, v, where, expected)
         else:
-            x = float(v)
-        if not math.isfinite(x):
-            raise ModelError(f"{where}: must be finite, got {show_as_written(v)}")
+            x = parse_quantity(v, "dimensionless", where)
         out[name] = x
     return out
 

@@ -12,7 +12,6 @@ Keys are listed in ``docs/cli.md`` (generated from :data:`SPEC` by :func:`spec_r
 from __future__ import annotations
 
 import json
-import tomllib
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -25,7 +24,8 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.material import STEEL
 from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression
-from .model import _end, _history, _material, _materials, _rod, _rod_index, read_csv_columns, read_text_file
+from .model import (_end, _history, _material, _materials, _rod, _rod_index, _wrap, parse_toml, read_csv_columns,
+                    read_text_file)
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
                      validate_table)
@@ -153,7 +153,18 @@ class SynthesisSpec:
     source: Optional[Path] = None
 
     def synthesize(self):
-        """Run :func:`rodimpact.synthesize` with these settings."""
+        """Run :func:`rodimpact.synthesize` with these settings; errors name the spec's keys (``synthesis.dt``,
+        ``striker.elements``), see :mod:`rodimpact.io.keypaths`."""
+        from .keypaths import SPEC_KEYS, translated
+
+        try:
+            return self._synthesize()
+        except ModelError:
+            raise
+        except (ValueError, TypeError) as exc:
+            raise translated(exc, SPEC_KEYS) from None
+
+    def _synthesize(self):
         from ..inverse import synthesize
 
         return synthesize(self.target, list(self.struck), self.striker_velocity, self.n, self.dt,
@@ -173,10 +184,7 @@ def load_spec(path: str | Path) -> SynthesisSpec:
 
 def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> SynthesisSpec:
     """Read a synthesis spec from TOML text."""
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    raw = parse_toml(text, name)
     base = Path(base_dir)
     d = validate_table(SPEC, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
@@ -201,16 +209,17 @@ def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> Syn
     for i, ld in enumerate(d["loads"] or []):
         k = _rod_index(ld["rod"], names, len(rods), f"loads[{i}].rod")
         if ld["type"] == "force":
-            loads.append(NodalForce(k, ld["position"], _history(ld["force"], f"loads[{i}].force", params, base,
-                                                               "force"), ld["interpolation"]))
+            loads.append(_wrap(f"loads[{i}]", lambda: NodalForce(k, ld["position"], _history(
+                ld["force"], f"loads[{i}].force", params, base, "force"), ld["interpolation"])))
         else:
-            loads.append(Bearings(k, ld["spans"], ld["friction_coefficient"], ld["gravity"], ld["normal_load"]))
+            loads.append(_wrap(f"loads[{i}]", lambda: Bearings(k, ld["spans"], ld["friction_coefficient"],
+                                                               ld["gravity"], ld["normal_load"])))
     st = d["striker"]
     if not st["velocity"] > 0:
         raise ModelError(f"striker.velocity: must be > 0 (towards the struck system), got {st['velocity']:g} m/s")
     mat = _material(st["material"], materials, "striker.material") or STEEL
     t = d["target"]
-    target = _target(t, params, base)
+    target = _wrap("target", lambda: _target(t, params, base))
     out = d["output"] or {"plots": True}
     return SynthesisSpec(target=target, struck=tuple(rods), striker_velocity=st["velocity"], n=st["elements"],
                          dt=syn["dt"], far_end=far_end, struck_velocity=tuple(vel), junctions=junctions,

@@ -43,7 +43,12 @@ class Segment:
             raise TypeError(f"{type(self).__name__}.material: must be a Material or None, "
                             f"got {type(self.material).__name__}")
         s = np.linspace(0.0, self.length, 65)
-        _check_area(type(self).__name__, np.asarray(self.area(s), dtype=float), "the profile")
+        try:
+            with np.errstate(all="ignore"):
+                area = np.asarray(self.area(s), dtype=float)
+        except (OverflowError, ZeroDivisionError):     # Python float arithmetic on values near the float range
+            area = np.array([math.inf])
+        _check_area(type(self).__name__, area, "the profile")
 
     def area(self, s: ArrayLike) -> np.ndarray:
         """Cross-section area in m^2 at local positions ``s`` (m)."""

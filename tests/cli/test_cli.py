@@ -231,11 +231,12 @@ def test_internal_errors_exit_1_and_say_it_is_a_bug(tmp_path, monkeypatch, capsy
     assert not (tmp_path / "out").exists()
 
 
-def test_progress_bar_only_on_a_terminal(monkeypatch):
+def test_progress_left_to_the_solver_also_without_a_terminal(monkeypatch):
+    """Long runs report progress on stderr even when it is no terminal (issue 13); only --quiet silences it."""
     args = argparse.Namespace(quiet=False, json=False)
     monkeypatch.setattr(sys.stderr, "isatty", lambda: False)
-    assert cli._progress(args) is False
+    assert cli._progress(args) is None                   # the solver reports long runs (lines without a terminal)
     monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
-    assert cli._progress(args) is None                   # the solver shows a bar for long runs
+    assert cli._progress(args) is None                   # ... and a bar on a terminal
     assert cli._progress(argparse.Namespace(quiet=True, json=False)) is False
-    assert cli._progress(argparse.Namespace(quiet=False, json=True)) is False
+    assert cli._progress(argparse.Namespace(quiet=False, json=True)) is None     # JSON goes to stdout

@@ -60,7 +60,7 @@ def test_bad_spec_and_existing_output(tmp_path, capsys, monkeypatch):
               "target.type: unknown type 'exponential-decline' (did you mean 'exponential-decay'?)"),
              (TEMPLATE.replace('velocity = "6 m/s"', 'velocity = "-6 m/s"'), "striker.velocity: must be > 0"),
              (TEMPLATE.replace('elements = 100', 'element = 100'), "striker.element: unknown key"),
-             (TEMPLATE.replace('velocity = "6 m/s"', 'velocity = "0.5 m/s"'), "striker_velocity: 0.5 m/s")]
+             (TEMPLATE.replace('velocity = "6 m/s"', 'velocity = "0.5 m/s"'), "error: striker.velocity: 0.5 m/s")]   # the key, not the argument
     for text, message in cases:
         (tmp_path / "b.toml").write_text(text)
         assert cli.main(["synthesize", "b.toml", "-o", "o2"]) == 2

@@ -313,8 +313,8 @@ def test_bad_model_files_name_the_key_path(text, message):
 def test_table_file_errors_name_file_and_row(tmp_path):
     (tmp_path / "bad.csv").write_text("x,diameter\n0,0.03\n0.1,abc\n")
     text = ('[[rods]]\n[[rods.segments]]\nshape = "table"\nfile = "bad.csv"\n[simulation]\nsteps = 3\n')
-    with pytest.raises(ModelError, match=r"rods\[0\].segments\[0\].file: .*bad.csv, data row 2, column 'diameter': "
-                                         r"expected a number, got 'abc'"):
+    with pytest.raises(ModelError, match=r"rods\[0\].segments\[0\].file: .*bad.csv, data row 2, column 2 \(diameter\): "
+                                         r"expected a number, got text that is not a number"):
         load(text, base_dir=tmp_path)
     with pytest.raises(ModelError, match=r"rods\[0\].segments\[0\].file: no such CSV file .*missing.csv"):
         load(text.replace("bad.csv", "missing.csv"), base_dir=tmp_path)

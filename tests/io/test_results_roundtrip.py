@@ -159,7 +159,7 @@ def test_failed_save_leaves_nothing_behind(tmp_path, monkeypatch):
     def boom(*a, **k):
         raise RuntimeError("disk full")
 
-    monkeypatch.setattr(results, "_csv_text", boom)
+    monkeypatch.setattr(results, "_write_csv", boom)
     with pytest.raises(RuntimeError, match="disk full"):
         save(three_rod_result(), tmp_path / "out")
     assert os.listdir(tmp_path) == []
@@ -167,7 +167,7 @@ def test_failed_save_leaves_nothing_behind(tmp_path, monkeypatch):
     out = tmp_path / "old"
     save(three_rod_result(), out)
     before = {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()}
-    monkeypatch.setattr(results, "_csv_text", boom)
+    monkeypatch.setattr(results, "_write_csv", boom)
     with pytest.raises(RuntimeError):
         save(three_rod_result(), out, overwrite=True)
     assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before

@@ -1,0 +1,232 @@
+"""Up-front checks of what a simulation will cost, and progress reports for long runs.
+
+Before a run starts, :func:`check_simulation` estimates from the element and step counts
+
+* the run time, as the number of element updates (elements x steps): above ``max_element_updates`` (default
+  :data:`DEFAULT_MAX_ELEMENT_UPDATES`, about a quarter of an hour at 1e8 updates per second) the run is refused
+  with a message saying how to lift the limit (``max_element_updates=`` in Python, ``--max-element-updates`` on
+  the command line; ``math.inf`` / ``inf`` switches it off);
+* the memory the run holds at once: the lattice, the recorded histories and the field snapshots (twice: they
+  are stacked at the end), against the memory available now (:func:`available_memory`).
+
+:func:`check_output` does the same for what saving writes (``result.nc``, the CSV files, the plots) against the
+free disk space of the output folder and the memory the writing needs; the command line calls it before a run.
+
+:class:`Progress` reports progress on stderr for runs of more than :data:`PROGRESS_UPDATES` element updates: a
+tqdm bar on a terminal, else a plain line every 10 % (so that a run started by a script or a batch system is not
+mistaken for a hung one).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import shutil
+import sys
+import time
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+#: Default limit on elements x steps of one run (lift it with ``max_element_updates=``).
+DEFAULT_MAX_ELEMENT_UPDATES = 1e11
+#: Runs with more element updates than this report progress on stderr (a few seconds and more).
+PROGRESS_UPDATES = 1e9
+#: Bytes per lattice element held during a run (lattice, discretisation, kernel state; as lattice.py counts).
+BYTES_PER_ELEMENT = 128.0
+#: Bytes per value of a CSV file ("-1.2345678901234567e-05," is 24 characters).
+CSV_BYTES_PER_VALUE = 24.0
+#: Disk space of one PNG plot and of the GIF animation (upper estimates).
+PLOT_BYTES, ANIMATION_BYTES = 4e6, 60e6
+
+
+def available_memory() -> Optional[float]:
+    """Memory available to a new allocation now, bytes (psutil, on every platform; else POSIX ``sysconf``
+    physical pages; ``None`` when neither can tell)."""
+    try:
+        import psutil
+
+        return float(psutil.virtual_memory().available)
+    except Exception:   # psutil missing or unable to read the platform's numbers
+        pass
+    try:
+        return float(os.sysconf("SC_PAGE_SIZE")) * float(os.sysconf("SC_AVPHYS_PAGES"))
+    except (AttributeError, OSError, ValueError):
+        return None
+
+
+def free_disk(folder: Path) -> Optional[float]:
+    """Free bytes on the file system of ``folder`` (or of its nearest existing parent); ``None`` if unknown."""
+    p = Path(os.path.abspath(folder))
+    while not p.exists() and p.parent != p:
+        p = p.parent
+    try:
+        return float(shutil.disk_usage(p).free)
+    except OSError:
+        return None
+
+
+def _gib(n: float) -> str:
+    return f"{n / 2**30:.3g} GiB" if n >= 2**28 else f"{n / 2**20:.3g} MiB"
+
+
+def check_element_updates(n_elements: int, n_steps: int, limit: Optional[float], name: str = "duration") -> float:
+    """Raise ``ValueError`` naming ``name`` if ``n_elements * n_steps`` exceeds ``limit`` (``None``: the default
+    :data:`DEFAULT_MAX_ELEMENT_UPDATES`); returns the number of element updates."""
+    limit = DEFAULT_MAX_ELEMENT_UPDATES if limit is None else limit
+    if isinstance(limit, bool) or not isinstance(limit, (int, float)) or math.isnan(limit) or limit <= 0:
+        raise ValueError(f"max_element_updates: must be a number > 0 (math.inf: no limit), got {limit!r}")
+    updates = float(n_elements) * float(n_steps)
+    if updates > limit:
+        raise ValueError(
+            f"{name}: the run needs {n_elements:,} elements x {n_steps:,} steps = {updates:.3g} element updates, "
+            f"more than the limit of {limit:.3g} (roughly {_duration(updates / 1e8)} at 1e8 updates per second); "
+            f"use a larger dt or a shorter duration, or lift the limit with max_element_updates= "
+            f"(command line: --max-element-updates)")
+    return updates
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.0f} min"
+    if seconds < 3 * 86400:
+        return f"{seconds / 3600:.0f} h"
+    return f"{seconds / 86400:.3g} days"
+
+
+def run_bytes(n_elements: int, n_steps: int, rows: int, stride: int, n_snapshots: int) -> dict[str, float]:
+    """Memory a run holds at its peak, bytes, by part: ``lattice``, ``histories`` (``rows`` signals of every
+    ``stride``-th step) and ``snapshots`` (force, velocity per element and displacement per node, twice while
+    they are stacked at the end)."""
+    n_rec = -(-n_steps // stride)
+    return {"lattice": BYTES_PER_ELEMENT * n_elements, "histories": 8.0 * rows * n_rec,
+            "snapshots": 2.0 * 8.0 * n_snapshots * (3 * n_elements + 2)}
+
+
+def check_simulation(n_elements: int, n_steps: int, rows: int, stride: int, n_snapshots: int,
+                     max_element_updates: Optional[float]) -> None:
+    """The up-front checks of :func:`rodimpact.simulate`: the element-update limit, then the memory of the
+    histories and snapshots against the available memory. Messages name the argument that changes it."""
+    check_element_updates(n_elements, n_steps, max_element_updates)
+    parts = run_bytes(n_elements, n_steps, rows, stride, n_snapshots)
+    _check_memory(parts, {"histories": "keep every n-th step with record_every=n, or split the run",
+                          "snapshots": "fewer snapshots (a larger snapshot_every, fewer snapshot_times)",
+                          "lattice": "a larger dt (fewer elements)"},
+                  {"histories": "steps", "snapshots": "snapshot_every", "lattice": "dt"})
+
+
+def _check_memory(parts: dict[str, float], hints: dict[str, str], names: dict[str, str]) -> None:
+    total = sum(parts.values())
+    avail = available_memory()
+    if avail is None or total <= 0.9 * avail:
+        return
+    biggest = max(parts, key=parts.get)
+    shown = ", ".join(f"{k} {_gib(v)}" for k, v in parts.items() if v >= 2**20)
+    raise ValueError(f"{names[biggest]}: the run would need about {_gib(total)} of memory ({shown}), more than "
+                     f"the {_gib(avail)} available now; {hints[biggest]}")
+
+
+def output_bytes(n_elements: int, n_steps: int, rows: int, csv_columns: int, stride: int, n_snapshots: int,
+                 csv: bool, fields: bool, plots: Sequence[str]) -> dict[str, float]:
+    """Disk space the saved result takes, bytes, by file: ``result.nc`` (histories, snapshots when ``fields``,
+    lattice), ``signals.csv`` (``csv_columns`` per recorded step) and the plots."""
+    n_rec = -(-n_steps // stride)
+    out = {"result.nc": 8.0 * (rows + 1) * n_rec + 8.0 * 12 * n_elements
+           + (8.0 * n_snapshots * (3 * n_elements + 2) if fields else 0.0)}
+    if csv:
+        out["signals.csv"] = CSV_BYTES_PER_VALUE * csv_columns * n_rec
+    out["plots"] = sum(ANIMATION_BYTES if p == "animation" else PLOT_BYTES for p in plots)
+    return out
+
+
+def check_output(folder: Path, parts: dict[str, float], memory: dict[str, float]) -> None:
+    """Refuse (``ValueError``) when the files in ``parts`` (bytes) do not fit the free disk space at ``folder`` or
+    the run and the writing (``memory``, bytes) do not fit the available memory."""
+    total = sum(parts.values())
+    free = free_disk(folder)
+    if free is not None and total > 0.95 * free:
+        shown = ", ".join(f"{k} {_gib(v)}" for k, v in parts.items() if v >= 2**20)
+        raise ValueError(f"output: the results would take about {_gib(total)} on disk ({shown}), more than the "
+                         f"{_gib(free)} free at {folder}; record fewer steps (output.record_every), fewer snapshots "
+                         f"(output.snapshot_every/snapshot_count, or output.fields = false), output.csv = false, "
+                         f"or choose another output folder")
+    _check_memory(memory, {"histories": "keep every n-th step with output.record_every = n, or split the run",
+                           "snapshots": "fewer snapshots (output.snapshot_every / snapshot_count)",
+                           "lattice": "a larger simulation.dt (fewer elements)",
+                           "writing": "keep every n-th step with output.record_every = n"},
+                  {"histories": "output.record_every", "snapshots": "output.snapshot_count",
+                   "lattice": "simulation.dt", "writing": "output.record_every"})
+
+
+def check_run(model: Any, folder: Path, plots: Sequence[str], max_element_updates: Optional[float] = None) -> None:
+    """Before a :class:`~rodimpact.io.model.Model` runs (the command line's ``simulate``): the element-update limit,
+    the memory the run and the writing need, and the disk space of the files written into ``folder``. Messages name
+    the model file's keys. The element count is estimated from the rods' travel times (as the lattice counts it)."""
+    from ..io.quantities import ModelError
+
+    dt = model.time_step
+    n_el_float = sum(r.total_travel_time for r in model.system.rods) / dt
+    if not n_el_float < 2**62:
+        raise ModelError(f"simulation.dt: the rods would need {n_el_float:.3g} elements of travel time {dt:.3g} s; "
+                         f"use a larger dt")
+    n_el = max(1, int(round(n_el_float)))
+    n_steps = model.n_steps
+    n_rods, n_probes = model.system.n_rods, len(model.probes)
+    rows = 2 * (n_rods - 1) + 4 + 4 * n_probes
+    stride = model.output.record_every
+    every = model.snapshot_every()
+    n_snap = len(model.output.snapshot_times) + (n_steps // every + 1 if every else 0)
+    try:
+        check_element_updates(n_el, n_steps, max_element_updates, "simulation.duration")
+    except ValueError as exc:
+        raise ModelError(str(exc).replace("max_element_updates= (command line: --max-element-updates)",
+                                          "--max-element-updates")) from None
+    memory = run_bytes(n_el, n_steps, rows, stride, n_snap)
+    memory["writing"] = memory["histories"]            # the NetCDF dataset stacks the histories once more
+    files = output_bytes(n_el, n_steps, rows, rows + 1, stride, n_snap if model.output.fields else 0,
+                         model.output.csv, model.output.fields, plots)
+    try:
+        check_output(folder.parent if not folder.exists() else folder, files, memory)
+    except ValueError as exc:
+        raise ModelError(str(exc)) from None
+
+
+class Progress:
+    """Progress of a run of ``n_steps`` steps on stderr: a tqdm bar on a terminal, else a line at every 10 %."""
+
+    def __init__(self, n_steps: int, stream: Any = None) -> None:
+        self.n, self.done, self.stream = n_steps, 0, stream or sys.stderr
+        self.t0 = time.perf_counter()
+        self.next_tenth = 1
+        self.bar = None
+        if getattr(self.stream, "isatty", lambda: False)():
+            from tqdm.auto import tqdm
+
+            self.bar = tqdm(total=n_steps, unit="step", desc="simulate", file=self.stream)
+
+    def update(self, steps: int) -> None:
+        self.done += steps
+        if self.bar is not None:
+            self.bar.update(steps)
+            return
+        tenths = 10 * self.done // self.n                  # whole tenths done (integers: no rounding)
+        if tenths >= self.next_tenth:
+            frac = self.done / self.n
+            elapsed = time.perf_counter() - self.t0
+            left = elapsed * (1 - frac) / frac
+            print(f"simulate: {frac:4.0%} ({self.done:,} of {self.n:,} steps, {_duration(elapsed)} elapsed, about "
+                  f"{_duration(left)} left)", file=self.stream, flush=True)
+            self.next_tenth = tenths + 1
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def progress(enabled: Optional[bool], n_steps: int, n_elements: int) -> Optional[Progress]:
+    """A :class:`Progress` if ``enabled``, or by default (``None``) for runs of more than :data:`PROGRESS_UPDATES`
+    element updates (on a terminal or not); ``None`` otherwise."""
+    if enabled is None:
+        enabled = float(n_steps) * float(n_elements) > PROGRESS_UPDATES
+    return Progress(n_steps) if enabled else None

@@ -1,0 +1,55 @@
+"""Key paths of model and spec files for errors raised by the Python API.
+
+The loaders hand the values of a file to :func:`rodimpact.simulate` and :func:`rodimpact.synthesize`, whose
+errors name their Python arguments (``dt: must be > 0``, ``initial[1].force: must be finite``, ``n: ...``). A
+user of a file knows only its keys, so :func:`translated` rewrites the leading argument name of such a
+message into the key path of the file (``synthesis.dt``, ``rods[1].initial.force``, ``striker.elements``)
+and returns a :class:`~rodimpact.io.quantities.ModelError`.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Callable, Union
+
+from .quantities import ModelError
+
+Rule = Union[str, Callable[[re.Match], str]]
+
+#: API argument of :func:`rodimpact.simulate` -> key path in a model file.
+MODEL_KEYS: dict[str, Rule] = {
+    "dt": "simulation.dt", "duration": "simulation.duration", "steps": "simulation.steps",
+    "backend": "simulation.backend", "energy_every": "simulation.energy_every",
+    "snapshot_times": "output.snapshot_times", "snapshot_every": "output.snapshot_every",
+    "record_every": "output.record_every", "velocities": "rods[*].velocity", "left": "ends.left",
+    "right": "ends.right", "initial": "rods[*].initial",
+    r"initial\[(\d+)\]": lambda m: f"rods[{m.group(1)}].initial",
+}
+
+#: API argument of :func:`rodimpact.synthesize` -> key path in a synthesis spec.
+SPEC_KEYS: dict[str, Rule] = {
+    "dt": "synthesis.dt", "n": "striker.elements", "backend": "synthesis.backend",
+    "striker_velocity": "striker.velocity", "material": "striker.material", "target": "target",
+    "position": "target.position", "quantity": "target.quantity", "rule": "target.rule",
+    "struck_velocity": "struck[*].velocity", "far_end": "far_end", "struck.left": "struck[0]",
+    "struck.right": "far_end", "initial": "struck[*].initial",
+    r"initial\[(\d+)\]": lambda m: f"struck[{m.group(1)}].initial",
+    r"rods\[(\d+)\]": lambda m: f"struck[{m.group(1)}]",
+}
+
+
+def translate(message: str, keys: dict[str, Rule]) -> str:
+    """``message`` with its leading API argument (``name:``, ``name[i]:`` or ``name.sub:``) replaced by the key
+    path ``keys`` gives for it (keys holding ``(`` are regular expressions, others plain names); unchanged when it
+    starts with no known argument."""
+    for pattern, rule in sorted(keys.items(), key=lambda kv: -len(kv[0])):
+        regex = pattern if "(" in pattern else re.escape(pattern)
+        m = re.match(f"(?:{regex})(?=[.:\\[ ])", message)
+        if m:
+            return (rule(m) if callable(rule) else rule) + message[m.end():]
+    return message
+
+
+def translated(exc: BaseException, keys: dict[str, Rule]) -> ModelError:
+    """A :class:`ModelError` with the message of ``exc`` translated by :func:`translate`."""
+    return ModelError(translate(str(exc), keys))
