@@ -1,14 +1,17 @@
 """Physical quantities with units in the Python API: ``"300 mm"``, ``"210 GPa"`` or a :mod:`pint` Quantity.
 
 Bare numbers stay SI. A string or a pint Quantity is converted to the SI unit the argument expects, with the
-same pint parsing as model files (:mod:`rodimpact.io.quantities`); a quantity of the wrong dimension is a
+same safe pint parsing as model files (:mod:`rodimpact._quantities`); a quantity of the wrong dimension is a
 ``ValueError`` naming the argument, e.g. ``Cylinder.diameter: expected a quantity in m, got "5 kg" (a mass)``;
 a string that is not a quantity with a unit (``"twenty"``, ``"20"``) is a ``TypeError`` as any non-number is.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any, Optional
+
+from ._quantities import _clip
 
 
 def is_quantity(value: Any) -> bool:
@@ -24,7 +27,7 @@ def to_si(name: str, value: Any, unit: str) -> Optional[float]:
         return None
     import pint
 
-    from .io.quantities import _dimension_name, _registry
+    from ._quantities import _check_text, _dimension_name, _pint_parse, _registry
 
     ureg = _registry()
     try:
@@ -32,14 +35,15 @@ def to_si(name: str, value: Any, unit: str) -> Optional[float]:
     except Exception:  # the unit is a description pint cannot read: no conversion
         return None
     if isinstance(value, str):
+        text = _check_text(value, name, f"a quantity in {unit}")     # length and power limits (never hangs)
         try:
-            q = ureg.Quantity(value.strip())
+            q = _pint_parse(text)
         except Exception:  # pint's tokenizer raises assorted errors on garbage
             q = None
-        if not isinstance(q, ureg.Quantity) or (q.dimensionless and not target.dimensionless):
+        if q is None or (q.dimensionless and not target.dimensionless):
             raise TypeError(f"{name}: must be a real number in {unit} or a quantity such as \"1 {unit}\", got str "
-                            f"{value!r}")
-        shown = f"\"{value.strip()}\""
+                            f"{_clip(value)!r}")
+        shown = f"\"{_clip(value.strip())}\""
     else:
         q, shown = value, f"{value:~P}"
     try:
@@ -47,9 +51,14 @@ def to_si(name: str, value: Any, unit: str) -> Optional[float]:
     except pint.errors.DimensionalityError:
         raise ValueError(f"{name}: expected a quantity in {unit}, got {shown} ({_dimension_name(q)})") from None
     try:
-        return float(mag)
+        x = float(mag)
+    except OverflowError:
+        x = math.inf
     except (TypeError, ValueError):
         raise ValueError(f"{name}: expected a single value in {unit}, got {shown}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{name}: must be finite, got {shown} (out of the range of floating point numbers)")
+    return x
 
 
 def array_to_si(name: str, values: Any, unit: str) -> Any:
@@ -63,7 +72,7 @@ def array_to_si(name: str, values: Any, unit: str) -> Any:
         try:
             return values.to(unit.replace("^", "**")).magnitude
         except pint.errors.DimensionalityError:
-            from .io.quantities import _dimension_name
+            from ._quantities import _dimension_name
 
             raise ValueError(f"{name}: expected quantities in {unit}, got {values.units:~P} "
                              f"({_dimension_name(values)})") from None

@@ -99,7 +99,7 @@ def _write_file(path: Path, text: str, force: bool, what: str = "file") -> None:
 
 # ============================================================================================ simulate
 def cmd_simulate(args: argparse.Namespace) -> int:
-    from .direct.guards import check_run
+    from .io.preflight import check_run
     from .io.model import load_model
     from .io.results import format_summary, save, summarize
 

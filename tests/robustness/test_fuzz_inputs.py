@@ -16,7 +16,7 @@ broken TOML text) and loaded again. Every case must
   few milliseconds, must not grow by that much in any case (reading /dev/zero, a table of 10^9 elements or a
   12 GB snapshot buffer would).
 
-Loaded models also go through the command line's pre-run check (:func:`rodimpact.direct.guards.check_run`).
+Loaded models also go through the command line's pre-run check (:func:`rodimpact.io.preflight.check_run`).
 
 2,000 cases run in the suite. A longer run (the issue asks for 20,000)::
 
@@ -43,6 +43,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from rodimpact.direct import guards
+from rodimpact.io import preflight
 from rodimpact.io import _toml
 from rodimpact.io.model import loads_model
 from rodimpact.io.schema import MODEL
@@ -279,7 +280,7 @@ def test_mutated_templates_and_examples_give_named_errors_or_load(case, files, m
     try:
         if kind == "model":
             model = loads_model(text, base_dir=files, name="model")
-            guards.check_run(model, files / "out", model.output.plots)
+            preflight.check_run(model, files / "out", model.output.plots)
         else:
             loads_spec(text, files, name="spec")
     except _Timeout:

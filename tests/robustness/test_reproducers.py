@@ -23,6 +23,7 @@ import pytest
 import rodimpact as ri
 from rodimpact import cli
 from rodimpact.direct import guards
+from rodimpact.io import preflight
 from rodimpact.io import synthesis_spec
 from rodimpact.io.model import loads_model
 from rodimpact.io.quantities import ModelError
@@ -119,7 +120,7 @@ def test_snapshots_at_every_step_are_refused_before_the_run(monkeypatch):
     assert time.perf_counter() - t0 < 60                       # refused up front, not after 41,404 steps
     # the command line refuses it as well, before the run, naming the key
     with pytest.raises(ModelError, match=r"output\.snapshot_count: the run would need"):
-        guards.check_run(model, Path("."), ())
+        preflight.check_run(model, Path("."), ())
 
 
 def test_the_output_of_a_long_run_is_counted_before_it_starts(monkeypatch, tmp_path):
@@ -133,7 +134,7 @@ def test_the_output_of_a_long_run_is_counted_before_it_starts(monkeypatch, tmp_p
     monkeypatch.setattr(guards, "free_disk", lambda folder: 200e6)
     with pytest.raises(ModelError, match=r"output: the results would take about 1\.04 GiB on disk \(result\.nc "
                                          r"0\.261 GiB, signals\.csv 0\.782 GiB\), more than the 191 MiB free at"):
-        guards.check_run(model, tmp_path / "out", (), max_element_updates=math.inf)
+        preflight.check_run(model, tmp_path / "out", (), max_element_updates=math.inf)
 
 
 def test_writing_the_csv_does_not_hold_the_whole_text_in_memory(tmp_path):
@@ -233,7 +234,7 @@ def test_a_run_length_at_the_float_limit_and_a_denormal_element_length():
     with pytest.raises(ModelError, match=r"^simulation\.dt: .* lattice elements .* more than this machine's memory"):
         huge.simulate()
     with pytest.raises(ModelError, match=r"^simulation\.dt: the rods would need inf elements"):
-        guards.check_run(huge, Path("."), ())
+        preflight.check_run(huge, Path("."), ())
 
 
 @pytest.mark.parametrize("nested", ["[" * 500 + "]" * 500, "{a = " * 500 + "1" + "}" * 500])

@@ -85,3 +85,12 @@ duration = "0.1 ms"
         assert m.system.right == ri.NonReflectingEnd()
         m = ri.loads_model(text.format(right=f'{{ type = "{spelling}", impedance = "60 kN s/m" }}'))
         assert m.system.right == ri.NonReflectingEnd(6e4)
+
+
+@pytest.mark.parametrize("text, match", [("10**10**10 m", "power"), ("10**400 m", "power"),
+                                         ("1e400 m", "finite"), ("m" * 100_000, "at most 200 characters")])
+def test_hostile_unit_strings_in_python_are_refused_at_once(text, match):
+    """The Python API parses unit strings with the same limits as model files: an exponent tower (which pint
+    would evaluate exactly, never finishing), a number beyond the float range and a huge string are named errors."""
+    with pytest.raises(ValueError, match=match):
+        ri.Cylinder(text, 0.02)

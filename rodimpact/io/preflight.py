@@ -1,0 +1,42 @@
+"""Checks before a model file's run (the command line's ``simulate``): the element-update limit, the memory the run
+and the writing need, and the disk space of the files written, with messages that name the model file's keys.
+The numbers come from :mod:`rodimpact.direct.guards`."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+from ..direct.guards import check_element_updates, check_output, output_bytes, run_bytes
+from .quantities import ModelError
+
+
+def check_run(model: Any, folder: Path, plots: Sequence[str], max_element_updates: Optional[float] = None) -> None:
+    """Before a :class:`~rodimpact.io.model.Model` runs (the command line's ``simulate``): the element-update limit,
+    the memory the run and the writing need, and the disk space of the files written into ``folder``. Messages name
+    the model file's keys. The element count is estimated from the rods' travel times (as the lattice counts it)."""
+    dt = model.time_step
+    n_el_float = sum(r.total_travel_time for r in model.system.rods) / dt
+    if not n_el_float < 2**62:
+        raise ModelError(f"simulation.dt: the rods would need {n_el_float:.3g} elements of travel time {dt:.3g} s; "
+                         f"use a larger dt")
+    n_el = max(1, int(round(n_el_float)))
+    n_steps = model.n_steps
+    n_rods, n_probes = model.system.n_rods, len(model.probes)
+    rows = 2 * (n_rods - 1) + 4 + 4 * n_probes
+    stride = model.output.record_every
+    every = model.snapshot_every()
+    n_snap = len(model.output.snapshot_times) + (n_steps // every + 1 if every else 0)
+    try:
+        check_element_updates(n_el, n_steps, max_element_updates, "simulation.duration")
+    except ValueError as exc:
+        raise ModelError(str(exc).replace("max_element_updates= (command line: --max-element-updates)",
+                                          "--max-element-updates")) from None
+    memory = run_bytes(n_el, n_steps, rows, stride, n_snap)
+    memory["writing"] = memory["histories"]            # the NetCDF dataset stacks the histories once more
+    files = output_bytes(n_el, n_steps, rows, rows + 1, stride, n_snap if model.output.fields else 0,
+                         model.output.csv, model.output.fields, plots)
+    try:
+        check_output(folder.parent if not folder.exists() else folder, files, memory)
+    except ValueError as exc:
+        raise ModelError(str(exc)) from None
