@@ -1,6 +1,7 @@
 """Up-front checks of what a simulation will cost, and progress reports for long runs.
 
-Before a run starts, :func:`check_simulation` estimates from the element and step counts
+Before a run starts, :func:`check_element_updates` and :func:`check_run_memory` estimate from the element and
+step counts
 
 * the run time, as the number of element updates (elements x steps): above ``max_element_updates`` (default
   :data:`DEFAULT_MAX_ELEMENT_UPDATES`, about a quarter of an hour at 1e8 updates per second) the run is refused
@@ -29,6 +30,8 @@ from typing import Any, Optional, Sequence
 
 #: Default limit on elements x steps of one run (lift it with ``max_element_updates=``).
 DEFAULT_MAX_ELEMENT_UPDATES = 1e11
+#: runs that hold at most this much memory (bytes) are not checked against the available memory
+SMALL_BYTES = 8.0 * 2**20
 #: Runs with more element updates than this report progress on stderr (a few seconds and more).
 PROGRESS_UPDATES = 1e9
 #: Bytes per lattice element held during a run (lattice, discretisation, kernel state; as lattice.py counts).
@@ -104,11 +107,10 @@ def run_bytes(n_elements: int, n_steps: int, rows: int, stride: int, n_snapshots
             "snapshots": 2.0 * 8.0 * n_snapshots * (3 * n_elements + 2)}
 
 
-def check_simulation(n_elements: int, n_steps: int, rows: int, stride: int, n_snapshots: int,
-                     max_element_updates: Optional[float]) -> None:
-    """The up-front checks of :func:`rodimpact.simulate`: the element-update limit, then the memory of the
-    histories and snapshots against the available memory. Messages name the argument that changes it."""
-    check_element_updates(n_elements, n_steps, max_element_updates)
+def check_run_memory(n_elements: int, n_steps: int, rows: int, stride: int, n_snapshots: int) -> None:
+    """The memory of a run's lattice, histories and snapshots against the available memory, before anything is
+    allocated (:func:`rodimpact.simulate` checks the element-update limit first, :func:`check_element_updates`).
+    Messages name the argument that changes it."""
     parts = run_bytes(n_elements, n_steps, rows, stride, n_snapshots)
     _check_memory(parts, {"histories": "keep every n-th step with record_every=n, or split the run",
                           "snapshots": "fewer snapshots (a larger snapshot_every, fewer snapshot_times)",
@@ -118,6 +120,8 @@ def check_simulation(n_elements: int, n_steps: int, rows: int, stride: int, n_sn
 
 def _check_memory(parts: dict[str, float], hints: dict[str, str], names: dict[str, str]) -> None:
     total = sum(parts.values())
+    if total <= SMALL_BYTES:          # small runs do not ask the operating system (it costs tens of microseconds)
+        return
     avail = available_memory()
     if avail is None or total <= 0.9 * avail:
         return

@@ -12,12 +12,15 @@ from typing import Any, Iterable, Optional
 
 import numpy as np
 
-from .._validate import finite_array, fits_in_memory
+from .._validate import finite_array
 from ..lattice.lattice import Lattice
+from . import guards
 from .result import EnergyHistory, FieldSnapshots, JunctionEvents, Probe
 
 #: most snapshots of one run
 MAX_SNAPSHOTS = 100_000
+#: most energy samples of one run
+MAX_ENERGY_SAMPLES = 1_000_000
 #: energy samples per run when ``energy_every`` is not given
 DEFAULT_ENERGY_SAMPLES = 256
 
@@ -100,6 +103,9 @@ class Recording:
     def energy_steps(self, n_steps: int) -> np.ndarray:
         """Sorted step indices of the energy samples: every ``energy_every`` steps and the last step."""
         every = self.energy_every or max(1, -(-n_steps // DEFAULT_ENERGY_SAMPLES))
+        if n_steps // every > MAX_ENERGY_SAMPLES:        # checked before the steps are listed
+            raise ValueError(f"energy_every: {every} gives {n_steps // every + 1} energy samples of {n_steps} steps; "
+                             f"at most {MAX_ENERGY_SAMPLES:,} (use a larger stride)")
         steps = np.arange(0, n_steps + 1, every, dtype=np.int64)
         return steps if steps[-1] == n_steps else np.append(steps, np.int64(n_steps))
 
@@ -108,8 +114,6 @@ class Recording:
 HISTORIES = ("junction_N", "junction_contact", "end_N", "end_V", "pr_N", "pr_V", "pr_u")
 #: contact phases per junction held before the compiled loop returns to have the buffer enlarged
 _PHASES = 16
-#: arrays of at most this many values (8 MB) are allocated without asking how much memory the machine has
-_SMALL = 2**20
 
 
 class Recorder:
@@ -133,13 +137,7 @@ class Recorder:
         self.snapshot_steps = recording.snapshot_steps(n_steps, lattice.dt)
         n_el, n_nodes, n_rods = lattice.n_elements, lattice.n_elements + lattice.n_rods, lattice.n_rods
         n_hist = sum(rows.values()) + rows["pr_N"]                      # + strain per probe
-        if n_hist * n_rec > _SMALL:
-            fits_in_memory("steps", 8.0 * n_hist * n_rec, f"the histories of {n_steps} steps ({n_hist} signals)",
-                           "keep every n-th step with record_every=n, or split the run")
-        if (2 * n_el + n_nodes) * self.snapshot_steps.size > _SMALL:
-            fits_in_memory("snapshot_every", 8.0 * (2 * n_el + n_nodes) * self.snapshot_steps.size,
-                           f"{self.snapshot_steps.size} snapshots of {n_el} elements",
-                           "take fewer snapshots (snapshot_every, snapshot_times)")
+        guards.check_run_memory(n_el, n_steps, n_hist, self.stride, self.snapshot_steps.size)
         self.chunk = tuple(np.zeros((rows[key], capacity)) for key in HISTORIES)
         self.kept = tuple(np.zeros((rows[key], n_rec)) for key in HISTORIES)
         n_j = rows["junction_N"]

@@ -75,13 +75,14 @@ def test_snapshot_limits_are_checked_against_the_run():
 
 
 def test_snapshots_that_do_not_fit_in_memory_are_refused_before_the_run(monkeypatch):
-    """Snapshots are preallocated: on a machine with 4 MB, 501 snapshots of 1200 elements (N, v, u: about 14 MB)
+    """Snapshots are preallocated: on a machine with 4 MB, 501 snapshots of 1200 elements (N, v, u: about 14 MB, held twice while
+    they are stacked at the end)
     are refused up front, naming the request; 50 of them (1.4 MB) run."""
-    import rodimpact._validate as validate
+    from rodimpact.direct import guards
 
-    monkeypatch.setattr(validate, "physical_memory", lambda: 4e6)
+    monkeypatch.setattr(guards, "available_memory", lambda: 4e6)
     rods = [ri.Rod.from_impedance(np.full(200, 40e3), dt=DT), ri.Rod.from_impedance(np.full(1000, 40e3), dt=DT)]
-    with pytest.raises(ValueError, match="snapshot_every: 501 snapshots of 1200 elements would need .* GiB, more "
-                                         "than this machine's memory"):
+    with pytest.raises(ValueError, match=r"snapshot_every: the run would need about 27\.7 MiB of memory \(snapshots "
+                                         r"27\.5 MiB\), more than the 3\.81 MiB available now"):
         ri.simulate(rods, velocities=[1.0, 0.0], steps=500, snapshot_every=1)
     assert ri.simulate(rods, velocities=[1.0, 0.0], steps=500, snapshot_every=10).snapshots.time.size == 51

@@ -103,7 +103,7 @@ def test_a_file_above_the_size_limit_is_refused_and_the_limit_can_be_lifted(tmp_
 def _big_snapshot_model() -> str:
     # 12,802 elements x 41,404 steps with a snapshot at every step: the 12.7 GB case
     return MODEL.replace('length = "0.4 m"', 'length = "66.25 m"').replace(
-        'steps = 150\n', 'steps = 41404\n').replace(DT_LINE, 'dt = "1 us"').replace(
+        'steps = 150\n', 'steps = 41404\n').replace(DT_LINE, 'dt = "1 us"\nallow_discretization_error = true').replace(
         "snapshot_count = 5", "snapshot_every = 1")
 
 
