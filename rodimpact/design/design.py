@@ -20,6 +20,7 @@ from ..lattice.lattice import build_lattice
 from ..rods.conditions import BitRockEnd
 from ..rods.material import STEEL, Material
 from ..rods.system import InitialState
+from ..inverse.diagnosis import explain_bounds
 from ..inverse.recursive import synthesize
 from ..inverse.struck import as_struck_system, locate, window_count_check
 from ..inverse.targets import as_target
@@ -162,6 +163,8 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                              material=material, bore=bore, mass=mass, striker_velocity=striker_velocity,
                              velocity_bounds=velocity_bounds)
     v0 = velocity_start(cons, striker_velocity)
+    if objective == "match" and location is None and not any(system.velocities):
+        diag["bounds_diagnosis"] = explain_bounds(windows, v0, face_z, float(cons.lower[0]), float(cons.upper[0]))
     problem = ImpactProblem(system, dt, n, run_steps, location=location, quantity=obs_quantity, backend=backend)
     z_ref = float(np.exp(np.mean(np.log(np.sqrt(cons.lower * cons.upper)))))
     ev = Evaluator(problem, obj, float(smoothness), z_ref)
