@@ -27,7 +27,7 @@ from ..inverse.targets import as_target
 from ..inverse.transform import _check_quantity, _resolve_dt, _resolve_n
 from ._adjoint import ImpactProblem
 from .constraints import Constraints, build_constraints, velocity_start
-from .objectives import EfficiencyObjective, MatchObjective, per_step_weights
+from .objectives import EfficiencyObjective, MatchObjective
 from .optimize import Evaluator, Levels, Run, best_of, minimise
 from .result import DesignResult
 from .stepped import stepped_design
@@ -136,9 +136,8 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         if not np.any(windows != 0.0):
             raise ValueError("target: is zero in every window; nothing to match")
         location = None if position is None else locate(system, position, dt)
-        start = 0 if location is None else location.node
-        run_steps = start + 2 * nw
-        obj: Any = MatchObjective(windows, start, per_step_weights(weights, nw, dt), run_steps)
+        obj: Any = MatchObjective.build(windows, None if location is None else location.node, weights, dt)
+        run_steps = obj.steps
         obs_quantity = quantity
     else:
         if target is not None:
@@ -156,7 +155,6 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         location = locate(system, sum(r.length for r in system.rods), dt)
         obs_quantity = "incident"       # the incident wave at the bit, for the report and plots
         windows = np.zeros(0)
-        start = 0
         obj = EfficiencyObjective(dt, run_steps)
 
     cons = build_constraints(n, dt, face_z, impedance_bounds=impedance_bounds, diameter_bounds=diameter_bounds,
@@ -178,7 +176,8 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         return DesignResult(
             impedance=z, striker_velocity=float(v), dt=dt, objective=objective, time=dt * np.arange(run_steps),
             achieved=np.asarray(fw.observed, dtype=float), face_force=np.asarray(fw.face_force, dtype=float),
-            target=obj.reference if objective == "match" else np.zeros(0), compared_from=start,
+            target=obj.reference if objective == "match" else np.zeros(0),
+            compared=obj.index if objective == "match" else np.zeros(0, dtype=int),
             window_values=windows, misfit=float(np.sqrt(value)) if objective == "match" else None,
             efficiency=-value if objective == "efficiency" else None,
             constraint_report=cons.report(z, v), iterations=iterations, wall_time=_time.perf_counter() - wall0,

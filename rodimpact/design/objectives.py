@@ -7,9 +7,9 @@ impact velocity v (m/s) that does not pass through the histories.
 
 ``match``
     J = sum_k w_k (y_k - r_k)^2 / sum_k w_k r_k^2, the squared relative L2 misfit of the achieved force y_k
-    (per step, at the impact face or the observed quantity at a position) to the target r_k = the window values
-    X_j repeated for both steps of their window [2(j-1) dt, 2j dt), over the target's span (after the dead time
-    d at a position: steps d .. d + 2 n_w - 1). The reported misfit is sqrt(J).
+    to the target r_k over the target's span: at the impact face every step k, with r_k = the window value X_j
+    of its window [2(j-1) dt, 2j dt) (held for 2 dt); at a position the window starts after the dead time d,
+    steps d + 2(j-1), with r = X_j (see :meth:`MatchObjective.build`). The reported misfit is sqrt(J).
 ``efficiency``
     eta = W / E_k with W = -dt sum_k N_k v_k the work done on the rock by the far end (N_k the normal force,
     compressive < 0, v_k the outward velocity; node values are constant over a step, so the sum is the exact
@@ -29,35 +29,41 @@ Seeds = dict[str, np.ndarray]
 
 @dataclass(frozen=True)
 class MatchObjective:
-    """Relative L2 misfit over the steps ``start .. start + 2 n_w - 1`` against the repeated window values."""
+    """Weighted relative L2 misfit of the observed history at the steps ``index`` against ``reference``."""
 
-    windows: np.ndarray        # X_1..X_nw, N
-    start: int                 # first compared step (the dead time at a position, else 0)
-    weights: np.ndarray        # (2 n_w,) per-step weights >= 0
+    index: np.ndarray          # compared steps
+    reference: np.ndarray      # target at those steps, N
+    weights: np.ndarray        # weights >= 0 at those steps
     steps: int                 # length of the forward run's histories
 
-    @property
-    def reference(self) -> np.ndarray:
-        """The per-step target r_k over the compared steps, N."""
-        return np.repeat(self.windows, 2)
+    @classmethod
+    def build(cls, windows: np.ndarray, dead_time: Optional[int], weights: Any, dt: float) -> "MatchObjective":
+        """At the impact face (``dead_time`` None) every step of every window is compared with its window value
+        (held for 2 dt); at a position the window starts after the dead time d, steps d + 2(j-1), as the
+        transformation of :func:`~rodimpact.synthesize` matches them (devices that act every step, such as a
+        bit-rock spring, make the quantity vary within a window, which no striker can shape)."""
+        nw = windows.size
+        if dead_time is None:
+            index, ref = np.arange(2 * nw), np.repeat(windows, 2)
+        else:
+            index, ref = dead_time + 2 * np.arange(nw), windows.copy()
+        w = per_step_weights(weights, nw, dt)
+        if dead_time is not None:
+            w = w[0::2]
+        return cls(index, ref, w, int(index[-1]) + (2 if dead_time is None else 1))
 
     def achieved(self, fw: Any) -> np.ndarray:
-        """The compared per-step values of the forward run."""
-        return np.asarray(fw.observed)[self.start:self.start + 2 * self.windows.size]
+        """The compared values of the forward run."""
+        return np.asarray(fw.observed)[self.index]
 
     def evaluate(self, fw: Any, impedance: np.ndarray, velocity: float) -> tuple[float, Seeds, np.ndarray, float]:
         r = self.reference
-        y = self.achieved(fw)
+        res = self.achieved(fw) - r
         norm = float(np.sum(self.weights * r * r))
-        res = y - r
         value = float(np.sum(self.weights * res * res)) / norm
         seed = np.zeros(self.steps)
-        seed[self.start:self.start + r.size] = 2.0 * self.weights * res / norm
+        seed[self.index] = 2.0 * self.weights * res / norm
         return value, {"observed": seed}, np.zeros(impedance.size), 0.0
-
-    def misfit(self, fw: Any) -> float:
-        """sqrt(J): the relative L2 misfit."""
-        return float(np.sqrt(self.evaluate(fw, np.zeros(0), 0.0)[0]))
 
 
 @dataclass(frozen=True)

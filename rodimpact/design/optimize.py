@@ -20,6 +20,12 @@ from scipy.optimize import minimize
 from .constraints import Constraints, project_shift_clip
 
 
+#: initial penalty weight of the augmented Lagrangian (mass scaled by the mass of a striker at Z_ref)
+MU_START = 100.0
+#: relative mass violation at which the outer loop stops; the final shift-and-clip projection makes it exact
+MASS_TOLERANCE = 1e-6
+
+
 @dataclass
 class Evaluator:
     """J(Z, v) and its gradient through one forward and one adjoint run, plus optional smoothing penalty."""
@@ -130,7 +136,7 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
     if free_v:
         bounds.append((c.velocity[0] / vr, c.velocity[1] / vr))
     history: list[float] = []
-    state = {"lam_lo": 0.0, "lam_hi": 0.0, "mu": 10.0}
+    state = {"lam_lo": 0.0, "lam_hi": 0.0, "mu": MU_START}
     last: dict[str, float] = {}
 
     def split(x: np.ndarray) -> tuple[np.ndarray, float]:
@@ -170,7 +176,7 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
         m = c.dt * float(lv.counts @ u) / m_scale
         lo, hi = c.mass[0] / m_scale, c.mass[1] / m_scale
         viol = max(lo - m, m - hi, 0.0)
-        if viol < 1e-9:
+        if viol < MASS_TOLERANCE:
             break
         mu = state["mu"]
         state["lam_lo"] = max(0.0, state["lam_lo"] + mu * (lo - m))

@@ -52,9 +52,10 @@ class DesignResult:
     face_force:
         Contact force per step, N.
     target:
-        The per-step target over the compared steps (window values X_j held for 2 dt), N; empty for efficiency.
-    compared_from:
-        First compared step (the dead time at a position, else 0).
+        The target at the compared steps (N; empty for efficiency): the window values X_j at both steps of their
+        window at the impact face, at the window starts after the dead time at a position.
+    compared:
+        The compared step indices (into ``time`` and ``achieved``).
     window_values:
         X_1..X_nw of the target, N (empty for efficiency).
     misfit:
@@ -80,7 +81,7 @@ class DesignResult:
     achieved: np.ndarray
     face_force: np.ndarray
     target: np.ndarray
-    compared_from: int
+    compared: np.ndarray
     window_values: np.ndarray
     misfit: Optional[float]
     efficiency: Optional[float]
@@ -157,7 +158,7 @@ class DesignResult:
         dev = float(np.max(np.abs(y - self.achieved)) / max(np.max(np.abs(self.achieved)), 1e-300))
         misfit = eff = None
         if self.objective == "match":
-            seg = y[self.compared_from:self.compared_from + self.target.size]
+            seg = y[self.compared]
             w = self.diagnostics.get("weights")
             w = np.ones(self.target.size) if w is None else np.asarray(w)
             misfit = float(np.sqrt(np.sum(w * (seg - self.target) ** 2) / np.sum(w * self.target ** 2)))
@@ -176,14 +177,16 @@ class DesignResult:
         data = {"impedance": ("element", self.impedance, {"units": "N s/m"}),
                 "achieved": ("step", self.achieved, {"units": "N"}),
                 "face_force": ("step", self.face_force, {"units": "N"}),
-                "window_values": ("window", self.window_values, {"units": "N"})}
+                "window_values": ("window", self.window_values, {"units": "N"}),
+                "target": ("compared", self.target, {"units": "N"}),
+                "compared_step": ("compared", self.compared)}
         coords = {"element": ("element", np.arange(1, self.n_elements + 1)),
                   "theta": ("element", self.theta, {"units": "s"}),
                   "time": ("step", self.time, {"units": "s"}),
                   "window": ("window", np.arange(1, self.window_values.size + 1))}
         attrs = {"objective": self.objective, "dt": self.dt, "striker_velocity": self.striker_velocity,
                  "mass": self.mass, "iterations": self.iterations, "wall_time": self.wall_time,
-                 "compared_from": self.compared_from, "quantity": self.quantity,
+                 "quantity": self.quantity,
                  "constraint_report": json.dumps(self.constraint_report)}
         if self.misfit is not None:
             attrs["misfit"] = self.misfit
