@@ -168,7 +168,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     ev = Evaluator(problem, obj, float(smoothness), z_ref)
 
     def finish(z: np.ndarray, v: float, fw: Any, iterations: int, runs: list[Run]) -> DesignResult:
-        diag.update(forward_runs=ev.forward_runs, gradient_runs=ev.gradient_runs,
+        diag.update(bounds=(cons.lower, cons.upper), forward_runs=ev.forward_runs, gradient_runs=ev.gradient_runs,
                     convergence=[r.history for r in runs], start_values=[r.value for r in runs])
         if objective == "match":
             diag["weights"] = obj.weights

@@ -182,9 +182,28 @@ def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> Syn
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
     syn = d["synthesis"] or {"dt": None, "backend": "numba", "verify": True}
+    rods, vel, initial, junctions, far_end, loads = read_struck(d, params, materials, syn["dt"], base)
+    st = d["striker"]
+    if not st["velocity"] > 0:
+        raise ModelError(f"striker.velocity: must be > 0 (towards the struck system), got {st['velocity']:g} m/s")
+    mat = _material(st["material"], materials, "striker.material") or STEEL
+    t = d["target"]
+    target = _target(t, params, base)
+    out = d["output"] or {"plots": True}
+    return SynthesisSpec(target=target, struck=tuple(rods), striker_velocity=st["velocity"], n=st["elements"],
+                         dt=syn["dt"], far_end=far_end, struck_velocity=tuple(vel), junctions=junctions,
+                         loads=tuple(loads), initial=initial if any(s is not None for s in initial) else None,
+                         position=t["position"], quantity=t["quantity"], rule=t["rule"], material=mat,
+                         bore=st["bore"], max_diameter_ratio=st["max_diameter_ratio"], backend=syn["backend"],
+                         verify=syn["verify"], plots=out["plots"], title=d["title"] or "", text=text)
+
+
+def read_struck(d: dict, params: Parameters, materials: dict, dt: Optional[float], base: Path) -> tuple:
+    """The struck system of a validated spec (keys ``struck``, ``junctions``, ``far_end``, ``loads``): rods,
+    velocities, initial states, junctions, far end and loads (also used by design specs)."""
     rods, vel, initial = [], [], []
     for i, r in enumerate(d["struck"]):
-        rod, st = _rod(r, f"struck[{i}]", materials, params, syn["dt"], base)
+        rod, st = _rod(r, f"struck[{i}]", materials, params, dt, base)
         rods.append(rod)
         vel.append(r["velocity"])
         initial.append(st)
@@ -205,19 +224,7 @@ def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> Syn
                                                                "force"), ld["interpolation"]))
         else:
             loads.append(Bearings(k, ld["spans"], ld["friction_coefficient"], ld["gravity"], ld["normal_load"]))
-    st = d["striker"]
-    if not st["velocity"] > 0:
-        raise ModelError(f"striker.velocity: must be > 0 (towards the struck system), got {st['velocity']:g} m/s")
-    mat = _material(st["material"], materials, "striker.material") or STEEL
-    t = d["target"]
-    target = _target(t, params, base)
-    out = d["output"] or {"plots": True}
-    return SynthesisSpec(target=target, struck=tuple(rods), striker_velocity=st["velocity"], n=st["elements"],
-                         dt=syn["dt"], far_end=far_end, struck_velocity=tuple(vel), junctions=junctions,
-                         loads=tuple(loads), initial=initial if any(s is not None for s in initial) else None,
-                         position=t["position"], quantity=t["quantity"], rule=t["rule"], material=mat,
-                         bore=st["bore"], max_diameter_ratio=st["max_diameter_ratio"], backend=syn["backend"],
-                         verify=syn["verify"], plots=out["plots"], title=d["title"] or "", text=text)
+    return rods, vel, initial, junctions, far_end, loads
 
 
 def _target(t: dict, params: dict[str, float], base: Path) -> Any:
