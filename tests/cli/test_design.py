@@ -100,3 +100,14 @@ def test_existing_output_refused(tmp_path, capsys, monkeypatch):
     assert cli.main(["design", "s.toml", "-o", "o", "--quiet", "--no-plots"]) == 0
     assert cli.main(["design", "s.toml", "-o", "o"]) == 2
     assert "o: exists and is not empty" in capsys.readouterr().err
+
+
+def test_docs_list_the_design_spec_keys():
+    from pathlib import Path
+
+    from rodimpact.io.design_spec import spec_reference_markdown
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "cli.md").read_text(encoding="utf-8")
+    generated = spec_reference_markdown().replace("### ", "#### ").replace("#### Top level",
+                                                                           "#### Design spec, top level")
+    assert generated in page, "docs/cli.md: regenerate the design spec reference section"
