@@ -58,7 +58,8 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         ``objective="match"``: the wished force (N, tension positive, impact forces negative) in any form
         :func:`rodimpact.synthesize` accepts (callable f(t), samples (t, F), window values, ForceTarget). Its
         window values X_j (``rule``) held for 2 dt are compared with the achieved force at every step over the
-        target's span (n windows for a function without duration). ``objective="efficiency"``: None.
+        target's span (n windows for a function without duration); at a ``position``, at the window starts after
+        the dead time (see :mod:`rodimpact.design.objectives`). ``objective="efficiency"``: None.
     struck, far_end, struck_velocity, junctions, loads, initial:
         The struck system, as for :func:`rodimpact.synthesize` (left end = impact face).
     striker_velocity:
