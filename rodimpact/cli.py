@@ -195,30 +195,28 @@ def cmd_examples(args: argparse.Namespace) -> int:
 
 # ============================================================================================ synthesize
 def cmd_synthesize(args: argparse.Namespace) -> int:
-    from .io import synthesis_spec as syn
+    from .io import synthesis_spec
 
+    return _run_spec(args, synthesis_spec)
+
+
+def _run_spec(args: argparse.Namespace, module: Any) -> int:
+    """Load a spec with ``module.load_spec``, ``run`` it, ``save`` the folder and report (synthesize, design)."""
     spec_path = Path(args.spec)
     out = Path(args.output) if args.output else Path("results") / spec_path.stem
     _check_out(out, args.force)
-    spec = _input_phase(lambda: syn.load_spec(spec_path))
-    result = _input_phase(lambda: syn.run(spec))
-    summary = syn.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
-    _report(summary, syn.format_summary(summary, spec), args, f"results written to {out}")
+    spec = _input_phase(lambda: module.load_spec(spec_path))
+    result = _input_phase(lambda: module.run(spec))
+    summary = module.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
+    _report(summary, module.format_summary(summary, spec), args, f"results written to {out}")
     return EXIT_OK
 
 
 # ============================================================================================ design
 def cmd_design(args: argparse.Namespace) -> int:
-    from .io import design_spec as des
+    from .io import design_spec
 
-    spec_path = Path(args.spec)
-    out = Path(args.output) if args.output else Path("results") / spec_path.stem
-    _check_out(out, args.force)
-    spec = _input_phase(lambda: des.load_spec(spec_path))
-    result = _input_phase(lambda: des.run(spec))
-    summary = des.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
-    _report(summary, des.format_summary(summary, spec), args, f"results written to {out}")
-    return EXIT_OK
+    return _run_spec(args, design_spec)
 
 
 # ============================================================================================ parser

@@ -9,10 +9,9 @@ from typing import Any, Optional
 import numpy as np
 
 from ..direct.result import SimulationResult
-from ..direct.simulate import simulate
 from ..inverse._files import write_new_file
 from ..inverse.shape import MAX_DIAMETER_RATIO, StrikerShape
-from ..inverse.struck import Location, position_probe, position_quantity, with_striker
+from ..inverse.struck import Location, simulate_observed, with_striker
 from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.system import System
@@ -142,19 +141,7 @@ class DesignResult:
         if self.struck is None:
             raise ValueError("verify: this result carries no struck system")
         system = with_striker(self.struck, self.to_rod(), self.striker_velocity)
-        loc = self.location
-        probes = [] if loc is None else [position_probe(loc, 1)]
-        sim = simulate(system, steps=self.time.size, dt=self.dt, backend=backend, probes=probes,
-                       snapshot_times=[0.0] if loc is not None and self.quantity == "incident" else None)
-        y = np.asarray(sim.junction_force[0], dtype=float)
-        if loc is not None:
-            p = sim.probe("synthesis_position")
-            k_left = sim.lattice.rod_start[1] + loc.element_left
-            n0 = v0 = 0.0
-            if self.quantity == "incident":
-                n0 = float(sim.snapshots.force[k_left, 0])
-                v0 = float(sim.snapshots.velocity[k_left, 0])
-            y = position_quantity(self.quantity, p.force, p.velocity, float(sim.lattice.impedance[k_left]), n0, v0)
+        sim, y = simulate_observed(system, self.location, self.quantity, self.time.size, self.dt, backend)
         dev = float(np.max(np.abs(y - self.achieved)) / max(np.max(np.abs(self.achieved)), 1e-300))
         misfit = eff = None
         if self.objective == "match":

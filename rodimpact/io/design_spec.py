@@ -21,7 +21,7 @@ from .model import _material, _materials, read_text_file
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
     validate_table
-from .synthesis_spec import TARGET_TYPES, _target, read_struck
+from .synthesis_spec import TARGET_TYPES, _target, read_struck, write_plots
 
 # ============================================================================================ schema
 STRIKER = Table("striker", "The striker to be designed and its constraints.", (
@@ -277,17 +277,11 @@ def save(r: DesignRun, spec: DesignSpec, outdir: str | Path, *, overwrite: bool 
 
 def _plots(res: Any, folder: Path) -> list[str]:
     from ..plotting import design as dp
-    from ..plotting._common import new_axes
 
     folder.mkdir(parents=True, exist_ok=True)
-    jobs = [("force.png", lambda ax: dp.plot_design_force(res, ax=ax)),
-            ("profile.png", lambda ax: dp.plot_design_profile(res, ax=ax)),
-            ("convergence.png", lambda ax: dp.plot_convergence(res, ax=ax))]
-    for name, draw in jobs:
-        fig, ax = new_axes(None)
-        draw(ax)
-        fig.savefig(folder / name, dpi=120)
-    return [name for name, _ in jobs]
+    return write_plots(folder, [("force.png", lambda ax: dp.plot_design_force(res, ax=ax)),
+                                ("profile.png", lambda ax: dp.plot_design_profile(res, ax=ax)),
+                                ("convergence.png", lambda ax: dp.plot_convergence(res, ax=ax))])
 
 
 # ============================================================================================ template

@@ -363,7 +363,6 @@ def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite:
 def _plots(r: SynthesisRun, folder: Path) -> list[str]:
     """The synthesis plots of :mod:`rodimpact.plotting.synthesis`, drawn on pyplot-free figures (headless)."""
     from ..plotting import synthesis as sp
-    from ..plotting._common import new_axes
 
     folder.mkdir(parents=True, exist_ok=True)
     jobs = [("impedance.png", lambda ax: sp.plot_impedance(r.result, ax=ax)),
@@ -371,6 +370,13 @@ def _plots(r: SynthesisRun, folder: Path) -> list[str]:
             ("existence.png", lambda ax: sp.plot_existence(r.result, ax=ax))]
     if r.shape is not None:
         jobs.append(("shape.png", lambda ax: sp.plot_shape(r.shape, ax=ax)))
+    return write_plots(folder, jobs)
+
+
+def write_plots(folder: Path, jobs: list) -> list[str]:
+    """Draw each ``(file name, draw(ax))`` job on its own pyplot-free figure (headless) into ``folder``."""
+    from ..plotting._common import new_axes
+
     written = []
     for name, draw in jobs:
         fig, ax = new_axes(None)

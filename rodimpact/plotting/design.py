@@ -80,21 +80,19 @@ def plot_convergence(result: Any, ax: Optional[Any] = None):
 def plot_incident_wave(result: Any, loading_stiffness: float, rod_impedance: float, ax: Optional[Any] = None):
     """The incident wave at the bit of an efficiency design beside the wave f0 exp(k t / Z) that an elastic
     rock of stiffness k under a rod of impedance Z absorbs without reflection (f0 = the design's first
-    incident value; thesis eq. 4.29, Lundberg and Collet), time from the wave's arrival."""
+    incident value; thesis eq. 4.29, Lundberg and Collet), over the striker's pulse (2 n steps from the wave's
+    arrival)."""
     _check(result)
     if result.location is None or result.quantity != "incident":
         raise ValueError("result: needs a design whose run records the incident wave (objective='efficiency')")
     fig, ax = new_axes(ax)
     d = result.location.node
-    y = result.achieved[d:]
-    t = result.time[d:] - result.time[d]
-    active = np.flatnonzero(y < 0)
-    end = int(active[-1]) + 1 if active.size else y.size
-    ax.step(t[:end] * 1e3, y[:end] / 1e3, where="post", label="incident wave of the design")
-    f0 = y[0]
-    ax.plot(t[:end] * 1e3, f0 * np.exp(loading_stiffness * t[:end] / rod_impedance) / 1e3, "--",
+    end = min(2 * result.n_elements, result.time.size - d)      # the striker's pulse: 2 n steps
+    y = result.achieved[d:d + end]
+    t = result.time[d:d + end] - result.time[d]
+    ax.step(t * 1e3, y / 1e3, where="post", label="incident wave of the design")
+    ax.plot(t * 1e3, y[0] * np.exp(loading_stiffness * t / rod_impedance) / 1e3, "--",
             label=r"$f_0\,e^{k t / Z}$ (no reflection)")
-    ax.set_ylim(1.2 * min(float(y.min()), 0.0) / 1e3, 0.1 * abs(float(y.min())) / 1e3)
     ax.set_xlabel("time from arrival at the bit / ms")
     ax.set_ylabel("force / kN")
     ax.legend(loc="best")

@@ -34,3 +34,16 @@ def test_incident_wave_needs_an_efficiency_design(match):
 def test_wrong_object():
     with pytest.raises(TypeError, match="DesignResult"):
         plot_design_force(object())
+
+
+def test_incident_wave_beside_the_exponential():
+    rod = ri.Rod.from_impedance([60e3] * 6, 2e-6)
+    k = 60e3 / (2 * 3 * 2e-6)
+    d = ri.design(None, objective="efficiency", struck=rod, far_end=ri.BitRockEnd(k), striker_velocity=10.0, n=3,
+                  dt=2e-6, impedance_bounds=(2e4, 2e5), max_iterations=1, starts=1)
+    fig, ax = plot_incident_wave(d, k, 60e3)
+    step, expo = ax.get_lines()[:2]
+    t = expo.get_xdata() / 1e3
+    assert t.size == 6                                                   # the pulse: 2 n steps
+    f0 = d.achieved[d.location.node]
+    assert np.allclose(expo.get_ydata(), f0 * np.exp(k * t / 60e3) / 1e3, rtol=1e-12)
