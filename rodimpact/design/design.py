@@ -139,7 +139,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         location = None if position is None else locate(system, position, dt)
         obj: Any = MatchObjective.build(windows, None if location is None else location.node, weights, dt)
         run_steps = obj.steps
-        obs_quantity = quantity
+        obs_quantity = quantity if location is not None else "force"
     else:
         if target is not None:
             raise ValueError("target: the 'efficiency' objective takes no target; pass None")
