@@ -93,3 +93,16 @@ def test_other_bad_arguments():
         ri.design(x, struck=bar, striker_velocity=12.0, dt=DT, max_steps=0)
     with pytest.raises(ValueError, match="target: is zero"):
         ri.design(np.zeros(3), struck=bar, striker_velocity=12.0, dt=DT)
+
+
+@pytest.mark.parametrize("weights, match", [
+    (np.ones(3), "weights: give 10 values .one per window. or 20"),
+    (-np.ones(10), "weights: must be finite and >= 0"),
+    (np.zeros(10), "with at least one > 0"),
+    (lambda t: 1 / 0, "weights: calling the weight function"),
+])
+def test_bad_weights(weights, match):
+    bar = ri.Rod.from_impedance([1.27e4] * 4, DT)
+    with pytest.raises(ValueError, match=match):
+        ri.design(-np.linspace(1e4, 2e4, 10), struck=bar, striker_velocity=12.0, dt=DT, far_end="nonreflecting",
+                  weights=weights)
