@@ -87,3 +87,13 @@ def test_optimiser_alone_finds_the_exact_striker():
     d = _design_of(p, impedance_bounds=(1e3, 1e7), warm_start=False)
     assert d.misfit < 1e-7
     assert np.max(np.abs(d.impedance / ref.impedance - 1)) < 1e-6
+
+
+def test_numpy_and_numba_backends_agree():
+    """Through the optimiser: the upper bound excludes the exact striker."""
+    p = academic_example(2, n=6)
+    kw = dict(impedance_bounds=(1e3, 0.9 * _exact(p).impedance.max()), max_iterations=3, starts=2)
+    a = _design_of(p, backend="numba", **kw)
+    b = _design_of(p, backend="numpy", **kw)
+    assert np.allclose(a.impedance, b.impedance, rtol=1e-9, atol=0)
+    assert a.misfit == pytest.approx(b.misfit, rel=1e-9, abs=1e-15)
