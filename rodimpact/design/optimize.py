@@ -140,7 +140,8 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
     last: dict[str, float] = {}
 
     def split(x: np.ndarray) -> tuple[np.ndarray, float]:
-        return (x[:-1] * zr, x[-1] * vr) if free_v else (x * zr, v0)
+        """Unscaled levels and velocity (the velocity clipped: x * v_ref may round past a bound)."""
+        return (x[:-1] * zr, float(np.clip(x[-1] * vr, *c.velocity))) if free_v else (x * zr, v0)
 
     def fun(x: np.ndarray) -> tuple[float, np.ndarray]:
         u, v = split(x)
