@@ -38,6 +38,9 @@ OBJECTIVES = ("match", "efficiency")
 EFFICIENCY_ROUND_TRIPS = 3
 #: misfit below which the recursive method's striker is returned as the exact answer
 EXACT_MISFIT = 1e-9
+#: several starts: each runs for max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) iterations, then the best
+#: one continues up to max_iterations
+SCREEN_MIN, SCREEN_FRACTION = 10, 10
 
 
 def design(target: Any = None, struck: Any = None, striker_velocity: Optional[float] = None,
@@ -90,7 +93,8 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         Length of the efficiency run (default: the pulse 2 n dt plus ``EFFICIENCY_ROUND_TRIPS`` round trips
         through the struck system).
     starts, max_iterations, tolerance:
-        Number of starting profiles, L-BFGS-B iterations per start and stage, and its relative ``ftol``.
+        Number of starting profiles (each screened for max(10, max_iterations / 10) iterations, the best one
+        continued), L-BFGS-B iterations per stage, and its relative ``ftol``.
     warm_start:
         Try the exact recursive method first (match only).
     backend:
@@ -205,12 +209,19 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         zu = np.full(n, face_z)
         initial_profiles += [("uniform", zu), ("rising taper", np.linspace(0.5, 2.0, n) * face_z),
                              ("falling taper", np.linspace(2.0, 0.5, n) * face_z)]
-    initial_profiles = initial_profiles[:starts]
-    diag["starts"] = [name for name, _ in initial_profiles]
     free = Levels.free(cons)
-    runs = [minimise(ev, cons, free, cons.project(z0), v0, max_iterations=max_iterations, tolerance=tolerance)
-            for _, z0 in initial_profiles]
+    profiles = _distinct([(name, cons.project(z0)) for name, z0 in initial_profiles])[:starts]
+    diag["starts"] = [name for name, _ in profiles]
+    # screen every start briefly, then continue the best one (the tail of the convergence is slow and alike)
+    screen = max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) if len(profiles) > 1 else max_iterations
+    runs = [minimise(ev, cons, free, z0, v0, max_iterations=min(screen, max_iterations), tolerance=tolerance)
+            for _, z0 in profiles]
     best = best_of(runs)
+    if max_iterations > screen and best.message.startswith("STOP"):
+        more = minimise(ev, cons, free, best.levels, best.velocity, max_iterations=max_iterations - screen,
+                        tolerance=tolerance)
+        runs.append(more)
+        best = best_of([best, more])
     iterations = sum(r.iterations for r in runs)
     z, v, fw = free.expand(best.levels), best.velocity, best.fw
     diag["optimizer_message"] = best.message
@@ -226,6 +237,16 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                                     float(np.sqrt(free_value)) if objective == "match" else -free_value}
         diag["breakpoints"] = st.breaks.tolist()
     return finish(z, v, fw, iterations, runs)
+
+
+def _distinct(profiles: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.ndarray]]:
+    """Drop starting profiles equal to an earlier one (e.g. a one-element recursive prefix extended and clipped
+    is the uniform striker of the first force level)."""
+    out: list[tuple[str, np.ndarray]] = []
+    for name, z in profiles:
+        if not any(np.allclose(z, o, rtol=1e-12, atol=0.0) for _, o in out):
+            out.append((name, z))
+    return out
 
 
 def _efficiency_steps(n: int, n_struck: int, dt: float, steps: Optional[int], duration: Optional[float]) -> int:
