@@ -158,11 +158,7 @@ def build_constraints(n: int, dt: float, face_impedance: float, *, impedance_bou
     mass_range = None
     if mass is not None:
         if isinstance(mass, (tuple, list)):
-            mlo, mhi = _pair("mass", mass, "kg")
-            mass_range = (positive("mass[0]", mlo, "kg"), positive("mass[1]", mhi, "kg"))
-            if mass_range[0] > mass_range[1]:
-                raise ValueError(f"mass: the lower bound {mass_range[0]:.6g} kg exceeds the upper bound "
-                                 f"{mass_range[1]:.6g} kg")
+            mass_range = _positive_range("mass", mass, "kg")
         else:
             m = positive("mass", mass, "kg")
             mass_range = (m, m)
@@ -172,17 +168,22 @@ def build_constraints(n: int, dt: float, face_impedance: float, *, impedance_bou
                              f"of {_fmt_range(mass_range)} kg; with dt = {dt:.6g} s it can weigh "
                              f"{reach[0]:.6g} .. {reach[1]:.6g} kg (mass = dt * sum Z)")
     if velocity_bounds is not None:
-        vlo, vhi = _pair("velocity_bounds", velocity_bounds, "m/s")
-        vel = (positive("velocity_bounds[0]", vlo, "m/s"), positive("velocity_bounds[1]", vhi, "m/s"))
-        if vel[0] > vel[1]:
-            raise ValueError(f"velocity_bounds: the lower bound {vel[0]:.6g} m/s exceeds the upper bound "
-                             f"{vel[1]:.6g} m/s")
+        vel = _positive_range("velocity_bounds", velocity_bounds, "m/s")
     else:
         if striker_velocity is None:
             raise ValueError("striker_velocity: give the impact velocity (m/s), or velocity_bounds to optimise it")
         v = positive("striker_velocity", striker_velocity, "m/s")
         vel = (v, v)
     return Constraints(lo, hi, float(dt), mass_range, vel)
+
+
+def _positive_range(name: str, value: Any, unit: str) -> tuple[float, float]:
+    """A pair (lower, upper) of positive numbers with lower <= upper."""
+    a, b = _pair(name, value, unit)
+    r = (positive(f"{name}[0]", a, unit), positive(f"{name}[1]", b, unit))
+    if r[0] > r[1]:
+        raise ValueError(f"{name}: the lower bound {r[0]:.6g} {unit} exceeds the upper bound {r[1]:.6g} {unit}")
+    return r
 
 
 def _fmt_range(r: tuple[float, float]) -> str:
