@@ -16,7 +16,7 @@ from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.system import System
 from .shape import MAX_DIAMETER_RATIO, StrikerShape
-from .struck import Location, simulate_observed, with_striker
+from .struck import Location, position_probe, position_quantity, with_striker
 from .transform import ForceTransformation
 
 
@@ -309,7 +309,15 @@ class SynthesisResult:
                                       float(dev), float(dev), sim)
         loc = tr.location
         d = loc.node
-        sim, q = simulate_observed(system, loc, tr.quantity, d + 2 * m, self.dt, backend)
+        sim = simulate(system, steps=d + 2 * m, dt=self.dt, backend=backend, probes=[position_probe(loc, 1)],
+                       snapshot_times=[0.0] if tr.quantity == "incident" else None)
+        p = sim.probe("synthesis_position")
+        k_left = sim.lattice.rod_start[1] + loc.element_left
+        n0 = v0 = 0.0
+        if tr.quantity == "incident":
+            n0 = float(sim.snapshots.force[k_left, 0])
+            v0 = float(sim.snapshots.velocity[k_left, 0])
+        q = position_quantity(tr.quantity, p.force, p.velocity, float(sim.lattice.impedance[k_left]), n0, v0)
         y = tr.target[:m]
         scale = np.max(np.abs(y))
         starts = d + 2 * np.arange(m)
