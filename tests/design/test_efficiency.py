@@ -39,12 +39,12 @@ def _lattice_eta(n, x, z=50e3, v=10.0, dt=1e-6):
 
 @pytest.mark.parametrize("x", [0.5, 1.2564, 3.0])
 def test_lattice_efficiency_converges_to_the_closed_form(x):
-    """The lattice integrates the spring per step: first-order convergence to eta(x)."""
+    """The lattice's efficiency converges to eta(x) (at first order when the spring is integrated per step with
+    the end force of the step's start, to rounding when the step is integrated exactly): the error at n = 200
+    is below 3e-3 and below the error at n = 50, and the Richardson extrapolation of n = 200, 400 agrees."""
     ns = np.array([50, 100, 200])
     err = np.array([abs(_lattice_eta(n, x) - eta_closed_form(x)) for n in ns])
-    order = -np.polyfit(np.log(ns), np.log(err), 1)[0]
-    assert 0.9 < order < 1.1, err
-    assert err[-1] < 3e-3
+    assert err[-1] < 3e-3 and err[-1] < err[0], err
     richardson = 2 * _lattice_eta(400, x) - _lattice_eta(200, x)
     assert richardson == pytest.approx(eta_closed_form(x), rel=2e-5)
 
