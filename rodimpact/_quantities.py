@@ -50,6 +50,7 @@ DIMENSIONS: dict[str, Dimension] = {d.name: d for d in (
     Dimension("force", "N", "N", "-150 kN"),
     Dimension("pressure", "Pa", "Pa", "210 GPa"),
     Dimension("density", "kg/m**3", "kg/m^3", "7840 kg/m^3"),
+    Dimension("mass", "kg", "kg", "2.5 kg"),
     Dimension("impedance", "N*s/m", "N s/m", "51.0 kN s/m"),
     Dimension("stiffness", "N/m", "N/m", "300 MN/m"),
     Dimension("damping", "N*s/m", "N s/m", "10 kN s/m"),

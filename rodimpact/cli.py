@@ -1,7 +1,7 @@
 """The ``rodimpact`` command line: thin wrappers around the Python API.
 
-Commands: ``simulate MODEL.toml``, ``init [simulate|synthesize]``, ``examples [list|run|show|copy]``,
-``synthesize SPEC.toml`` (when the inverse problem is available) and ``--version``; see docs/cli.md.
+Commands: ``simulate MODEL.toml``, ``init [simulate|synthesize|design]``, ``examples [list|run|show|copy]``,
+``synthesize SPEC.toml``, ``design SPEC.toml`` and ``--version``; see docs/cli.md.
 
 Exit codes: 0 success, 2 bad input (model file, arguments, existing output; the message says what and where),
 1 internal error (a bug: please report it with the traceback shown by ``RODIMPACT_DEBUG=1``), 130 interrupted
@@ -130,7 +130,7 @@ def cmd_init(args: argparse.Namespace) -> int:
     path = _file_target(args.output, default)
     _write_file(path, text, args.force, "model file" if kind == "simulate" else "spec file")
     if not args.quiet:
-        cmd = "simulate" if kind == "simulate" else "synthesize"
+        cmd = kind if kind in ("synthesize", "design") else "simulate"
         print(f"wrote {path}; edit it, then run:  rodimpact {cmd} {path}")
     return EXIT_OK
 
@@ -139,7 +139,10 @@ def _templates() -> dict[str, tuple[str, str]]:
     from .io import synthesis_spec
     from .io.templates import TEMPLATES
 
-    return {**TEMPLATES, "synthesize": (synthesis_spec.TEMPLATE, "synthesis.toml")}
+    from .io import design_spec
+
+    return {**TEMPLATES, "synthesize": (synthesis_spec.TEMPLATE, "synthesis.toml"),
+            "design": (design_spec.TEMPLATE, "design.toml")}
 
 
 # ============================================================================================ examples
@@ -200,16 +203,28 @@ def cmd_examples(args: argparse.Namespace) -> int:
 
 # ============================================================================================ synthesize
 def cmd_synthesize(args: argparse.Namespace) -> int:
-    from .io import synthesis_spec as syn
+    from .io import synthesis_spec
 
+    return _run_spec(args, synthesis_spec)
+
+
+def _run_spec(args: argparse.Namespace, module: Any) -> int:
+    """Load a spec with ``module.load_spec``, ``run`` it, ``save`` the folder and report (synthesize, design)."""
     spec_path = Path(args.spec)
     out = Path(args.output) if args.output else Path("results") / spec_path.stem
     with _claim_out(out, args.force):
-        spec = _input_phase(lambda: syn.load_spec(spec_path))
-        result = _input_phase(lambda: syn.run(spec))
-        summary = syn.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
-    _report(summary, syn.format_summary(summary, spec), args, f"results written to {out}")
+        spec = _input_phase(lambda: module.load_spec(spec_path))
+        result = _input_phase(lambda: module.run(spec))
+        summary = module.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
+    _report(summary, module.format_summary(summary, spec), args, f"results written to {out}")
     return EXIT_OK
+
+
+# ============================================================================================ design
+def cmd_design(args: argparse.Namespace) -> int:
+    from .io import design_spec
+
+    return _run_spec(args, design_spec)
 
 
 # ============================================================================================ parser
@@ -240,9 +255,9 @@ def build_parser() -> argparse.ArgumentParser:
     s.set_defaults(func=cmd_simulate)
 
     i = sub.add_parser("init", help="write a commented template that runs as it is",
-                       description="Write a fully commented template model (simulate) or synthesis spec "
-                                   "(synthesize) that runs as it is.")
-    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default) or synthesize")
+                       description="Write a fully commented template model (simulate), synthesis spec "
+                                   "(synthesize) or design spec (design) that runs as it is.")
+    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default), synthesize or design")
     i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml; "
                                                           "an existing folder or a name ending in / means "
                                                           "that file inside it)")
@@ -265,6 +280,14 @@ def build_parser() -> argparse.ArgumentParser:
     y.add_argument("spec", metavar="SPEC.toml", help="synthesis specification")
     output_flags(y, "SPEC-NAME")
     y.set_defaults(func=cmd_synthesize)
+
+    g = sub.add_parser("design", help="find the best striker under constraints when no exact one exists",
+                       description="Design the striker described by SPEC.toml (rodimpact init design writes a "
+                                   "template): best match to a target force or best drilling efficiency inside "
+                                   "diameter, mass and step limits; writes the profile, plots and a summary.")
+    g.add_argument("spec", metavar="SPEC.toml", help="design specification")
+    output_flags(g, "SPEC-NAME")
+    g.set_defaults(func=cmd_design)
     return p
 
 

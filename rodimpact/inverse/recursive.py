@@ -27,6 +27,7 @@ from .struck import as_struck_system, face_response, locate
 from .targets import as_target
 from ._schur import chosen_method, peel
 from ._toeplitz import TOEPLITZ_METHODS
+from .diagnosis import explain_failure
 from .transform import _check_quantity, _resolve_dt, _resolve_n, transform_windows
 
 #: Default threshold of the estimated relative error of Z_q above which a precision warning is issued.
@@ -159,7 +160,8 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
             msg = (f"element {q} (theta = {m * dt:.6g} s): existence condition |dN_q| < |K_q N_0| (thesis eq. 4.20) "
                    f"violated, |dN_q| = {abs(kq * rq * n0):.6g} N >= |K_q N_0| = {abs(kq * n0):.6g} N; a solution "
                    f"exists for a wavefront travel time of {(m - 1) * dt:.6g} s ({m} elements, striker travel time "
-                   f"{m * dt:.6g} s) and the target can be produced for {2 * m * dt:.6g} s.")
+                   f"{m * dt:.6g} s) and the target can be produced for {2 * m * dt:.6g} s. "
+                   + explain_failure(q, x, dt, v_in, z1s, float(kq * rq * n0), float(abs(kq * n0))))
         failure = ExistenceFailure(q, m * dt, kq, float(kq * rq * n0), float(abs(kq * n0)), rq, reason, msg)
         warn_list.append(f"only {m} of {n} striker elements exist: {msg}")
     if m and err[-1] > precision_warning:

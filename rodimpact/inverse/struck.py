@@ -217,6 +217,27 @@ def position_quantity(quantity: str, force: np.ndarray, velocity: np.ndarray, z_
     return 0.5 * ((force - force0) - z_left * (velocity - velocity0))
 
 
+def simulate_observed(system: System, location: Optional[Location], quantity: str, steps: int, dt: float,
+                      backend: str = "numba") -> tuple[Any, np.ndarray]:
+    """Simulate the complete impact ``system`` (striker = rod 0) for ``steps`` and return the result and the
+    observed history: the contact force at the impact face (``location`` None) or the ``quantity`` at the
+    located node of the struck system (see :func:`position_quantity`)."""
+    probes = [] if location is None else [position_probe(location, 1)]
+    sim = simulate(system, steps=steps, dt=dt, backend=backend, probes=probes,
+                   snapshot_times=[0.0] if location is not None and quantity == "incident" else None,
+                   allow_discretization_error=True)    # at the user's dt, as synthesize: a warning
+    if location is None:
+        return sim, np.asarray(sim.junction_force[0], dtype=float)
+    p = sim.probe("synthesis_position")
+    k_left = sim.lattice.rod_start[1] + location.element_left
+    n0 = v0 = 0.0
+    if quantity == "incident":
+        n0 = float(sim.snapshots.force[k_left, 0])
+        v0 = float(sim.snapshots.velocity[k_left, 0])
+    return sim, np.asarray(position_quantity(quantity, p.force, p.velocity, float(sim.lattice.impedance[k_left]),
+                                             n0, v0), dtype=float)
+
+
 def with_striker(system: System, striker: Rod, striker_velocity: float) -> System:
     """The complete impact system: the striker (left, unilateral contact at the impact face) plus the struck
     system; loads are renumbered for the prepended rod."""

@@ -190,9 +190,28 @@ def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> Syn
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
     syn = d["synthesis"] or {"dt": None, "backend": "numba", "verify": True}
+    rods, vel, initial, junctions, far_end, loads = read_struck(d, params, materials, syn["dt"], base)
+    st = d["striker"]
+    if not st["velocity"] > 0:
+        raise ModelError(f"striker.velocity: must be > 0 (towards the struck system), got {st['velocity']:g} m/s")
+    mat = _material(st["material"], materials, "striker.material") or STEEL
+    t = d["target"]
+    target = _wrap("target", lambda: _target(t, params, base))
+    out = d["output"] or {"plots": True}
+    return SynthesisSpec(target=target, struck=tuple(rods), striker_velocity=st["velocity"], n=st["elements"],
+                         dt=syn["dt"], far_end=far_end, struck_velocity=tuple(vel), junctions=junctions,
+                         loads=tuple(loads), initial=initial if any(s is not None for s in initial) else None,
+                         position=t["position"], quantity=t["quantity"], rule=t["rule"], material=mat,
+                         bore=st["bore"], max_diameter_ratio=st["max_diameter_ratio"], backend=syn["backend"],
+                         verify=syn["verify"], plots=out["plots"], title=d["title"] or "", text=text)
+
+
+def read_struck(d: dict, params: Parameters, materials: dict, dt: Optional[float], base: Path) -> tuple:
+    """The struck system of a validated spec (keys ``struck``, ``junctions``, ``far_end``, ``loads``): rods,
+    velocities, initial states, junctions, far end and loads (also used by design specs)."""
     rods, vel, initial = [], [], []
     for i, r in enumerate(d["struck"]):
-        rod, st = _rod(r, f"struck[{i}]", materials, params, syn["dt"], base)
+        rod, st = _rod(r, f"struck[{i}]", materials, params, dt, base)
         rods.append(rod)
         vel.append(r["velocity"])
         initial.append(st)
@@ -214,19 +233,7 @@ def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> Syn
         else:
             loads.append(_wrap(f"loads[{i}]", lambda: Bearings(k, ld["spans"], ld["friction_coefficient"],
                                                                ld["gravity"], ld["normal_load"])))
-    st = d["striker"]
-    if not st["velocity"] > 0:
-        raise ModelError(f"striker.velocity: must be > 0 (towards the struck system), got {st['velocity']:g} m/s")
-    mat = _material(st["material"], materials, "striker.material") or STEEL
-    t = d["target"]
-    target = _wrap("target", lambda: _target(t, params, base))
-    out = d["output"] or {"plots": True}
-    return SynthesisSpec(target=target, struck=tuple(rods), striker_velocity=st["velocity"], n=st["elements"],
-                         dt=syn["dt"], far_end=far_end, struck_velocity=tuple(vel), junctions=junctions,
-                         loads=tuple(loads), initial=initial if any(s is not None for s in initial) else None,
-                         position=t["position"], quantity=t["quantity"], rule=t["rule"], material=mat,
-                         bore=st["bore"], max_diameter_ratio=st["max_diameter_ratio"], backend=syn["backend"],
-                         verify=syn["verify"], plots=out["plots"], title=d["title"] or "", text=text)
+    return rods, vel, initial, junctions, far_end, loads
 
 
 def _target(t: dict, params: dict[str, float], base: Path) -> Any:
@@ -365,7 +372,6 @@ def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite:
 def _plots(r: SynthesisRun, folder: Path) -> list[str]:
     """The synthesis plots of :mod:`rodimpact.plotting.synthesis`, drawn on pyplot-free figures (headless)."""
     from ..plotting import synthesis as sp
-    from ..plotting._common import new_axes
 
     folder.mkdir(parents=True, exist_ok=True)
     jobs = [("impedance.png", lambda ax: sp.plot_impedance(r.result, ax=ax)),
@@ -373,6 +379,13 @@ def _plots(r: SynthesisRun, folder: Path) -> list[str]:
             ("existence.png", lambda ax: sp.plot_existence(r.result, ax=ax))]
     if r.shape is not None:
         jobs.append(("shape.png", lambda ax: sp.plot_shape(r.shape, ax=ax)))
+    return write_plots(folder, jobs)
+
+
+def write_plots(folder: Path, jobs: list) -> list[str]:
+    """Draw each ``(file name, draw(ax))`` job on its own pyplot-free figure (headless) into ``folder``."""
+    from ..plotting._common import new_axes
+
     written = []
     for name, draw in jobs:
         fig, ax = new_axes(None)

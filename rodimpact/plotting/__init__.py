@@ -24,9 +24,11 @@ from .animation import animate_force, pillow_available
 from .fields import plot_snapshots, plot_xt
 from .histories import plot_energy, plot_energy_comparison, plot_forces, plot_strain
 from .profile import plot_profile
+from .design import plot_convergence, plot_design_force, plot_design_profile, plot_incident_wave
 
-__all__ = ["plot_forces", "plot_strain", "plot_energy", "plot_energy_comparison", "plot_profile", "plot_snapshots", "plot_xt",
-           "animate_force", "pillow_available", "save_plots", "PLOT_FILES"]
+__all__ = ["plot_forces", "plot_strain", "plot_energy", "plot_energy_comparison", "plot_profile", "plot_snapshots",
+           "plot_xt", "animate_force", "pillow_available", "save_plots", "PLOT_FILES",
+           "plot_design_force", "plot_design_profile", "plot_convergence", "plot_incident_wave"]
 
 #: File written by :func:`save_plots` for each plot name.
 PLOT_FILES = {"forces": "forces.png", "strain": "strain.png", "profile": "profile.png", "snapshots": "snapshots.png", "xt": "xt.png",

@@ -1,0 +1,212 @@
+"""Result of :func:`rodimpact.design`: :class:`DesignResult`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Optional
+
+import numpy as np
+
+from ..direct.result import SimulationResult
+from ..inverse._files import write_new_file
+from ..inverse.shape import MAX_DIAMETER_RATIO, StrikerShape
+from ..inverse.struck import Location, simulate_observed, with_striker
+from ..rods.material import STEEL, Material
+from ..rods.rod import Rod
+from ..rods.system import System
+
+
+@dataclass(frozen=True)
+class DesignVerification:
+    """The designed striker run through :func:`rodimpact.simulate`: the achieved per-step quantity and its largest
+    deviation from the design's own forward run (relative to max |achieved|), and the objective recomputed."""
+
+    achieved: np.ndarray
+    max_deviation: float
+    misfit: Optional[float]
+    efficiency: Optional[float]
+    simulation: SimulationResult = field(repr=False)
+
+
+@dataclass(frozen=True)
+class DesignResult:
+    """A striker found by :func:`rodimpact.design` (elements counted from the impact face, N s/m, s, m/s, N).
+
+    Attributes
+    ----------
+    impedance:
+        Z_1..Z_n from the impact face, N s/m, inside the bounds.
+    striker_velocity:
+        Impact velocity, m/s (optimised when ``velocity_bounds`` was given).
+    dt:
+        Travel time of each element, s.
+    objective:
+        "match" or "efficiency".
+    time:
+        Start times k dt of the run's steps, s (from the impact).
+    achieved:
+        The observed per-step quantity of the design's run: the contact force at the impact face, or the force /
+        incident wave at ``position`` (N, tension positive).
+    face_force:
+        Contact force per step, N.
+    target:
+        The target at the compared steps (N; empty for efficiency): the window values X_j at both steps of their
+        window at the impact face, at the window starts after the dead time at a position.
+    compared:
+        The compared step indices (into ``time`` and ``achieved``).
+    window_values:
+        X_1..X_nw of the target, N (empty for efficiency).
+    misfit:
+        Relative L2 misfit of the achieved quantity to the target over the target's span (None for efficiency).
+    efficiency:
+        Work done on the rock per blow / striker kinetic energy (None for match).
+    constraint_report:
+        Elements at their lower/upper impedance bound, mass and whether it is on a bound, velocity bound activity.
+    iterations:
+        L-BFGS-B iterations over all starts and stages.
+    wall_time:
+        Seconds spent in :func:`design`.
+    diagnostics:
+        Forward/gradient run counts, starts and their values, warm-start outcome, convergence histories,
+        existence diagnosis of the exact method, free-profile misfit of a stepped design, etc.
+    """
+
+    impedance: np.ndarray
+    striker_velocity: float
+    dt: float
+    objective: str
+    time: np.ndarray
+    achieved: np.ndarray
+    face_force: np.ndarray
+    target: np.ndarray
+    compared: np.ndarray
+    window_values: np.ndarray
+    misfit: Optional[float]
+    efficiency: Optional[float]
+    constraint_report: dict[str, Any]
+    iterations: int
+    wall_time: float
+    struck: Optional[System] = field(default=None, repr=False)
+    location: Optional[Location] = None
+    quantity: str = "force"
+    material: Material = STEEL
+    diagnostics: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    def __repr__(self) -> str:
+        what = (f"misfit {self.misfit:.3g}" if self.objective == "match" else f"efficiency {self.efficiency:.4g}")
+        return (f"DesignResult({self.objective}: {self.n_elements} elements, {what}, v = {self.striker_velocity:.4g} "
+                f"m/s, Z {self.impedance.min():.4g}..{self.impedance.max():.4g} N s/m, mass {self.mass:.4g} kg)")
+
+    @property
+    def n_elements(self) -> int:
+        return int(self.impedance.size)
+
+    @property
+    def mass(self) -> float:
+        """dt sum Z_q, kg (any material)."""
+        return float(self.dt * self.impedance.sum())
+
+    @property
+    def theta(self) -> np.ndarray:
+        """Travel time (q-1) dt of each element's leading edge from the impact face, s."""
+        return self.dt * np.arange(self.n_elements)
+
+    @property
+    def steps(self) -> int:
+        """Number of distinct impedance levels of the profile (1 + number of impedance jumps)."""
+        return 1 + int(np.count_nonzero(np.diff(self.impedance)))
+
+    @property
+    def convergence(self) -> list[list[float]]:
+        """Objective value after every iteration, one list per start/stage."""
+        return self.diagnostics.get("convergence", [])
+
+    # ------------------------------------------------------------------ striker
+    def to_rod(self, name: Optional[str] = "striker") -> Rod:
+        """The striker as an exact impedance-level :class:`Rod`, elements left to right (impact face at the right
+        end), for :func:`rodimpact.simulate`."""
+        return Rod.from_impedance(self.impedance[::-1], self.dt, self.material.wave_speed,
+                                  density=self.material.density, name=name)
+
+    def shape(self, material: Optional[Material] = None, bore: float = 0.0,
+              max_diameter_ratio: float = MAX_DIAMETER_RATIO) -> StrikerShape:
+        """Geometry for ``material`` (default: the design's), solid or with a central bore of diameter ``bore``."""
+        return StrikerShape(self.impedance, self.dt, material or self.material, bore, max_diameter_ratio)
+
+    # ------------------------------------------------------------------ verification
+    def verify(self, backend: str = "numba") -> DesignVerification:
+        """Simulate the striker against the struck system with :func:`rodimpact.simulate` and compare with the
+        design's own run; the objective is recomputed from the simulation."""
+        if self.struck is None:
+            raise ValueError("verify: this result carries no struck system")
+        system = with_striker(self.struck, self.to_rod(), self.striker_velocity)
+        sim, y = simulate_observed(system, self.location, self.quantity, self.time.size, self.dt, backend)
+        dev = float(np.max(np.abs(y - self.achieved)) / max(np.max(np.abs(self.achieved)), 1e-300))
+        misfit = eff = None
+        if self.objective == "match":
+            seg = y[self.compared]
+            w = self.diagnostics.get("weights")
+            w = np.ones(self.target.size) if w is None else np.asarray(w)
+            misfit = float(np.sqrt(np.sum(w * (seg - self.target) ** 2) / np.sum(w * self.target ** 2)))
+        else:
+            work = -self.dt * float(np.dot(sim.end_force["right"], sim.end_velocity["right"]))
+            eff = work / (0.5 * self.mass * self.striker_velocity ** 2)
+        return DesignVerification(np.asarray(y, dtype=float), dev, misfit, eff, sim)
+
+    # ------------------------------------------------------------------ export
+    def to_xarray(self):
+        """Per-element and per-step arrays as an :class:`xarray.Dataset` (scalars and reports as attributes)."""
+        import json
+
+        import xarray as xr
+
+        data = {"impedance": ("element", self.impedance, {"units": "N s/m"}),
+                "achieved": ("step", self.achieved, {"units": "N"}),
+                "face_force": ("step", self.face_force, {"units": "N"}),
+                "window_values": ("window", self.window_values, {"units": "N"}),
+                "target": ("compared", self.target, {"units": "N"}),
+                "compared_step": ("compared", self.compared)}
+        coords = {"element": ("element", np.arange(1, self.n_elements + 1)),
+                  "theta": ("element", self.theta, {"units": "s"}),
+                  "time": ("step", self.time, {"units": "s"}),
+                  "window": ("window", np.arange(1, self.window_values.size + 1))}
+        attrs = {"objective": self.objective, "dt": self.dt, "striker_velocity": self.striker_velocity,
+                 "mass": self.mass, "iterations": self.iterations, "wall_time": self.wall_time,
+                 "quantity": self.quantity,
+                 "constraint_report": json.dumps(self.constraint_report)}
+        if self.misfit is not None:
+            attrs["misfit"] = self.misfit
+        if self.efficiency is not None:
+            attrs["efficiency"] = self.efficiency
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    def to_csv(self, path: str | Path, material: Optional[Material] = None, bore: float = 0.0,
+               overwrite: bool = False) -> Path:
+        """Write the profile for a model file: one row per element listed LEFT TO RIGHT as the striker lies in a
+        simulation (rear end first, impact face last, like ``[rods.elements]``), with the columns
+        ``element_from_face``, ``theta [s]`` (travel time of the element's face-side edge from the impact face),
+        ``impedance [N s/m]`` and ``outer_diameter [m]`` for ``material`` (default the design's) and ``bore``.
+        A model file reads it back with ``[rods.elements] file = "striker.csv"`` and ``dt`` = the design's dt."""
+        shape = self.shape(material, bore)
+
+        def write(tmp: Path) -> None:
+            import csv
+
+            with tmp.open("w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow([f"# designed striker, elements listed left to right (impact face = last row), dt = "
+                            f"{self.dt!r} s, velocity {self.striker_velocity!r} m/s, mass {self.mass:.6g} kg, "
+                            f"material {shape.material.name or 'custom'}, bore {shape.bore:.6g} m"])
+                w.writerow(["element_from_face", "theta [s]", "impedance [N s/m]", "outer_diameter [m]"])
+                for q in range(self.n_elements - 1, -1, -1):
+                    w.writerow([q + 1, repr(float(self.theta[q])), repr(float(self.impedance[q])),
+                                repr(float(shape.outer_diameter[q]))])
+
+        return write_new_file(path, write, overwrite)
+
+    def save(self, path: str | Path, overwrite: bool = False) -> Path:
+        """Write :meth:`to_xarray` to a netCDF file (refused if it exists unless ``overwrite``)."""
+        from ..inverse.result import _netcdf_engine
+
+        return write_new_file(path, lambda tmp: self.to_xarray().to_netcdf(tmp, engine=_netcdf_engine()), overwrite)

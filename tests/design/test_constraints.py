@@ -1,0 +1,108 @@
+"""Constraints of design: bounds from diameters, the exact projection onto {bounds, mass}, bad input."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize
+
+import rodimpact as ri
+from rodimpact.design.constraints import build_constraints, diameter_to_impedance
+
+DT = 1e-6
+
+
+def test_diameter_bounds_become_impedance_bounds_by_hand():
+    # steel: rho c = 7840 * sqrt(210e9 / 7840); d = 20 mm, bore 6 mm: A = pi (0.02^2 - 0.006^2) / 4
+    rc = 7840.0 * math.sqrt(210e9 / 7840.0)
+    a = math.pi * (0.02 ** 2 - 0.006 ** 2) / 4
+    assert diameter_to_impedance(0.02, ri.STEEL, 0.006) == pytest.approx(rc * a, rel=1e-12)
+    c = build_constraints(4, DT, 1e4, diameter_bounds=(0.01, 0.02), material=ri.STEEL, bore=0.006,
+                          striker_velocity=5.0)
+    assert c.upper[0] == pytest.approx(rc * a, rel=1e-12)
+    assert c.lower[0] == pytest.approx(rc * math.pi * (0.01 ** 2 - 0.006 ** 2) / 4, rel=1e-12)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_projection_is_the_euclidean_projection(seed):
+    """Against a generic QP solver (SLSQP) on min |z' - z|^2 s.t. bounds and dt sum z' = m."""
+    rng = np.random.default_rng(seed)
+    n = 8
+    lo, hi = rng.uniform(1, 3, n), rng.uniform(4, 9, n)
+    z = rng.uniform(-2, 12, n)
+    m = DT * rng.uniform(lo.sum() * 1.05, hi.sum() * 0.95)
+    c = build_constraints(n, DT, 1.0, impedance_bounds=(lo, hi), mass=m, striker_velocity=1.0)
+    p = c.project(z)
+    assert DT * p.sum() == pytest.approx(m, rel=1e-13)
+    assert np.all(p >= lo) and np.all(p <= hi)
+    ref = minimize(lambda y: np.sum((y - z) ** 2), np.clip(z, lo, hi), jac=lambda y: 2 * (y - z),
+                   bounds=list(zip(lo, hi)), constraints=[{"type": "eq", "fun": lambda y: y.sum() - m / DT}],
+                   method="SLSQP", options={"ftol": 1e-14, "maxiter": 500})
+    assert np.allclose(p, ref.x, rtol=0, atol=1e-6)
+    assert np.sum((p - z) ** 2) <= np.sum((ref.x - z) ** 2) + 1e-9
+
+
+def test_mass_range_projection_only_when_outside():
+    c = build_constraints(3, DT, 1.0, impedance_bounds=(1.0, 10.0), mass=(DT * 9, DT * 15), striker_velocity=1.0)
+    z = np.array([3.0, 4.0, 5.0])              # mass 12 dt: inside, unchanged
+    assert np.array_equal(c.project(z), z)
+    p = c.project(np.array([8.0, 8.0, 8.0]))    # 24 dt -> upper 15 dt: shift by -3
+    assert np.allclose(p, [5.0, 5.0, 5.0])
+
+
+@pytest.mark.parametrize("kw, match", [
+    (dict(impedance_bounds=(5e4, 1e4)), "impedance_bounds.*lower bound exceeds the upper"),
+    (dict(diameter_bounds=(0.06, 0.005)), "diameter_bounds.*lower bound exceeds"),
+    (dict(impedance_bounds=(1e4, 2e4), mass=10.0), "mass: no striker of 10 elements.*can weigh"),
+    (dict(impedance_bounds=(1e4, 2e4), mass=(1e-6, 2e-6)), "mass: no striker"),
+    (dict(mass=(2.0, 1.0)), r"mass: the lower bound 2 kg exceeds"),
+    (dict(velocity_bounds=(12.0, 5.0)), "velocity_bounds: the lower bound"),
+    (dict(impedance_bounds=(1e4,)), "impedance_bounds: give a pair"),
+    (dict(impedance_bounds=(float("nan"), 1e5)), "impedance_bounds.0.: must be finite"),
+    (dict(impedance_bounds=(1e4, 2e4), diameter_bounds=(0.01, 0.02)), "give one of them"),
+    (dict(diameter_bounds=(0.005, 0.02), bore=0.006), "must exceed the bore"),
+])
+def test_bad_constraints_name_the_argument(kw, match):
+    bar = ri.Rod.from_impedance([1.27e4] * 4, DT)
+    t = 2 * DT * (np.arange(10) + 0.5)
+    with pytest.raises(ValueError, match=match):
+        ri.design(-5e4 * np.sin(np.pi * t / 20e-6), struck=bar, striker_velocity=12.0, n=10, dt=DT,
+                  far_end="nonreflecting", **kw)
+
+
+@pytest.mark.parametrize("target, match", [
+    (np.array([-1e4, np.nan, -2e4]), "target.*window values"),
+    (lambda t: np.where(t > 2e-6, np.inf, -1e4), "target: window 2"),
+])
+def test_non_finite_targets(target, match):
+    bar = ri.Rod.from_impedance([1.27e4] * 4, DT)
+    with pytest.raises(ValueError, match=match):
+        ri.design(target, struck=bar, striker_velocity=12.0, n=3, dt=DT, far_end="nonreflecting")
+
+
+def test_other_bad_arguments():
+    bar = ri.Rod.from_impedance([1.27e4] * 4, DT)
+    x = np.full(3, -1e4)
+    with pytest.raises(ValueError, match="objective: must be one of"):
+        ri.design(x, struck=bar, striker_velocity=12.0, objective="speed", dt=DT)
+    with pytest.raises(ValueError, match="target: the 'match' objective needs"):
+        ri.design(None, struck=bar, striker_velocity=12.0, n=3, dt=DT)
+    with pytest.raises(ValueError, match="striker_velocity: give"):
+        ri.design(x, struck=bar, dt=DT)
+    with pytest.raises(ValueError, match="max_steps"):
+        ri.design(x, struck=bar, striker_velocity=12.0, dt=DT, max_steps=0)
+    with pytest.raises(ValueError, match="target: is zero"):
+        ri.design(np.zeros(3), struck=bar, striker_velocity=12.0, dt=DT)
+
+
+@pytest.mark.parametrize("weights, match", [
+    (np.ones(3), "weights: give 10 values .one per window. or 20"),
+    (-np.ones(10), "weights: must be finite and >= 0"),
+    (np.zeros(10), "with at least one > 0"),
+    (lambda t: 1 / 0, "weights: calling the weight function"),
+])
+def test_bad_weights(weights, match):
+    bar = ri.Rod.from_impedance([1.27e4] * 4, DT)
+    with pytest.raises(ValueError, match=match):
+        ri.design(-np.linspace(1e4, 2e4, 10), struck=bar, striker_velocity=12.0, dt=DT, far_end="nonreflecting",
+                  weights=weights)
