@@ -21,6 +21,7 @@ Usage::
     python scripts/mutation_check.py --only 'bitrock*'     # a selection (fnmatch on the names)
     python scripts/mutation_check.py --check               # only verify that every 'old' text is found once
     python scripts/mutation_check.py --baseline            # also run every subset unmutated first (must pass)
+    python scripts/mutation_check.py --state s.json --only 'x*'   # re-check some, keep the others' verdicts
 
 Exit status 0 when every mutation is killed, 1 otherwise (survivor, stale entry or failing baseline).
 See docs/mutation-testing.md.
@@ -31,6 +32,7 @@ from __future__ import annotations
 import argparse
 import concurrent.futures as cf
 import fnmatch
+import json
 import os
 import re
 import shutil
@@ -215,6 +217,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--check", action="store_true", help="only check that every 'old' text occurs exactly once")
     ap.add_argument("--baseline", action="store_true", help="run each subset unmutated first (must pass)")
     ap.add_argument("--python", default=sys.executable, help="interpreter that runs pytest")
+    ap.add_argument("--state", type=Path, help="JSON file of earlier verdicts: read, updated with this run's, "
+                    "written back; the report then covers every mutation of the list that has a verdict")
     args = ap.parse_args(argv)
     if args.jobs < 1:
         ap.error(f"--jobs: must be >= 1, got {args.jobs}")
@@ -246,8 +250,20 @@ def main(argv: list[str] | None = None) -> int:
                   flush=True)
             if o.status not in ("killed", "timeout") and o.log:
                 print("    " + "\n    ".join(o.log.strip().splitlines()[-15:]), flush=True)
+    wall = time.perf_counter() - t0
+    if args.state is not None:
+        everything = load_mutations(args.list)
+        old = json.loads(args.state.read_text()) if args.state.exists() else {}
+        new = {name: {"status": o.status, "killer": o.killer, "seconds": o.seconds} for name, o in outcomes.items()}
+        merged = {**{k: v for k, v in old.items() if k not in new}, **new}
+        args.state.write_text(json.dumps(merged, indent=1))
+        current = {m.name: m for m in everything}
+        for name, v in merged.items():
+            if name in current and name not in outcomes:
+                outcomes[name] = Outcome(current[name], v["status"], v["killer"], v["seconds"])
+        mutations = [m for m in everything if m.name in outcomes]
     ordered = [outcomes[m.name] for m in mutations]
-    report(ordered, args.report, time.perf_counter() - t0, args.jobs)
+    report(ordered, args.report, wall, args.jobs)
     killed = sum(o.status in ("killed", "timeout") for o in ordered)
     print(f"{killed} of {len(ordered)} killed; report: {args.report}")
     return 0 if killed == len(ordered) else 1
