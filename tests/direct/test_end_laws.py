@@ -112,6 +112,12 @@ def test_bitrock_loading_and_unloading_against_hand_calculation():
     p = order(REFINEMENTS, errors)
     assert p >= 0.9, errors
     assert errors[-1] <= errors[0] * (REFINEMENTS[0] / REFINEMENTS[-1]) ** 0.9, errors
+    # the onset: in the first step after arrival the force is -2 F_I (1 - exp(-k1 t/Z)) ~ -2 F_I k1 t / Z at the
+    # step midpoint t = dt/2, to a relative O(k1 dt / Z) (the midpoint rule gives -2 F_I k1 h/(Z + k1 h), h = dt/2)
+    for n in REFINEMENTS:
+        t, force, _, dt = run_right_end(n, ri.BitRockEnd(k1, k2), rectangular)
+        onset = bitrock_loading_unloading(t[:1], k1, k2)[0]
+        assert abs(force[0] - onset) <= 0.5 * k1 * dt / Z * abs(onset), n
     # the unloading slope is visible: with k2 = k1 the force 2 T after arrival would be 3 x larger than this
     t, force, _, _ = run_right_end(REFINEMENTS[-1], ri.BitRockEnd(k1, k2), rectangular)
     late = bitrock_loading_unloading(t[-1:], k1, k2)[0]
@@ -134,8 +140,9 @@ def test_bitrock_lifts_off_when_a_tensile_wave_follows():
     assert np.all(force <= 0.0)
     off = t > t_r + dt
     assert np.all(force[off] == 0.0)
-    # first order near the kinks (see the previous test): error of a few dt / tau
-    assert np.max(np.abs(force - exact)) / F_I < 10 * dt * k2 / Z
+    # first order at the loading-unloading switch (see the previous test): measured 0.28 dt / tau_2 at
+    # n = 100 .. 800 (tau_2 = Z / k2, the unloading time constant)
+    assert np.max(np.abs(force - exact)) / F_I < 0.5 * dt * k2 / Z
 
 
 @pytest.mark.parametrize("x", [0.5, 1.26, 3.0])
@@ -160,7 +167,7 @@ def test_bitrock_efficiency_matches_lundberg_closed_form(x):
         errors.append(abs(eta - eta_exact))
     assert order(REFINEMENTS, errors) >= 0.9, errors
     assert errors[-1] <= errors[0] * (REFINEMENTS[0] / REFINEMENTS[-1]) ** 0.9, errors
-    assert errors[-1] < 1e-3 * eta_exact
+    assert errors[-1] < 1e-5 * eta_exact        # measured: 5e-7 .. 1.5e-6 at n = 400
 
 
 # ------------------------------------------------------------------------------------------ non-reflecting
