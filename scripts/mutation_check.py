@@ -263,8 +263,9 @@ def main(argv: list[str] | None = None) -> int:
         old = json.loads(args.state.read_text()) if args.state.exists() else {}
         new = {name: {"status": o.status, "killer": o.killer, "seconds": o.seconds} for name, o in outcomes.items()}
         merged = {**{k: v for k, v in old.items() if k not in new}, **new}
-        if args.report_only:
-            wall, args.jobs = old.get("__wall__", {}).get("seconds", 0.0), old.get("__wall__", {}).get("jobs", 1)
+        if args.report_only or args.only:         # the report keeps the wall time of the last full run
+            last = old.get("__wall__", {"seconds": wall, "jobs": args.jobs})
+            wall, args.jobs = last["seconds"], last["jobs"]
         else:
             merged["__wall__"] = {"seconds": wall, "jobs": args.jobs}
         args.state.write_text(json.dumps(merged, indent=1))
