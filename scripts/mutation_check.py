@@ -22,6 +22,7 @@ Usage::
     python scripts/mutation_check.py --check               # only verify that every 'old' text is found once
     python scripts/mutation_check.py --baseline            # also run every subset unmutated first (must pass)
     python scripts/mutation_check.py --state s.json --only 'x*'   # re-check some, keep the others' verdicts
+    python scripts/mutation_check.py --state s.json --report-only # rewrite the report from the stored verdicts
 
 Exit status 0 when every mutation is killed, 1 otherwise (survivor, stale entry or failing baseline).
 See docs/mutation-testing.md.
