@@ -98,10 +98,14 @@ def load_mutations(path: Path) -> list[Mutation]:
 
 
 def repo_files(root: Path) -> list[str]:
-    """Tracked plus untracked-not-ignored files (so that new, uncommitted tests take part)."""
+    """Tracked plus untracked-not-ignored files (so that new, uncommitted tests take part); outside a git
+    checkout (an exported tree) every file except caches and results."""
     res = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"], cwd=root,
-                         capture_output=True, check=True)
-    files = [f for f in res.stdout.decode().split("\0") if f]
+                         capture_output=True)
+    if res.returncode == 0:
+        files = [f for f in res.stdout.decode().split("\0") if f]
+    else:
+        files = [str(p.relative_to(root)) for p in root.rglob("*") if p.is_file()]
     return [f for f in files if not SKIP_PARTS.intersection(Path(f).parts) and (root / f).is_file()]
 
 
