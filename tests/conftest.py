@@ -1,4 +1,16 @@
-"""Shared test settings."""
+"""Shared test settings.
+
+Hypothesis profiles (choose with the environment variable ``HYPOTHESIS_PROFILE``):
+
+* ``ci`` (the default, always loaded unless another profile is named): 25 examples per property,
+  ``derandomize=True`` -- the examples follow from the test itself, so every run (CI, a colleague's machine,
+  the mutation check in ``scripts/mutation_check.py``) tests the same cases and a failure reproduces;
+  no deadline (compiled kernels are built on first use);
+* ``explore``: 1000 examples per property, random seeds, for a longer hunt for counter-examples before a
+  release or after changing a kernel (``HYPOTHESIS_PROFILE=explore pytest tests/direct tests/inverse``);
+  a failure prints the ``@reproduce_failure`` blob and is stored in the local example database;
+* ``dev``: 25 random examples (the old default).
+"""
 
 import os
 
@@ -6,6 +18,7 @@ import matplotlib
 from hypothesis import settings
 
 matplotlib.use("Agg")
-settings.register_profile("ci", max_examples=25, deadline=None)
+settings.register_profile("ci", max_examples=25, deadline=None, derandomize=True, print_blob=True)
+settings.register_profile("explore", max_examples=1000, deadline=None, print_blob=True)
 settings.register_profile("dev", max_examples=25, deadline=None)
-settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE") or "ci")

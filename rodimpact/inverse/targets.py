@@ -36,6 +36,7 @@ from typing import Any, Callable, Literal, Optional, Union
 import numpy as np
 
 from .._validate import finite, finite_array, finite_values, positive
+from ..reference.closed_forms import lundberg_lesser_impedance as _reference_impedance
 
 Rule = Literal["start", "midpoint", "mean"]
 RULES = ("start", "midpoint", "mean")
@@ -260,17 +261,15 @@ def lundberg_lesser_impedance(theta: np.ndarray, peak: float, time_constant: flo
                               striker_velocity: float) -> np.ndarray:
     """Exact striker impedance Z(theta) (N s/m) for the force -peak exp(-t/t0) on a semi-infinite uniform bar
     of impedance Z~ at rest (Lundberg and Lesser; thesis eq. 4.26), theta = travel time from the impact face:
-    Z(theta) = Z0 / (1 + (Z~ + Z0) theta / (Z~ t0))^2 with Z0 = 1 / (v_in/peak - 1/Z~)."""
-    th = finite_values("theta", theta, "travel times into the striker (s)")
-    if np.any(th < 0.0):
-        raise ValueError(f"theta: travel times into the striker must be >= 0 s, got {float(th[th < 0.0].ravel()[0])!r}")
+    Z(theta) = Z0 / (1 + (Z~ + Z0) theta / (Z~ t0))^2 with Z0 = 1 / (v_in/peak - 1/Z~).
+
+    The synthesis-side names of :func:`rodimpact.reference.lundberg_lesser_impedance`, the one copy of eq. 4.26
+    (checked against the thesis's table there)."""
     peak = positive("peak", peak, "N")
     time_constant = positive("time_constant", time_constant, "s")
     struck_impedance = positive("struck_impedance", struck_impedance, "N s/m")
     striker_velocity = positive("striker_velocity", striker_velocity, "m/s")
-    inverse_z0 = striker_velocity / peak - 1.0 / struck_impedance
-    if not inverse_z0 > 0:
+    if not striker_velocity / peak - 1.0 / struck_impedance > 0:
         raise ValueError(f"striker_velocity: {striker_velocity} m/s is too slow for the peak force {peak} N on "
                          f"impedance {struck_impedance} N s/m (need v_in > peak / Z~)")
-    z0 = 1.0 / inverse_z0
-    return z0 / (1.0 + (struck_impedance + z0) * th / (struck_impedance * time_constant)) ** 2
+    return _reference_impedance(theta, struck_impedance, peak, time_constant, striker_velocity)

@@ -1,5 +1,7 @@
 """Expressions in model files are checked against the units their [parameters] were written with."""
 
+import math
+
 import pytest
 
 from rodimpact.io import ModelError, loads_model
@@ -23,18 +25,20 @@ def model(params, area):
     return loads_model(ROD.format(params=params, area=area))
 
 
-@pytest.mark.parametrize("params, area", [
-    ('A0 = "1260 mm^2"', "A0"),
-    ('A0 = "1260 mm^2"', "A0 * (1 + 0.5 * s / L)"),
-    ('A0 = "1260 mm^2"\nk = "2 1/m"', "A0 * exp(-k * s)"),
-    ('d = "40 mm"', "pi * d**2 / 4"),
-    ('d = "40 mm"', "pi / 4 * (d + 0.01 * s / L)**2"),       # bare numbers may carry any unit
-    ("A0 = 1.26e-3", "A0 * (1 + s)"),                         # a bare parameter: SI, no check possible
-    ('A0 = "1260 mm^2"\nA1 = "800 mm^2"', "A1 if s < L / 2 else A0"),
-    ('r = "20 mm"', "pi * sqrt(r**4)"),
+@pytest.mark.parametrize("params, area, expected", [
+    # expected: the area at s = 0.1 m (L = 0.5 m) worked out by hand in SI units
+    ('A0 = "1260 mm^2"', "A0", 1.26e-3),
+    ('A0 = "1260 mm^2"', "A0 * (1 + 0.5 * s / L)", 1.26e-3 * 1.1),
+    ('A0 = "1260 mm^2"\nk = "2 1/m"', "A0 * exp(-k * s)", 1.26e-3 * math.exp(-0.2)),
+    ('d = "40 mm"', "pi * d**2 / 4", math.pi * 0.04**2 / 4),
+    ('d = "40 mm"', "pi / 4 * (d + 0.01 * s / L)**2", math.pi / 4 * 0.042**2),   # bare numbers may carry any unit
+    ("A0 = 1.26e-3", "A0 * (1 + s)", 1.26e-3 * 1.1),          # a bare parameter: SI, no check possible
+    ('A0 = "1260 mm^2"\nA1 = "800 mm^2"', "A1 if s < L / 2 else A0", 0.8e-3),
+    ('r = "20 mm"', "pi * sqrt(r**4)", math.pi * 0.02**2),
 ])
-def test_dimensionally_sound_areas_are_accepted(params, area):
-    model(params, area)
+def test_dimensionally_sound_areas_are_accepted(params, area, expected):
+    rod = model(params, area).system.rods[0]
+    assert rod.area(0.1) == pytest.approx(expected, rel=1e-12)
 
 
 @pytest.mark.parametrize("params, area, match", [
