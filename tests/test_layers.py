@@ -2,7 +2,8 @@
 so that there is no import circle (results know nothing about files or figures).
 
 Bottom to top: rods, lattice, direct, inverse, design, signals, plotting, io, examples, cli; ``reference`` is
-independent of lattice and direct so that it can check them. The private helper modules at the top of the package
+independent of lattice and direct so that it can check them (inverse uses its closed form of eq. 4.26 as the
+target of Lundberg and Lesser's example: one copy of the formula). The private helper modules at the top of the package
 (``_validate``, ``_permissions``, ...) may be used everywhere and import only each other; the package root is
 imported only for ``__version__``. Checked twice: statically over every import statement
 (also those inside functions, which run only on use), and at run time in a fresh interpreter per layer with every
@@ -22,8 +23,8 @@ BELOW = {
     "rods": set(),
     "lattice": {"rods"},
     "direct": {"rods", "lattice"},
-    "inverse": {"rods", "lattice", "direct"},
-    "design": {"rods", "lattice", "direct", "inverse"},
+    "inverse": {"rods", "lattice", "direct", "reference"},
+    "design": {"rods", "lattice", "direct", "inverse", "reference"},
     "reference": {"rods"},
     "signals": {"rods", "lattice", "direct"},
     "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals"},
