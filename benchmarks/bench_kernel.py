@@ -130,12 +130,15 @@ def _elwaspatid_snapshots(repeat: int):
     give the impedances of the lattice; its own element count per segment (nmin) is set to 50."""
     if importlib.util.find_spec("elwaspatid") is None:
         return None
-    from elwaspatid import WP2, Barhete
+    import elwaspatid
+
+    WP2 = elwaspatid.WP2
+    bar_set = getattr(elwaspatid, "BarSet", None) or getattr(elwaspatid, "Barhete")   # name since 2.0 / before
 
     E, rho = 210e9, 7800.0
     c = np.sqrt(E / rho)
     diameter = [float(np.sqrt(4 * z / (rho * c) / np.pi)) for z in (51.0e3, 28.7e3, 51.0e3)]
-    bars = Barhete([E] * 3, [rho] * 3, [50 * c * DT, 50 * c * DT, 400 * c * DT], diameter, nmin=50)
+    bars = bar_set([E] * 3, [rho] * 3, [50 * c * DT, 50 * c * DT, 400 * c * DT], diameter, nmin=50)
     return _median(lambda: WP2(bars, nstep=600, left="free", right="infinite", Vinit=5.0), repeat)
 
 
