@@ -81,6 +81,10 @@ def _unit(unit: str, sep: str = " ") -> str:
     return f"{sep}{unit}" if unit else ""
 
 
+#: allocations up to this size (bytes) are not checked against the installed memory
+_SMALL_ALLOCATION = 8.0 * 2**20
+
+
 def physical_memory() -> float | None:
     """Installed memory in bytes (psutil on every platform, else POSIX ``sysconf``), or ``None`` where neither
     can read it."""
@@ -99,6 +103,8 @@ def physical_memory() -> float | None:
 def fits_in_memory(name: str, n_bytes: float, what: str, hint: str = "") -> None:
     """Raise ``ValueError`` naming ``name`` if an allocation of ``n_bytes`` for ``what`` cannot fit in this machine's
     memory (so that the user gets a message instead of a MemoryError deep in numpy or the process being killed)."""
+    if n_bytes <= _SMALL_ALLOCATION:       # no need to ask the operating system (it costs ~0.1 ms)
+        return
     total = physical_memory()
     if total is not None and n_bytes > 0.8 * total:
         raise ValueError(f"{name}: {what} would need {n_bytes / 2**30:.3g} GiB, more than this machine's memory "
