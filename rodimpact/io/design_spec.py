@@ -8,7 +8,6 @@ impedance bounds, bore, mass) and the ``[design]`` settings (objective, elements
 
 from __future__ import annotations
 
-import tomllib
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,7 +16,7 @@ from typing import Any, Optional
 
 from ..rods.material import STEEL
 from .dimensions import Parameters
-from .model import _material, _materials, read_text_file
+from .model import _material, _materials, parse_toml, read_text_file
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
     validate_table
@@ -125,10 +124,7 @@ def _pair(st: dict, lo: str, hi: str, prefix: str = "striker") -> Optional[tuple
 
 def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> DesignSpec:
     """Read a design spec from TOML text."""
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{name}: not valid TOML: {exc}") from None
+    raw = parse_toml(text, name)
     base = Path(base_dir)
     d = validate_table(DESIGN_SPEC, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
