@@ -229,14 +229,14 @@ def transform_old(prob, n: int, dt: float) -> np.ndarray:
 def bench_transform(n: int) -> list[str]:
     prob = percussion_drilling_example(n)
     o = prob.options
-    dt = 0.5 / n / ri.STEEL.wave_speed
+    dt = prob.dt
 
     def new():
         return ri.inverse.transform_force(prob.target, prob.struck, o["position"], n=n, dt=dt,
                                           quantity=o["quantity"], far_end=o["far_end"], rule=o["rule"])
 
     small = percussion_drilling_example(50)
-    ri.inverse.transform_force(small.target, small.struck, o["position"], n=50, dt=0.5 / 50 / ri.STEEL.wave_speed,
+    ri.inverse.transform_force(small.target, small.struck, o["position"], n=50, dt=small.dt,
                                quantity=o["quantity"], far_end=o["far_end"], rule=o["rule"])   # warm-up
     t_new, tr = _best(new, 3)
     t_old, x_old = _best(lambda: transform_old(prob, n, dt), 1)

@@ -195,6 +195,9 @@ def locate(system: System, position: float, dt: float) -> Location:
     rod = int(min(np.searchsorted(starts, p, side="right") - 1, len(lengths) - 1))
     lat = build_lattice(system, dt)
     m, x_node = lat.nearest_node(rod, p - starts[rod])
+    # the lattice's node positions carry its discretization error: keep the node inside the rod's geometry (a
+    # probe there is checked against the rod's length and finds the same nearest node)
+    x_node = float(min(max(x_node, 0.0), lengths[rod]))
     node = int(lat.rod_start[rod] + m)
     return Location(p, float(starts[rod] + x_node), rod, x_node, node, node - 1)
 
