@@ -98,8 +98,7 @@ def _case_b(n: int):
 
 def _case_c(n: int):
     prob = percussion_drilling_example(n)
-    dt = 0.5 / n / ri.STEEL.wave_speed
-    return lambda: prob.solve(dt=dt)
+    return lambda: prob.solve(dt=prob.dt)
 
 
 def _reference(n: int, case: str):
