@@ -23,6 +23,8 @@ from .lattice import Lattice
 
 #: Largest relative travel-time or mass error of a rod's lattice accepted by default.
 TOLERANCE = 0.01
+#: problems named in a message (a drill string of many short segments would otherwise give pages)
+_SHOWN = 3
 
 
 def rounding_error(travel_time: float, dt: float) -> float:
@@ -102,7 +104,8 @@ def check(system: System, lattice: Lattice, allow: bool) -> list[str]:
     if not found:
         return []
     good = resolving_time_step(system, lattice.dt)
-    text = f"dt: {'; '.join(found)}. dt = {good:.6g} s represents every rod within {TOLERANCE:.0%}"
+    shown = "; ".join(found[:_SHOWN]) + (f"; and {len(found) - _SHOWN} more" if len(found) > _SHOWN else "")
+    text = f"dt: {shown}. dt = {good:.6g} s represents every rod within {TOLERANCE:.0%}"
     if not allow:
         raise ValueError(text + " (or allow the error: allow_discretization_error=True, in a model file "
                                 "simulation.allow_discretization_error = true)")

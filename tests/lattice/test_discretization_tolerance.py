@@ -133,3 +133,12 @@ def test_synthesis_at_a_coarse_dt_warns_instead_of_failing():
         res = ri.synthesize(lambda t: np.full(np.shape(t), -2e4), struck, 5.0, n=4, dt=dt, far_end="free")
     assert res.n_feasible >= 1 and res.diagnostics["face_response"] == "simulated"
     assert all("allow_discretization_error" not in str(w.message) for w in rec)
+
+
+def test_a_rod_of_many_short_segments_gives_a_short_message():
+    """A rod of 40 segments each shorter than an element: the message names the first three and counts the rest."""
+    rod = ri.Rod([ri.Cylinder(0.005, 0.04 if i % 2 else 0.05) for i in range(40)])
+    dt = 0.01 / C                                      # elements of 10 mm: every 5 mm segment is shorter
+    with pytest.raises(ValueError, match=r"segment 2 .*; and 37 more\. dt = ") as err:
+        ri.simulate([rod], velocities=[1.0], steps=2, dt=dt)
+    assert len(str(err.value)) < 1500
