@@ -38,6 +38,8 @@ PROGRESS_UPDATES = 1e9
 BYTES_PER_ELEMENT = 128.0
 #: Bytes per value of a CSV file ("-1.2345678901234567e-05," is 24 characters).
 CSV_BYTES_PER_VALUE = 24.0
+#: memory matplotlib holds per plotted point of a line (x and y as float64, the path and its transformed copy)
+PLOT_BYTES_PER_POINT = 64.0
 #: Disk space of one PNG plot and of the GIF animation (upper estimates).
 PLOT_BYTES, ANIMATION_BYTES = 4e6, 60e6
 
@@ -158,9 +160,10 @@ def check_output(folder: Path, parts: dict[str, float], memory: dict[str, float]
     _check_memory(memory, {"histories": "keep every n-th step with output.record_every = n, or split the run",
                            "snapshots": "fewer snapshots (output.snapshot_every / snapshot_count)",
                            "lattice": "a larger simulation.dt (fewer elements)",
-                           "writing": "keep every n-th step with output.record_every = n"},
+                           "writing": "keep every n-th step with output.record_every = n",
+                           "plots": "keep every n-th step with output.record_every = n, or fewer plots (output.plots)"},
                   {"histories": "output.record_every", "snapshots": "output.snapshot_count",
-                   "lattice": "simulation.dt", "writing": "output.record_every"})
+                   "lattice": "simulation.dt", "writing": "output.record_every", "plots": "output.plots"})
 
 
 class Progress:

@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Optional, Sequence
 
-from ..direct.guards import check_element_updates, check_output, output_bytes, run_bytes
+from ..direct.guards import PLOT_BYTES_PER_POINT, check_element_updates, check_output, output_bytes, run_bytes
 from .quantities import ModelError
 
 
@@ -34,6 +34,8 @@ def check_run(model: Any, folder: Path, plots: Sequence[str], max_element_update
                                           "--max-element-updates")) from None
     memory = run_bytes(n_el, n_steps, rows, stride, n_snap)
     memory["writing"] = memory["histories"]            # the NetCDF dataset stacks the histories once more
+    # a history plot draws every recorded step of its signals (at most all of them)
+    memory["plots"] = PLOT_BYTES_PER_POINT * rows * -(-n_steps // stride) if set(plots) - {"profile"} else 0.0
     files = output_bytes(n_el, n_steps, rows, rows + 1, stride, n_snap if model.output.fields else 0,
                          model.output.csv, model.output.fields, plots)
     try:

@@ -357,3 +357,15 @@ def test_ctrl_c_during_the_imports_ends_without_a_traceback():
     assert p.returncode == 130, p.stderr
     assert "Traceback" not in p.stderr
     assert p.stderr.strip() == "rodimpact: interrupted while starting; nothing was written"
+
+
+def test_plot_memory_is_counted_before_the_run(monkeypatch, tmp_path):
+    """Plots of every recorded step hold their points in matplotlib (about 64 bytes each): a 5-million-step run
+    whose histories fit but whose plots do not is refused before it starts, naming output.plots."""
+    text = MODEL.replace('steps = 150\n', 'duration = "10 s"\n').replace(DT_LINE, 'dt = "2 us"')
+    model = loads_model(text)
+    monkeypatch.setattr(guards, "free_disk", lambda folder: 1e12)
+    monkeypatch.setattr(guards, "available_memory", lambda: 1.5 * 2**30)
+    preflight.check_run(model, tmp_path / "out", (), max_element_updates=math.inf)       # no plots: it fits
+    with pytest.raises(ModelError, match=r"^output\.plots: the run would need about .* GiB of memory .*plots "):
+        preflight.check_run(model, tmp_path / "out", ("forces",), max_element_updates=math.inf)
