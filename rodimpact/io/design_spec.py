@@ -105,8 +105,14 @@ class DesignSpec:
     def design(self):
         """Run :func:`rodimpact.design` with these settings."""
         from ..design import design
+        from .keypaths import DESIGN_KEYS, translated
 
-        return design(**self.kwargs)
+        try:
+            return design(**self.kwargs)
+        except ModelError:
+            raise
+        except (ValueError, TypeError) as exc:     # errors name the spec's keys, not design()'s arguments
+            raise translated(exc, DESIGN_KEYS) from None
 
 
 def load_spec(path: str | Path) -> DesignSpec:
@@ -118,7 +124,8 @@ def load_spec(path: str | Path) -> DesignSpec:
 def _pair(st: dict, lo: str, hi: str, prefix: str = "striker") -> Optional[tuple[float, float]]:
     a, b = st[lo], st[hi]
     if (a is None) != (b is None):
-        raise ModelError(f"{prefix}.{lo}, {prefix}.{hi}: give both or neither")
+        missing = lo if a is None else hi
+        raise ModelError(f"{prefix}.{missing}: missing; give {prefix}.{lo} and {prefix}.{hi} together, or neither")
     return None if a is None else (a, b)
 
 

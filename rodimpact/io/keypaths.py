@@ -53,3 +53,16 @@ def translate(message: str, keys: dict[str, Rule]) -> str:
 def translated(exc: BaseException, keys: dict[str, Rule]) -> ModelError:
     """A :class:`ModelError` with the message of ``exc`` translated by :func:`translate`."""
     return ModelError(translate(str(exc), keys))
+
+
+#: API argument of :func:`rodimpact.design` -> key path in a design spec (the struck-system keys as in
+#: :data:`SPEC_KEYS`).
+DESIGN_KEYS: dict[str, Rule] = {
+    **{k: v for k, v in SPEC_KEYS.items() if k not in ("dt", "n", "backend")},
+    "dt": "design.dt", "n": "design.elements", "backend": "design.backend", "objective": "design.objective",
+    "max_steps": "design.max_steps", "smoothness": "design.smoothness", "duration": "design.duration",
+    "steps": "design.duration", "starts": "design.starts", "max_iterations": "design.max_iterations",
+    "diameter_bounds": "striker.diameter_min", "impedance_bounds": "striker.impedance_min",
+    "velocity_bounds": "striker.velocity_min", "mass": "striker.mass", "bore": "striker.bore",
+    "impedance": "striker.impedance_min",
+}
