@@ -1,6 +1,6 @@
 """Plots of design results (matplotlib only): target vs achieved force, the impedance profile, convergence, and
 the incident wave of a drilling piston beside the reflection-free exponential wave. Every function takes a
-:class:`~rodimpact.DesignResult` and an optional Axes and returns ``(fig, ax)``."""
+:class:`~rodimpact.DesignResult` and an optional Axes and returns the Axes (the rule of :mod:`rodimpact.plotting`)."""
 
 from __future__ import annotations
 
@@ -22,45 +22,45 @@ def plot_design_force(result: Any, ax: Optional[Any] = None):
     """Achieved force (per step) and the target (window values) against time, ms; for efficiency designs the
     incident wave at the bit."""
     _check(result)
-    fig, ax = new_axes(ax)
+    _, ax = new_axes(ax)
     t = result.time * 1e3
     what = "contact force" if result.location is None else f"{result.quantity} at {result.location.used:.4g} m"
     ax.step(t, result.achieved / 1e3, where="post", label=f"achieved ({what})")
     if result.target.size:
         k = result.compared
         ax.plot(t[k], result.target / 1e3, "k.", ms=3, label=f"target (misfit {result.misfit:.3g})")
-    ax.set_xlabel("time / ms")
-    ax.set_ylabel("force / kN")
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("force [kN]")
     ax.legend(loc="best")
-    return fig, ax
+    return ax
 
 
 def plot_design_profile(result: Any, ax: Optional[Any] = None, log: Optional[bool] = None):
     """Impedance Z_q against the distance from the impact face (m, for the design's material), with the bounds."""
     _check(result)
-    fig, ax = new_axes(ax)
+    _, ax = new_axes(ax)
     edges = result.material.wave_speed * result.dt * np.arange(result.n_elements + 1)
-    ax.stairs(result.impedance, edges, baseline=None, label="designed $Z_q$")
+    ax.stairs(result.impedance / 1e3, edges, baseline=None, label="designed $Z_q$")
     bounds = result.diagnostics.get("bounds")
     if bounds is not None:
-        ax.stairs(bounds[0], edges, baseline=None, ls=":", color="0.5", label="bounds")
-        ax.stairs(bounds[1], edges, baseline=None, ls=":", color="0.5")
+        ax.stairs(bounds[0] / 1e3, edges, baseline=None, ls=":", color="0.5", label="bounds")
+        ax.stairs(bounds[1] / 1e3, edges, baseline=None, ls=":", color="0.5")
     free = result.diagnostics.get("free_profile")
     if free is not None:
-        ax.stairs(free["impedance"], edges, baseline=None, ls="--", label="free profile")
+        ax.stairs(free["impedance"] / 1e3, edges, baseline=None, ls="--", label="free profile")
     z = result.impedance if bounds is None else np.concatenate([result.impedance, bounds[0], bounds[1]])
     if log if log is not None else z.max() / z.min() > 100:
         ax.set_yscale("log")
-    ax.set_xlabel("distance from impact face s / m")
-    ax.set_ylabel("impedance Z / (N s/m)")
+    ax.set_xlabel("distance from impact face s [m]")
+    ax.set_ylabel("impedance Z [kN s/m]")
     ax.legend(loc="best")
-    return fig, ax
+    return ax
 
 
 def plot_convergence(result: Any, ax: Optional[Any] = None):
     """Objective (squared misfit, or -efficiency) after every L-BFGS-B iteration, one line per start/stage."""
     _check(result)
-    fig, ax = new_axes(ax)
+    _, ax = new_axes(ax)
     for i, h in enumerate(result.convergence):
         if h:
             y = np.asarray(h)
@@ -69,12 +69,12 @@ def plot_convergence(result: Any, ax: Optional[Any] = None):
             else:
                 ax.plot(np.arange(1, y.size + 1), -y, label=f"run {i + 1}")
     ax.set_xlabel("iteration")
-    ax.set_ylabel("misfit" if result.objective == "match" else "efficiency")
+    ax.set_ylabel("misfit [-]" if result.objective == "match" else "efficiency [-]")
     if any(result.convergence):
         ax.legend(loc="best")
     else:
         ax.text(0.5, 0.5, "no iterations (exact striker)", transform=ax.transAxes, ha="center")
-    return fig, ax
+    return ax
 
 
 def plot_incident_wave(result: Any, loading_stiffness: float, rod_impedance: float, ax: Optional[Any] = None):
@@ -85,7 +85,7 @@ def plot_incident_wave(result: Any, loading_stiffness: float, rod_impedance: flo
     _check(result)
     if result.location is None or result.quantity != "incident":
         raise ValueError("result: needs a design whose run records the incident wave (objective='efficiency')")
-    fig, ax = new_axes(ax)
+    _, ax = new_axes(ax)
     d = result.location.node
     end = min(2 * result.n_elements, result.time.size - d)      # the striker's pulse: 2 n steps
     y = result.achieved[d:d + end]
@@ -93,7 +93,7 @@ def plot_incident_wave(result: Any, loading_stiffness: float, rod_impedance: flo
     ax.step(t * 1e3, y / 1e3, where="post", label="incident wave of the design")
     ax.plot(t * 1e3, y[0] * np.exp(loading_stiffness * t / rod_impedance) / 1e3, "--",
             label=r"$f_0\,e^{k t / Z}$ (no reflection)")
-    ax.set_xlabel("time from arrival at the bit / ms")
-    ax.set_ylabel("force / kN")
+    ax.set_xlabel("time from arrival at the bit [ms]")
+    ax.set_ylabel("force [kN]")
     ax.legend(loc="best")
-    return fig, ax
+    return ax

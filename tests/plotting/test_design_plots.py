@@ -16,14 +16,14 @@ def match():
 
 
 def test_force_profile_convergence(match):
-    fig, ax = plot_design_force(match)
+    ax = plot_design_force(match)
     lines = ax.get_lines()
     assert np.allclose(lines[-1].get_ydata(), match.target / 1e3)        # the target markers, kN
     _, ax2 = new_axes(None)
-    f2, a2 = plot_design_profile(match, ax=ax2)
+    a2 = plot_design_profile(match, ax=ax2)
     assert a2 is ax2
-    fig3, ax3 = plot_convergence(match)
-    assert ax3.get_ylabel() == "misfit"
+    ax3 = plot_convergence(match)
+    assert ax3.get_ylabel() == "misfit [-]"
 
 
 def test_incident_wave_needs_an_efficiency_design(match):
@@ -41,7 +41,7 @@ def test_incident_wave_beside_the_exponential():
     k = 60e3 / (2 * 3 * 2e-6)
     d = ri.design(None, objective="efficiency", struck=rod, far_end=ri.BitRockEnd(k), striker_velocity=10.0, n=3,
                   dt=2e-6, impedance_bounds=(2e4, 2e5), max_iterations=1, starts=1)
-    fig, ax = plot_incident_wave(d, k, 60e3)
+    ax = plot_incident_wave(d, k, 60e3)
     step, expo = ax.get_lines()[:2]
     t = expo.get_xdata() / 1e3
     assert t.size == 6                                                   # the pulse: 2 n steps
