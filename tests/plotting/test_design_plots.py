@@ -1,4 +1,4 @@
-"""Design plots: return (fig, ax), draw on a given Axes, refuse other objects, show what they promise."""
+"""Design plots: return the Axes, draw on a given Axes, refuse other objects, show what they promise."""
 
 import numpy as np
 import pytest
