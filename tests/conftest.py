@@ -15,10 +15,16 @@ Hypothesis profiles (choose with the environment variable ``HYPOTHESIS_PROFILE``
 import os
 
 import matplotlib
-from hypothesis import settings
+from hypothesis import HealthCheck, settings
 
 matplotlib.use("Agg")
-settings.register_profile("ci", max_examples=25, deadline=None, derandomize=True, print_blob=True)
-settings.register_profile("explore", max_examples=1000, deadline=None, print_blob=True)
-settings.register_profile("dev", max_examples=25, deadline=None)
+# Hypothesis loads its own "ci" profile (derandomised, no database) when the environment variable CI is set;
+# ours are based on hypothesis's "default" profile so that they mean the same thing on CI and off it.
+_BASE = settings.get_profile("default")
+settings.register_profile(
+    "ci", _BASE, max_examples=25, deadline=None, derandomize=True, database=None, print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile("explore", _BASE, max_examples=1000, deadline=None, print_blob=True)
+settings.register_profile("dev", _BASE, max_examples=25, deadline=None)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE") or "ci")
