@@ -188,15 +188,25 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
                 ph_start[d, r], ph_stop[d, r], ph_peak[d, r])
 
 
-def _run(n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-         junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
-    """All designs (rows of ``Zs``); the outputs are written into the arrays of ``out`` in place."""
+def _run_parallel(n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+                  junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+    """All designs (rows of ``Zs``) on the numba threads; the outputs are written into the arrays of ``out``."""
     for d in prange(Zs.shape[0]):
         _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
                 junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
 
 
+def _run_serial(n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+                junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+    """All designs one after another in the calling thread. A function of its own, not ``_run_parallel``
+    compiled without ``parallel``: numba's on-disk cache is keyed by the Python function, so two dispatchers of
+    one function would load each other's machine code (the serial one then ran on all threads)."""
+    for d in range(Zs.shape[0]):
+        _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
+                junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
+
+
 #: designs on all numba threads (``numba.set_num_threads``)
-run_batch_parallel = njit(parallel=True, **_OPTS)(_run)
+run_batch_parallel = njit(parallel=True, **_OPTS)(_run_parallel)
 #: designs one after another in the calling thread (tasks of an executor; releases the GIL)
-run_batch_serial = njit(**_OPTS)(_run)
+run_batch_serial = njit(**_OPTS)(_run_serial)

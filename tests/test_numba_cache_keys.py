@@ -1,0 +1,52 @@
+"""numba's on-disk cache (``cache=True``) is keyed by the Python function (its module, qualified name and source
+line), not by the compile options: two dispatchers made from one function load each other's machine code. That
+once made ``simulate_batch(threads=1)`` run on every thread (the serial dispatcher loaded the parallel build) and,
+with the other compile order, ``threads=2`` run serially. Every cached dispatcher must wrap a function of its own.
+"""
+
+import importlib
+import pkgutil
+import time
+
+import numpy as np
+from numba.core.registry import CPUDispatcher
+
+import rodimpact
+
+
+def cached_dispatchers() -> list[tuple[str, CPUDispatcher]]:
+    """(module.attribute, dispatcher) for every module-level numba dispatcher of the package that caches."""
+    found = []
+    for info in pkgutil.walk_packages(rodimpact.__path__, "rodimpact."):
+        if info.name.endswith("__main__"):
+            continue
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if isinstance(obj, CPUDispatcher) and obj.py_func.__module__ == info.name and obj._cache is not None \
+                    and type(obj._cache).__name__ != "NullCache":
+                found.append((f"{info.name}.{name}", obj))
+    return found
+
+
+def test_every_cached_dispatcher_wraps_a_function_of_its_own():
+    found = cached_dispatchers()
+    assert len(found) > 20  # the walk sees the kernels
+    owners: dict[int, str] = {}
+    for where, dispatcher in found:
+        other = owners.setdefault(id(dispatcher.py_func), where)
+        assert other == where, f"{where} and {other} compile the same Python function with numba's cache on"
+
+
+def test_the_serial_batch_kernel_runs_in_the_calling_thread_only():
+    """threads=1: the process's CPU time is about its wall time (on two threads it would be about twice)."""
+    bar = rodimpact.Rod.from_impedance(np.full(400, 4e4), 1e-6)
+    system = rodimpact.System([rodimpact.Rod.from_impedance(np.full(100, 4e4), 1e-6), bar], [0.0, 0.0],
+                              right="nonreflecting")
+    zs = np.full((3000, 100), 4e4) * np.linspace(0.8, 1.2, 100)
+    vel = np.full(3000, 5.0)
+    rodimpact.simulate_batch(system, zs[:2], vel[:2], dt=1e-6, steps=600, threads=2)  # compile both kernels
+    rodimpact.simulate_batch(system, zs[:2], vel[:2], dt=1e-6, steps=600, threads=1)
+    cpu, wall = time.process_time(), time.perf_counter()
+    rodimpact.simulate_batch(system, zs, vel, dt=1e-6, steps=600, threads=1, contact_force=False)
+    cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
+    assert cpu < 1.3 * wall + 0.05, f"CPU time {cpu:.3f} s in {wall:.3f} s of wall time with threads=1"
