@@ -30,6 +30,7 @@ from .constraints import Constraints, build_constraints, velocity_start
 from .objectives import EfficiencyObjective, MatchObjective
 from .optimize import Evaluator, Levels, Run, best_of, minimise
 from .result import DesignResult
+from .screening import candidate_pool, screen as screen_pool
 from .stepped import stepped_design
 
 OBJECTIVES = ("match", "efficiency")
@@ -94,7 +95,10 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         through the struck system).
     starts, max_iterations, tolerance:
         Number of starting profiles (each screened for max(10, max_iterations / 10) iterations, the best one
-        continued), L-BFGS-B iterations per stage, and its relative ``ftol``.
+        continued), L-BFGS-B iterations per stage, and its relative ``ftol``. Where the objective is observed
+        at the impact face or is the efficiency, the starts are the best of a pool of
+        :data:`~rodimpact.design.screening.POOL_SIZE` candidates simulated together by
+        :func:`rodimpact.simulate_batch` (:mod:`rodimpact.design.screening`); otherwise the named starts.
     warm_start:
         Try the exact recursive method first (match only).
     backend:
@@ -210,7 +214,16 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         initial_profiles += [("uniform", zu), ("rising taper", np.linspace(0.5, 2.0, n) * face_z),
                              ("falling taper", np.linspace(2.0, 0.5, n) * face_z)]
     free = Levels.free(cons)
-    profiles = _distinct([(name, cons.project(z0)) for name, z0 in initial_profiles])[:starts]
+    named = _distinct([(name, cons.project(z0)) for name, z0 in initial_profiles])
+    if objective == "efficiency" or location is None:     # observed by simulate_batch: screen a pool first
+        ranked = screen_pool(system, dt, run_steps, obj, candidate_pool(named, cons), v0, float(smoothness), z_ref)
+        # the recursive method's striker (or prefix) stays first: it is the theory's guess, often in the basin
+        # of the best optimum even when its value is not the lowest; the best screened candidates follow
+        warm = [(name, z) for name, z in named if name.startswith("recursive")]
+        profiles = _distinct(warm + list(zip(ranked.names, ranked.impedance)))[:starts]
+        diag["screened"] = {"candidates": len(ranked.names), "best_values": ranked.values[:starts].tolist()}
+    else:
+        profiles = named[:starts]
     diag["starts"] = [name for name, _ in profiles]
     # screen every start briefly, then continue the best one (the tail of the convergence is slow and alike)
     screen = max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) if len(profiles) > 1 else max_iterations
