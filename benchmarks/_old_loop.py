@@ -180,7 +180,7 @@ def old_simulate(system, steps: int, dt: float, probes=(), snapshot_every=None, 
     events = sorted(set(energy_steps) | set(snap_steps) | set(range(0, n_steps, _MAX_CHUNK)))
     e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
     snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
-    static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key != "step_inputs"}
+    static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key not in ("step_inputs", "sp_loaded")}
     k = 0
     for target in events:
         if target > k:

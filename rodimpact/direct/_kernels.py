@@ -411,8 +411,11 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
     caller enlarges it and calls again from there). The i-th step reads and writes column ``i`` of the per-step
     inputs (``end_value``, ``sp_force``) and outputs (``outputs``, the probe histories of ``probes``).
 
-    ``state = (N, v, f, g)``, ``lattice = (Z, R, touch, rod_start)``; ``record = (stride, kept, events,
-    samples)`` as built by :class:`rodimpact.direct.recording.Recorder`.
+    ``state = (N, v, f, g)``, ``lattice = (Z, R, touch, rod_start, quiet)``; ``record = (stride, kept, events,
+    samples)`` as built by :class:`rodimpact.direct.recording.Recorder`. ``quiet``: the elements from ``quiet``
+    on are at rest at step 0 and nothing but a wave from the left can move them
+    (:func:`rodimpact.direct.simulate.quiet_front`); a wave moves one element per step, so step k updates only
+    the nodes left of element ``quiet + k + 1``: the others would give exactly +0 again.
 
     The same lattice as :func:`run_numpy`, written in travelling-wave variables: element j carries a
     right-going force wave f_j and a left-going g_j, N = f + g, v = (g - f) / Z (thesis Sec. 2.3.2). At a
@@ -424,7 +427,7 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
     calls; (N, v) are brought up to date at the sample steps and at the end of the call.
     """
     N, v, f, g = state
-    Z, R, touch, rod_start = lattice
+    Z, R, touch, rod_start, quiet = lattice
     sp_elem = specials[0]
     sp_F, sp_V = specials[3], specials[4]
     u_end = junctions[4]
@@ -453,9 +456,12 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
             c += 1
             next_kept += stride
         ptr = 0
+        lim = quiet + k + 1         # elements >= lim are still exactly at rest after this step
         for r in range(n_rods):
             s = rod_start[r]
             e = rod_start[r + 1]
+            if s >= lim:
+                break
             f_first = rod_NL[r] - g[s]
             g_last = rod_NR[r] - f[e - 1]
             fa = f[s]
@@ -464,6 +470,9 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
                 stop = e - 1
                 if ptr < n_sp and sp_elem[ptr] < e - 1:
                     stop = sp_elem[ptr]
+                if stop > lim:
+                    _interior(f, g, R, j, lim, fa)
+                    break
                 fa = _interior(f, g, R, j, stop, fa)
                 if stop < e - 1:
                     gb = g[stop + 1]
@@ -499,7 +508,7 @@ def run_numpy(first, n_steps, state, lattice, dt, ends, junctions, specials, pro
     own variables (N, v); the wave variables, ``R`` and ``touch`` of the compiled path are not used. Energy and
     snapshots are numpy reductions; contact events and the stride share the compiled path's scalar code."""
     N, v = state[0], state[1]
-    Z, rod_start = lattice[0], lattice[3]
+    Z, rod_start = lattice[0], lattice[3]          # all nodes are updated every step: quiet (lattice[4]) unused
     sp_elem, sp_F, sp_V = specials[0], specials[3], specials[4]
     u_end = junctions[4]
     stride, kept, events, samples = record

@@ -32,8 +32,8 @@ from . import _batch_kernels as BK
 from . import _kernels as K
 from .result import JunctionEvents
 from .recording import step_stride
-from .simulate import (_initial_state, _kernel_arrays, _step_count,
-                       _wave_arrays)
+from .simulate import (_initial_state, _kernel_arrays, _step_count, _wave_arrays, passive_right,
+                       quiet_front)
 
 #: contact phases per junction and design kept by default (all are counted)
 MAX_PHASES = 16
@@ -355,18 +355,13 @@ def _threads(threads: Optional[int]) -> int:
 
 def _quiet_from(n_s: int, N: np.ndarray, v: np.ndarray, arrays: dict, end_value: np.ndarray,
                 sp_force: np.ndarray) -> int:
-    """First element of the struck part that starts at rest and stays so until the wave from the impact
-    arrives: behind the last element with an initial force or velocity and the last node with a prescribed
-    load; none (the element count) if the right end can move the rods by itself."""
-    code, par = int(arrays["end_code"][1]), arrays["end_par"][1]
-    passive = (code in (K.FIXED, K.SPRING, K.BITROCK) or (code == K.NONREFLECTING and par[1] == 0.0)
-               or (code in (K.FREE, K.FORCE, K.VELOCITY) and not end_value[1].any()))
-    if not passive:
-        return int(N.size)
-    moving = np.flatnonzero((N[n_s:] != 0.0) | (v[n_s:] != 0.0))
-    quiet = n_s + (int(moving[-1]) + 1 if moving.size else 0)
+    """:func:`~rodimpact.direct.simulate.quiet_front` of the struck part (from element ``n_s``) with the whole
+    run's end values and loads known: a right end with prescribed values that are all zero is passive too,
+    and only loads that act at some step count."""
+    passive = passive_right(arrays) or (int(arrays["end_code"][1]) in (K.FORCE, K.VELOCITY)
+                                        and not end_value[1].any())
     forced = arrays["sp_elem"][sp_force.any(axis=1)] if sp_force.size else arrays["sp_elem"][:0]
-    return max(quiet, int(forced.max()) + 2 if forced.size else 0)
+    return quiet_front(N, v, n_s, passive, forced)
 
 
 def _plan(system: System, zs: np.ndarray, vel: np.ndarray, tail: np.ndarray, dt: float, n_steps: int, stride: int,

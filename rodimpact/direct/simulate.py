@@ -139,7 +139,8 @@ def _advance(run: Callable, n_steps: int, capacity: int, lat: Lattice, arrays: d
     N, v = state["N"], state["v"]
     reflection, touch = _wave_arrays(lat, arrays)
     wave_state = (N, v, *K.waves(N, v, z))
-    lattice = (z, reflection, touch, arrays["rod_start"])
+    quiet = quiet_front(N, v, 0, passive_right(arrays), arrays["sp_elem"][arrays["sp_loaded"]])
+    lattice = (z, reflection, touch, arrays["rod_start"], quiet)
     junctions = tuple(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end"))
     n_sp = arrays["sp_elem"].size
     scratch = (np.zeros(n_sp), np.zeros(n_sp))      # resolved force and velocity of each special node
@@ -160,6 +161,26 @@ def _advance(run: Callable, n_steps: int, capacity: int, lat: Lattice, arrays: d
             bar.update(done)
     if bar is not None:
         bar.close()
+
+
+def quiet_front(N: np.ndarray, v: np.ndarray, first: int, right_passive: bool, forced: np.ndarray) -> int:
+    """First element (>= ``first``) from which the lattice starts at rest and stays so until a wave from the
+    left arrives: behind the last element with an initial force or velocity and behind the last node with a
+    prescribed nodal force (``forced``: the elements left of those nodes); the element count (nothing is at
+    rest) if the right end is not ``right_passive`` (it could move the rods by itself). Friction nodes do not
+    count: at rest they stay at rest."""
+    if not right_passive:
+        return int(N.size)
+    moving = np.flatnonzero((N[first:] != 0.0) | (v[first:] != 0.0))
+    quiet = first + (int(moving[-1]) + 1 if moving.size else 0)
+    return max(quiet, int(forced.max()) + 2 if forced.size else 0)
+
+
+def passive_right(arrays: dict) -> bool:
+    """The right end cannot start a wave by itself: fixed, free, a spring or bit-rock law, or a non-reflecting
+    end whose continuation is at rest (prescribed forces and velocities may act at any step)."""
+    code, par = int(arrays["end_code"][1]), arrays["end_par"][1]
+    return code in (K.FREE, K.FIXED, K.SPRING, K.BITROCK) or (code == K.NONREFLECTING and par[1] == 0.0)
 
 
 def _recording(record: Optional[Recording], **keywords: Any) -> Recording:
@@ -369,6 +390,7 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
         junction_code=junction_code, junction_state=np.zeros(n_j, dtype=np.int64), gap=gap,
         gap_tol=1e-9 * np.minimum(lat.element_length[lat.rod_start[1:-1] - 1], lat.element_length[lat.rod_start[1:-1]]),
         u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap,
+        sp_loaded=np.array([a in node_loads for a in sp_elem], dtype=bool),
         pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),
         pr_sp=np.array(pr_sp, dtype=np.int64), pr_disp=np.zeros(n_p), acc=np.zeros(8),
         # per-step histories: shapes only (rows); the steps are written through _History's buffers
