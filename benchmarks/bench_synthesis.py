@@ -8,9 +8,10 @@ B. A stepped struck bar of 400 elements (impedance rising by half after 200 elem
    whose face response comes from the lattice equations of the direct solver (band sweep of 2n steps,
    inverse/_rectangular.py), same target.
 C. The percussion-drilling example (force prescribed at the bit-rock interface): the rectangular and the face
-   response through the drill string (4 n elements) by band-limited sweeps of the lattice (about
-   11 n^2 + n^2 node updates), the triangular Toeplitz solve, then the peeling; n = 30,000 (~1e10 node
-   updates) is not run.
+   response through the drill string by band-limited sweeps of the lattice in the frame of the travelling
+   waves (only reflecting nodes cost anything: the section joints and the steps of the bit's taper), the
+   triangular Toeplitz solve, then the peeling; n = 30,000 is not run (the verification would need a direct
+   run of ~1e10 node updates).
 
 Baseline: the thesis's recursion with a full re-simulation per element
 (:func:`rodimpact.inverse.synthesize_by_resimulation`, same compiled direct solver), run for small n only;
@@ -242,7 +243,7 @@ def bench_transform(n: int) -> list[str]:
     diff = float(np.max(np.abs(tr.impact_force - x_old)) / np.max(np.abs(x_old)))
     print(f"transform_force drill string n={n}: new {t_new:.3g} s, old {t_old:.3g} s, max rel diff {diff:.1e}")
     return ["### `transform_force`, percussion-drilling string (bit-rock spring, incident wave at the rock)", "",
-            "| n | struck elements | former (direct solver) / s | now (band sweep) / s | speed-up | "
+            "| n | struck elements | former (direct solver) / s | now (band sweep, wave frame) / s | speed-up | "
             "max abs(dX)/max abs(X) |", "|---:|---:|---:|---:|---:|---:|",
             f"| {n:,} | {tr.location.node:,} | {t_old:.3g} | {t_new:.3g} | {t_old / t_new:.3g} | {diff:.1e} |"]
 
@@ -283,8 +284,8 @@ def main_base() -> None:
              "face response). Case B: same target on a stepped 400-element bar (impedance x1.5 after 200 elements, "
              "non-reflecting end; face response from the lattice, band sweep of 2n steps). Case C: percussion "
              "drilling, force prescribed at the bit-rock interface (rectangular and face response by band "
-             "sweeps through a drill string of 4 n elements, O(n^2) node updates; Toeplitz solve, "
-             "peeling; n = 30,000 not run: ~1e10 node updates). "
+             "sweeps in the frame of the travelling waves, where only the reflecting nodes of the drill string "
+             "cost anything; Toeplitz solve, peeling; n = 30,000 not run). "
              "`verify` = max relative deviation of the direct solver with the synthesized striker from the "
              "target (n <= 3,000).",
              "",
