@@ -17,7 +17,8 @@ from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEn
 from .rods.loads import Bearings, NodalForce
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
-from .direct.result import EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory, SimulationResult
+from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
+                            SimulationResult)
 from .direct.recording import Recording
 from .direct.simulate import simulate
 from .direct.sweep import sweep
@@ -51,7 +52,7 @@ __all__ = [
     "Lattice", "build_lattice",
     "simulate", "Recording", "sweep", "simulate_batch", "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
     "FieldSnapshots", "EnergyHistory",
-    "JunctionEvents",
+    "JunctionEvents", "BitRockOutcome",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",

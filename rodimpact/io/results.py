@@ -432,7 +432,10 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
     Per junction (taken at every step, whatever the recording stride): the peak compressive contact force and its
     time, the first contact phase (start, duration), every separation and re-contact time, the total time in
     contact (phases that carry no force beyond rounding are not counted, see :func:`contact_phases`). Per probe:
-    the extreme forces among the recorded samples. Per rod: initial and final energy and
+    the requested position (``position_m``, from the rod's left end), the lattice node actually read
+    (``node_position_m`` in the same coordinate, ``node_index`` into the ``node`` dimension of ``result.nc``) and
+    the extreme forces among the recorded samples. ``lattice_report``: how each rod was represented on the lattice
+    (:meth:`~rodimpact.Lattice.report`, also ``result.diagnostics["lattice_report"]``). Per rod: initial and final energy and
     rigid-body (centre-of-mass) velocity -- the rebound velocity once the rods have separated. Energy transfer:
     the fraction of rod 0's initial energy it gave away. Energy balance error: max |E - E0 - W| / max E.
     ``bit_rock`` (one entry per outer end with a bit-rock interaction, else empty): the energy into the rock, the
@@ -486,10 +489,14 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
     probes = []
     for name, p in result.probes.items():
         kmin, kmax = int(np.argmin(p.force)), int(np.argmax(p.force))
+        local, _ = result.lattice.nearest_node(p.probe.rod, p.probe.position)     # the node the run read
         probes.append({"name": name, "rod": p.probe.rod, "position_m": p.probe.position,
+                       "node_position_m": p.node_position,
+                       "node_index": result.lattice.node_index(p.probe.rod, local),
                        "min_force_N": float(p.force[kmin]), "time_of_min_s": float(t[kmin]),
                        "max_force_N": float(p.force[kmax]), "time_of_max_s": float(t[kmax])})
     out["probes"] = probes
+    out["lattice_report"] = result.lattice.report()
     d = result.diagnostics
     out["wall_time_s"] = float(d["wall_time_s"]) if "wall_time_s" in d else None
     out["warnings"] = list(d.get("warnings", []))
@@ -545,7 +552,10 @@ def format_summary(summary: dict[str, Any], title: str = "") -> str:
         lines.append("work done on the rods    " + ", ".join(f"{k} {x:.4g} J" for k, x in w.items() if x != 0.0)
                      + " (negative: energy leaves the rods)")
     for p in summary["probes"]:
-        lines.append(f"probe {p['name']}: force {p['min_force_N'] / 1e3:.4g} .. {p['max_force_N'] / 1e3:.4g} kN")
+        node = p["node_position_m"]
+        moved = (f" (read at the node {node * 1e3:.4g} mm from the rod's left end; requested {p['position_m'] * 1e3:.4g} "
+                 f"mm)" if abs(node - p["position_m"]) > 1e-9 * max(abs(p["position_m"]), 1e-3) else "")
+        lines.append(f"probe {p['name']}: force {p['min_force_N'] / 1e3:.4g} .. {p['max_force_N'] / 1e3:.4g} kN{moved}")
     lines.append(f"energy balance error    {summary['energy_balance_error']:.2e}")
     for w in summary["warnings"]:
         lines.append(f"warning: {w}")
