@@ -16,10 +16,11 @@ Variables: ``junction_force``, ``junction_contact`` (junction, time); ``end_forc
 lattice (``impedance``, ``element_length``, ``rod_start``, ``rod_*``), the final state and the field snapshots
 (``force_field``, ``velocity_field`` (element, snapshot_time), ``displacement_field`` (node, snapshot_time)); the
 contact events; with a bit-rock end, its outcome (``bit_rock_*`` along ``bit_rock``, whose coordinate names the
-end: :class:`~rodimpact.direct.result.BitRockOutcome`; absent in files written before it). Every variable has a ``units`` attribute. Written so that every NetCDF flavour can hold it:
-integers as int32/int8, no variables along empty dimensions (a single rod has no junction), the diagnostics as a
-JSON attribute. The column names of :meth:`SimulationResult.to_dataframe` are these variables per coordinate
-(``contact_force``, ``<probe>_force``, ``left_end_force``, ...).
+end: :class:`~rodimpact.direct.result.BitRockOutcome`; absent in files written before it). Every variable has a
+``units`` attribute. Written so that every NetCDF flavour can hold it: integers as int32/int8, no variables
+along empty dimensions (a single rod has no junction), the diagnostics as a JSON attribute. The column names of
+:meth:`SimulationResult.to_dataframe` are these variables per coordinate (``contact_force``, ``<probe>_force``,
+``left_end_force``, ...).
 """
 
 from __future__ import annotations

@@ -435,9 +435,9 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
     the requested position (``position_m``, from the rod's left end), the lattice node actually read
     (``node_position_m`` in the same coordinate, ``node_index`` into the ``node`` dimension of ``result.nc``) and
     the extreme forces among the recorded samples. ``lattice_report``: how each rod was represented on the lattice
-    (:meth:`~rodimpact.Lattice.report`, also ``result.diagnostics["lattice_report"]``). Per rod: initial and final energy and
-    rigid-body (centre-of-mass) velocity -- the rebound velocity once the rods have separated. Energy transfer:
-    the fraction of rod 0's initial energy it gave away. Energy balance error: max |E - E0 - W| / max E.
+    (:meth:`~rodimpact.Lattice.report`, also ``result.diagnostics["lattice_report"]``). Per rod: initial and final
+    energy and rigid-body (centre-of-mass) velocity -- the rebound velocity once the rods have separated. Energy
+    transfer: the fraction of rod 0's initial energy it gave away. Energy balance error: max |E - E0 - W| / max E.
     ``bit_rock`` (one entry per outer end with a bit-rock interaction, else empty): the energy into the rock, the
     drilling efficiency (that energy / the striker's initial energy), the penetration per blow (permanent),
     the largest and the final penetration, and whether the bit still presses on the rock at the end
@@ -526,7 +526,7 @@ def format_summary(summary: dict[str, Any], title: str = "") -> str:
                          + " ms")
         lines.append("  re-contact at         " + (", ".join(f"{x * 1e3:.4g}" for x in j["recontact_times_s"])
                                                    + " ms" if j["recontact_times_s"] else "none"))
-    for b in summary.get("bit_rock", []):
+    for b in summary["bit_rock"]:
         lines.append(f"rock at the {b['end']} end (bit-rock):")
         eff = b["efficiency"]
         lines.append(f"  energy into the rock  {b['energy_into_rock_J']:.4g} J"
@@ -552,9 +552,9 @@ def format_summary(summary: dict[str, Any], title: str = "") -> str:
         lines.append("work done on the rods    " + ", ".join(f"{k} {x:.4g} J" for k, x in w.items() if x != 0.0)
                      + " (negative: energy leaves the rods)")
     for p in summary["probes"]:
-        node = p["node_position_m"]
-        moved = (f" (read at the node {node * 1e3:.4g} mm from the rod's left end; requested {p['position_m'] * 1e3:.4g} "
-                 f"mm)" if abs(node - p["position_m"]) > 1e-9 * max(abs(p["position_m"]), 1e-3) else "")
+        node, asked = p["node_position_m"], p["position_m"]
+        moved = (f" (read at the node {node * 1e3:.4g} mm from the rod's left end; requested {asked * 1e3:.4g} mm)"
+                 if abs(node - asked) > 1e-9 * max(abs(asked), 1e-3) else "")
         lines.append(f"probe {p['name']}: force {p['min_force_N'] / 1e3:.4g} .. {p['max_force_N'] / 1e3:.4g} kN{moved}")
     lines.append(f"energy balance error    {summary['energy_balance_error']:.2e}")
     for w in summary["warnings"]:
