@@ -9,7 +9,7 @@ __version__ = "0.1.0"
 
 from .rods.material import ALUMINIUM_7075, MATERIALS, STEEL, TITANIUM_TI6AL4V, Material
 from .rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, ExponentialHorn, LinearAreaTaper,
-                            QuadraticHorn, Segment, TabulatedProfile, Tube)
+                            QuadraticHorn, Segment, TabulatedProfile, Tube, stepped_profile)
 from .rods.rod import Rod
 from .rods.history import History
 from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd, Junction,
@@ -17,7 +17,8 @@ from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEn
 from .rods.loads import Bearings, NodalForce
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
-from .direct.result import EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory, SimulationResult
+from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
+                            SimulationResult)
 from .direct.recording import Recording
 from .direct.simulate import simulate
 from .direct.sweep import sweep
@@ -44,14 +45,14 @@ __all__ = [
     "__version__",
     "Material", "STEEL", "ALUMINIUM_7075", "TITANIUM_TI6AL4V", "MATERIALS",
     "Segment", "Cylinder", "Tube", "Cone", "LinearAreaTaper", "ExponentialHorn", "QuadraticHorn", "CoshHorn",
-    "CosHorn", "TabulatedProfile", "AreaFunction",
+    "CosHorn", "TabulatedProfile", "stepped_profile", "AreaFunction",
     "Rod", "History", "System", "InitialState",
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
     "simulate", "Recording", "sweep", "simulate_batch", "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
     "FieldSnapshots", "EnergyHistory",
-    "JunctionEvents",
+    "JunctionEvents", "BitRockOutcome",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",

@@ -183,27 +183,12 @@ class DesignResult:
 
     def to_csv(self, path: str | Path, material: Optional[Material] = None, bore: float = 0.0,
                overwrite: bool = False) -> Path:
-        """Write the profile for a model file: one row per element listed LEFT TO RIGHT as the striker lies in a
-        simulation (rear end first, impact face last, like ``[rods.elements]``), with the columns
-        ``element_from_face``, ``theta [s]`` (travel time of the element's face-side edge from the impact face),
-        ``impedance [N s/m]`` and ``outer_diameter [m]`` for ``material`` (default the design's) and ``bore``.
-        A model file reads it back with ``[rods.elements] file = "striker.csv"`` and ``dt`` = the design's dt."""
-        shape = self.shape(material, bore)
-
-        def write(tmp: Path) -> None:
-            import csv
-
-            with tmp.open("w", newline="") as fh:
-                w = csv.writer(fh)
-                w.writerow([f"# designed striker, elements listed left to right (impact face = last row), dt = "
-                            f"{self.dt!r} s, velocity {self.striker_velocity!r} m/s, mass {self.mass:.6g} kg, "
-                            f"material {shape.material.name or 'custom'}, bore {shape.bore:.6g} m"])
-                w.writerow(["element_from_face", "theta [s]", "impedance [N s/m]", "outer_diameter [m]"])
-                for q in range(self.n_elements - 1, -1, -1):
-                    w.writerow([q + 1, repr(float(self.theta[q])), repr(float(self.impedance[q])),
-                                repr(float(shape.outer_diameter[q]))])
-
-        return write_new_file(path, write, overwrite)
+        """Write the striker profile for ``material`` (default the design's) and ``bore`` in rodimpact's striker
+        CSV format (:meth:`rodimpact.inverse.StrikerShape.to_csv`: elements listed left to right, impact face
+        last; a model file reads it back with ``[rods.elements] file = "striker.csv"``, dt from its ``theta``
+        column); the impact velocity is noted in its comment lines."""
+        return self.shape(material, bore).to_csv(
+            path, overwrite, note=f"designed striker ({self.objective}); impact velocity {self.striker_velocity!r} m/s")
 
     def save(self, path: str | Path, overwrite: bool = False) -> Path:
         """Write :meth:`to_xarray` to a netCDF file (refused if it exists unless ``overwrite``)."""

@@ -15,10 +15,12 @@ Variables: ``junction_force``, ``junction_contact`` (junction, time); ``end_forc
 ``probe_position``, ``probe_node_position`` (probe); energies, works and momentum per rod (rod, energy_time); the
 lattice (``impedance``, ``element_length``, ``rod_start``, ``rod_*``), the final state and the field snapshots
 (``force_field``, ``velocity_field`` (element, snapshot_time), ``displacement_field`` (node, snapshot_time)); the
-contact events. Every variable has a ``units`` attribute. Written so that every NetCDF flavour can hold it:
-integers as int32/int8, no variables along empty dimensions (a single rod has no junction), the diagnostics as a
-JSON attribute. The column names of :meth:`SimulationResult.to_dataframe` are these variables per coordinate
-(``contact_force``, ``<probe>_force``, ``left_end_force``, ...).
+contact events; with a bit-rock end, its outcome (``bit_rock_*`` along ``bit_rock``, whose coordinate names the
+end: :class:`~rodimpact.direct.result.BitRockOutcome`; absent in files written before it). Every variable has a
+``units`` attribute. Written so that every NetCDF flavour can hold it: integers as int32/int8, no variables
+along empty dimensions (a single rod has no junction), the diagnostics as a JSON attribute. The column names of
+:meth:`SimulationResult.to_dataframe` are these variables per coordinate (``contact_force``, ``<probe>_force``,
+``left_end_force``, ...).
 """
 
 from __future__ import annotations
@@ -34,6 +36,11 @@ from .. import __version__
 #: steps and contact events; 3: ``probe``, ``junction``, ``end``, ``rod`` and time coordinates (probe names were a
 #: JSON attribute ``probe_names`` before).
 FORMAT_VERSION = 3
+
+
+#: The fields of a :class:`~rodimpact.direct.result.BitRockOutcome` stored as ``bit_rock_<field>``, with units.
+BIT_ROCK_FIELDS = {"loading_stiffness": "N/m", "unloading_stiffness": "N/m", "max_penetration": "m",
+                   "final_penetration": "m", "energy": "J", "striker": "", "striker_energy": "J"}
 
 
 def json_default(o: Any) -> Any:
@@ -117,6 +124,13 @@ def result_dataset(result: Any, fields: bool = True):
         data["phase_stop"] = (("phase",), np.concatenate([e.stop for e in events]).astype(np.int32), {})
         data["phase_max_abs_force"] = (("phase",), np.concatenate([e.max_abs_force for e in events]),
                                        {"units": "N"})
+    if result.bit_rock:
+        coords["bit_rock"] = ("bit_rock", np.array([o.end for o in result.bit_rock]),
+                              {"long_name": "outer end with a bit-rock interaction"})
+        for name, unit in BIT_ROCK_FIELDS.items():
+            values = np.array([getattr(o, name) for o in result.bit_rock])
+            data[f"bit_rock_{name}"] = (("bit_rock",), values.astype(np.int32) if name == "striker" else values,
+                                        {"units": unit} if unit else {})
     attrs = {"title": "rodimpact simulation result", "rodimpact_version": __version__,
              "format_version": FORMAT_VERSION, "dt": float(result.dt), "steps": int(result.n_steps),
              "record_every": int(result.record_every),

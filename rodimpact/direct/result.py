@@ -114,6 +114,82 @@ class EnergyHistory:
 
 
 @dataclass(frozen=True, repr=False)
+class BitRockOutcome:
+    """What a run did to the rock at an outer end with a :class:`~rodimpact.BitRockEnd` (percussive drilling; the
+    bilinear law of thesis Fig. 4.9), from the impact to the end of the run.
+
+    Penetration delta is the displacement of the bit's face into the rock from its position at t = 0, m: +x at a
+    right end, -x at a left end (positive = into the rock). The rock force on the bit is F >= 0 (the bit's normal
+    force is N = -F): F = k1 delta while delta exceeds its previous maximum, else k2 (delta - r) above the release
+    point r = delta_max (1 - k1/k2) and 0 below it.
+
+    Attributes
+    ----------
+    end:
+        ``"left"`` or ``"right"``.
+    loading_stiffness, unloading_stiffness:
+        k1 and k2, N/m.
+    max_penetration:
+        delta_max, the largest penetration of the run, m (taken at the ends of the steps, exact for the bit's
+        path, which is linear within each step).
+    final_penetration:
+        delta at the end of the run, m (below :attr:`penetration` when the bit has moved back off the rock).
+    energy:
+        The energy into the rock: the work done by the bit on the rock from t = 0 to the end of the run, J (minus
+        the end's work in the energy bookkeeping, ``energy.work_right[-1]`` or ``work_left[-1]``). Once the bit has
+        lifted off (:attr:`in_contact` False) it is the energy the rock has taken for good, k1 delta_max^2 / 2
+        (1 - k1/k2); while the bit still presses on the rock it includes the elastic energy F^2 / (2 k2) the rock
+        will give back.
+    striker:
+        Index of the striker, the rod at the other end of the system (rod 0 for a rock at the right end).
+    striker_energy:
+        The striker's initial energy (kinetic plus strain: 1/2 m v^2 for a striker without initial stress), J.
+    """
+
+    end: str
+    loading_stiffness: float
+    unloading_stiffness: float
+    max_penetration: float
+    final_penetration: float
+    energy: float
+    striker: int
+    striker_energy: float
+
+    @property
+    def penetration(self) -> float:
+        """The penetration per blow, m: the permanent penetration delta_max (1 - k1/k2), where the rock force
+        returns to zero on unloading, i.e. the depth the rock keeps after the blow (0 for an elastic rock, k2 =
+        k1)."""
+        return self.max_penetration * (1.0 - self.loading_stiffness / self.unloading_stiffness)
+
+    @property
+    def final_force(self) -> float:
+        """The rock force on the bit at the end of the run, F >= 0 (N), from the bilinear law at
+        :attr:`final_penetration`."""
+        if self.final_penetration >= self.max_penetration:
+            return self.loading_stiffness * self.final_penetration
+        return max(self.unloading_stiffness * (self.final_penetration - self.penetration), 0.0)
+
+    @property
+    def in_contact(self) -> bool:
+        """True when the rock still pushes on the bit at the end of the run (:attr:`final_force` above 1e-9 of the
+        largest rock force k1 delta_max): the blow is not over and :attr:`energy` includes elastic energy."""
+        return self.final_force > 1e-9 * self.loading_stiffness * self.max_penetration
+
+    @property
+    def efficiency(self) -> Optional[float]:
+        """The drilling efficiency: :attr:`energy` / :attr:`striker_energy` (``None`` when the striker starts
+        without energy, e.g. a rod driven by a prescribed force)."""
+        return self.energy / self.striker_energy if self.striker_energy > 0.0 else None
+
+    def __repr__(self) -> str:
+        eff = "" if self.efficiency is None else f" ({self.efficiency:.2%} of rod {self.striker}'s initial energy)"
+        return (f"BitRockOutcome({self.end} end: energy into the rock {self.energy:.6g} J{eff}, penetration per "
+                f"blow {self.penetration:.6g} m, largest {self.max_penetration:.6g} m"
+                f"{', still in contact' if self.in_contact else ''})")
+
+
+@dataclass(frozen=True, repr=False)
 class JunctionEvents:
     """Contact phases of one junction, taken at every time step (whatever the recording stride).
 
@@ -203,7 +279,9 @@ class SimulationResult(SimulationTables):
     Node values (contact force, end values, probes) belong to step k and hold on [k dt, (k+1) dt); they are
     reported with the step start time ``k dt``. The histories hold every ``record_every``-th step
     (``time = [0, s dt, 2 s dt, ...]``); contact and separation times, contact durations and the peak contact
-    force come from ``junction_events``, which are taken at every step whatever the stride.
+    force come from ``junction_events``, which are taken at every step whatever the stride. With a
+    :class:`~rodimpact.BitRockEnd`, ``bit_rock`` says what the blow did to the rock (energy into the rock,
+    drilling efficiency, penetration per blow: :class:`BitRockOutcome`).
     """
 
     system: System
@@ -222,6 +300,7 @@ class SimulationResult(SimulationTables):
     record_every: int = 1              # steps between recorded history samples
     n_steps: Optional[int] = None      # steps simulated (default: time.size, for record_every = 1)
     junction_events: Optional[tuple[JunctionEvents, ...]] = None   # default: from the histories
+    bit_rock: tuple[BitRockOutcome, ...] = ()   # one per outer end with a BitRockEnd (left first)
 
     def __post_init__(self) -> None:
         if isinstance(self.record_every, bool) or not isinstance(self.record_every, (int, np.integer)) \
@@ -246,6 +325,7 @@ class SimulationResult(SimulationTables):
                          f"{self.contact_duration(j):.6g} s, separations at {np.round(self.separation_times(j), 12)} s")
         lines.append(f"  rigid-body velocities at the end: {np.round(self.rigid_body_velocity, 6)} m/s; "
                      f"energy balance error {self.energy.balance_error:.2g}")
+        lines += [f"  {o!r}" for o in self.bit_rock]
         if self.probes:
             lines.append(f"  probes: {', '.join(self.probes)}")
         return "\n".join(lines)

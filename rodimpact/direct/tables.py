@@ -51,6 +51,12 @@ class SimulationTables:
         e0 = self.energy.kinetic[0] + self.energy.strain[0]
         if self.system.n_rods > 1 and e0[0] > 0.0:
             rows.append(("energy transfer (rod 0)", f"{self.efficiency:.2%}"))
+        for o in self.bit_rock:
+            eff = "" if o.efficiency is None else f" = {o.efficiency:.2%} of rod {o.striker}'s initial energy"
+            rows.append((f"rock ({o.end} end)",
+                         f"energy into the rock {o.energy:.4g} J{eff}; penetration per blow {o.penetration * 1e3:.4g} "
+                         f"mm (largest {o.max_penetration * 1e3:.4g} mm)" + ("; bit still in contact" if o.in_contact
+                                                                            else "")))
         rows.append(("energy balance error", f"{self.energy.balance_error:.2g}"))
         if self.probes:
             rows.append(("probes", ", ".join(self.probes)))

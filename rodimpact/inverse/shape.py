@@ -9,7 +9,6 @@ whatever the material.
 
 from __future__ import annotations
 
-import csv
 import math
 import warnings
 from dataclasses import dataclass
@@ -135,25 +134,49 @@ class StrikerShape:
             segs = [Cylinder((b - a) * ell, float(d[a]), material=mat) for a, b in zip(starts, stops)]
         return Rod(segs, mat, name)
 
-    def to_csv(self, path: str | Path, overwrite: bool = False) -> Path:
-        """Write the profile, one row per element from the impact face (SI units), and return the path.
-        An existing file is refused unless ``overwrite=True``; the file is written atomically."""
-        return write_new_file(path, self._write_csv, overwrite)
+    def to_csv(self, path: str | Path, overwrite: bool = False, note: str = "") -> Path:
+        """Write the profile as CSV (SI units, full precision) and return the path; the one striker-profile format
+        of rodimpact (``rodimpact synthesize`` and ``rodimpact design`` write it as ``striker.csv``).
 
-    def _write_csv(self, path: Path) -> None:
-        th = self.dt * np.arange(self.n_elements)
+        Rows are the elements listed **left to right as the striker lies in a simulation**: the rear end first,
+        the impact face last (``element_from_face`` = 1), like ``[rods.elements]`` of a model file, which reads the
+        file back as the same rod (``file = 'striker.csv'``; its ``theta`` column gives the element travel time
+        dt). Columns: ``element_from_face`` (q = 1..m from the impact face), ``s_start [m]`` and ``s_end [m]``
+        (distances of the element's face-side and rear-side edges from the impact face), ``theta [s]`` (travel
+        time of the face-side edge from the impact face, (q - 1) dt), ``impedance [N s/m]``, ``area [m^2]``,
+        ``outer_diameter [m]``, ``inner_diameter [m]``. The lines before the header start with ``#`` (no quoting:
+        ``pandas.read_csv(path, comment="#")`` reads the table); they state the orientation, dt, material, bore,
+        length, mass and ``note`` (one line, e.g. the impact velocity), if given.
+
+        An existing file is refused unless ``overwrite=True``; the file is written atomically."""
+        if "\n" in note or "\r" in note:
+            raise ValueError("note: must be a single line (it becomes a comment line of the CSV file)")
+        return write_new_file(path, lambda tmp: self._write_csv(tmp, Path(path).name, note), overwrite)
+
+    def _write_csv(self, path: Path, name: str, note: str) -> None:
+        m = self.material
+        comments = [
+            "rodimpact striker profile: one row per element of equal travel time dt, listed LEFT TO RIGHT as the "
+            "striker lies in a simulation (rear end first; impact face last, element_from_face = 1)",
+            f"dt = {self.dt!r} s; {self.n_elements} elements; length {self.length:.6g} m; mass {self.mass:.6g} kg; "
+            f"material {m.name or 'custom'} (E = {m.youngs_modulus:.6g} Pa; rho = {m.density:.6g} kg/m^3; "
+            f"c = {m.wave_speed:.6g} m/s); bore {self.bore:.6g} m",
+            *([note] if note else []),
+            f"read it as a rod in a model file: [rods.elements] file = '{name}' "
+            f"(dt from the theta column); wave_speed = {m.wave_speed!r} and density = {m.density!r} give the "
+            "element lengths and areas of this material",
+        ]
+        header = ["element_from_face", "s_start [m]", "s_end [m]", "theta [s]", "impedance [N s/m]", "area [m^2]",
+                  "outer_diameter [m]", "inner_diameter [m]"]
         s = self.boundaries
-        with path.open("w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow([f"# striker profile: material {self.material.name or 'custom'} "
-                        f"(E = {self.material.youngs_modulus:.6g} Pa, rho = {self.material.density:.6g} kg/m^3), "
-                        f"bore {self.bore:.6g} m, length {self.length:.6g} m, mass {self.mass:.6g} kg"])
-            w.writerow(["element", "s_start_m", "s_end_m", "theta_start_s", "impedance_Ns_per_m", "area_m2",
-                        "outer_diameter_m", "inner_diameter_m"])
-            for q in range(self.n_elements):
-                w.writerow([q + 1, repr(float(s[q])), repr(float(s[q + 1])), repr(float(th[q])),
-                            repr(float(self.impedance[q])), repr(float(self.area[q])),
-                            repr(float(self.outer_diameter[q])), repr(self.bore)])
+        theta = self.dt * np.arange(self.n_elements)
+        columns = [s[:-1], s[1:], theta, self.impedance, self.area, self.outer_diameter,
+                   np.full(self.n_elements, self.bore)]
+        with path.open("w", encoding="utf-8", newline="") as fh:
+            fh.writelines(f"# {c}\n" for c in comments)
+            fh.write(",".join(header) + "\n")
+            for q in range(self.n_elements - 1, -1, -1):
+                fh.write(",".join([str(q + 1), *(repr(float(c[q])) for c in columns)]) + "\n")
 
     def summary(self) -> str:
         """One paragraph: length, mass, diameters and practicality."""

@@ -37,7 +37,7 @@ from ..rods.material import MATERIALS, STEEL, Material
 from ..rods.plausibility import KeyPath
 from ..rods.rod import Rod
 from ..rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, ExponentialHorn, LinearAreaTaper,
-                             QuadraticHorn, Segment, TabulatedProfile, Tube)
+                             QuadraticHorn, Segment, TabulatedProfile, Tube, stepped_profile)
 from ..rods.system import InitialState, System
 from . import _toml
 from ._files import read_bytes_limited
@@ -342,7 +342,8 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
         if not r["segments"]:
             raise ModelError(f"{path}.segments: needs at least one segment")
         mat = _material(r["material"], materials, f"{path}.material") or STEEL
-        segs = [_segment(s, f"{path}.segments[{j}]", materials, params, base_dir) for j, s in enumerate(r["segments"])]
+        segs = [piece for j, s in enumerate(r["segments"])
+                for piece in _segment(s, f"{path}.segments[{j}]", materials, params, base_dir)]
         with KeyPath(path):
             rod = _wrap(path, lambda: Rod(segs, mat, r["name"]))
     else:
@@ -368,8 +369,17 @@ _SHAPE_CLASSES = {"exponential-horn": ExponentialHorn, "quadratic-horn": Quadrat
 
 
 def _segment(s: dict, path: str, materials: dict[str, Material], params: dict[str, float],
-             base_dir: Path) -> Segment:
+             base_dir: Path) -> tuple[Segment, ...]:
+    """The rod segment(s) of one ``[[rods.segments]]`` table: one segment, or for a ``table`` with steps (a
+    repeated x) one per piece between the steps (:func:`rodimpact.rods.segments.stepped_profile`)."""
     mat = _material(s["material"], materials, f"{path}.material")
+    if s["shape"] == "table":
+        return _table(s, path, mat, base_dir)
+    return (_shape(s, path, mat, params),)
+
+
+def _shape(s: dict, path: str, mat: Optional[Material], params: dict[str, float]) -> Segment:
+    """The segment of one ``[[rods.segments]]`` table of an analytic shape or an expression."""
     shape = s["shape"]
     if shape == "cylinder":
         return _wrap(path, lambda: Cylinder(s["length"], s["diameter"], material=mat))
@@ -385,20 +395,24 @@ def _segment(s: dict, path: str, materials: dict[str, Material], params: dict[st
     if shape in _SHAPE_CLASSES:
         cls = _SHAPE_CLASSES[shape]
         return _wrap(path, lambda: cls(s["length"], s["area_start"], s["xi"], material=mat))
-    if shape == "expression":
-        func = expression_area(s["area"], s["length"], params, path=f"{path}.area")
-        check_dimension(func, "area", {"s": "length", "L": "length"}, params)
-        return _wrap(path, lambda: AreaFunction(s["length"], func, material=mat, name=s["area"]))
-    # table
+    func = expression_area(s["area"], s["length"], params, path=f"{path}.area")    # shape == "expression"
+    check_dimension(func, "area", {"s": "length", "L": "length"}, params)
+    return _wrap(path, lambda: AreaFunction(s["length"], func, material=mat, name=s["area"]))
+
+
+def _table(s: dict, path: str, mat: Optional[Material], base_dir: Path) -> tuple[TabulatedProfile, ...]:
+    """The segments of a ``table`` shape: points inline or from a CSV file; a repeated x is a step."""
     inline = s["x"] is not None
     if s["file"] is not None and (inline or s["diameter"] is not None or s["area"] is not None):
         raise ModelError(f"{path}: give either file or the inline lists x and diameter/area, not both")
     if s["file"] is not None:
         cols = read_csv_columns(base_dir / s["file"], f"{path}.file",
-                                {"x": "length", "diameter": "length", "area": "area"})
+                                {"x": "length", "diameter": "length", "area": "area", "impedance": "impedance"})
         if "x" not in cols or ("diameter" in cols) == ("area" in cols):
+            hint = (f"; a file of element impedances (such as rodimpact's striker.csv) is read as a rod with "
+                    f"[rods.elements] file = '{s['file']}'" if "impedance" in cols and "x" not in cols else "")
             raise ModelError(f"{path}.file: needs a column x and exactly one of diameter, area; found "
-                             f"{', '.join(cols) or 'none'}")
+                             f"{', '.join(cols) or 'none'}{hint}")
         x, kind = cols["x"], "diameter" if "diameter" in cols else "area"
         values = cols[kind]
     else:
@@ -408,31 +422,40 @@ def _segment(s: dict, path: str, materials: dict[str, Material], params: dict[st
         x, values = s["x"], s[kind]
         if len(values) != len(x):
             raise ModelError(f"{path}.{kind}: needs one value per x ({len(x)}), got {len(values)}")
-    return _wrap(path, lambda: TabulatedProfile(x, **{kind: values}, material=mat))
+    return _wrap(path, lambda: stepped_profile(x, **{kind: values}, material=mat))
 
 
 def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], base_dir: Path) -> Rod:
     c = e["wave_speed"] if e["wave_speed"] is not None else STEEL.wave_speed
     if e["dt"] is not None and e["element_length"] is not None:
         raise ModelError(f"{path}: give dt or element_length, not both")
-    dt = e["dt"] if e["dt"] is not None else e["element_length"] / c if e["element_length"] is not None else sim_dt
-    if dt is None:
-        raise ModelError(f"{path}.dt: missing; give the element travel time dt or element_length here, or "
-                         f"simulation.dt")
-    if not 0.0 < dt < math.inf or not 0.0 < c * dt < math.inf:
-        key = "dt" if e["dt"] is not None or e["element_length"] is None else "element_length"
-        raise ModelError(f"{path}.{key}: gives an element travel time of {dt:.6g} s and an element length of "
-                         f"{c * dt:.6g} m; both must be finite and > 0 (out of the range of floating point numbers)")
     given = [k for k in ("impedance", "runs", "file") if e[k] is not None]
     if len(given) != 1:
         raise ModelError(f"{path}: give exactly one of impedance, runs or file, got "
                          f"{', '.join(given) if given else 'none'}")
+    file_dt = None
+    if e["file"] is not None:
+        cols = read_csv_columns(base_dir / e["file"], f"{path}.file", {"impedance": "impedance", "theta": "time"},
+                                needed=("impedance",))
+        z = np.asarray(cols["impedance"])
+        if "theta" in cols:
+            file_dt = _theta_spacing(cols["theta"], f"{path}.file", e["file"])
+    key = "dt" if e["dt"] is not None else "element_length" if e["element_length"] is not None else None
+    dt = e["dt"] if e["dt"] is not None else e["element_length"] / c if e["element_length"] is not None else \
+        file_dt if file_dt is not None else sim_dt
+    if dt is None:
+        raise ModelError(f"{path}.dt: missing; give the element travel time dt or element_length here, or "
+                         f"simulation.dt")
+    if not 0.0 < dt < math.inf or not 0.0 < c * dt < math.inf:
+        raise ModelError(f"{path}.{key or 'dt'}: gives an element travel time of {dt:.6g} s and an element length of "
+                         f"{c * dt:.6g} m; both must be finite and > 0 (out of the range of floating point numbers)")
+    if key is not None and file_dt is not None and abs(dt / file_dt - 1.0) > _SAME_DT:
+        raise ModelError(f"{path}.{key}: gives an element travel time of {dt!r} s, but the theta column of "
+                         f"{e['file']} is spaced by {file_dt!r} s, the dt the profile was made for; leave {key} "
+                         f"out to use the file's dt")
     if e["impedance"] is not None:
         z = np.array(e["impedance"], dtype=float)
-    elif e["file"] is not None:
-        cols = read_csv_columns(base_dir / e["file"], f"{path}.file", {"impedance": "impedance"}, needed=("impedance",))
-        z = np.asarray(cols["impedance"])
-    else:
+    elif e["file"] is None:
         parts = []
         total = 0
         for i, run in enumerate(e["runs"]):
@@ -458,6 +481,24 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
 
 
 _BYTES_PER_ELEMENT = 128.0
+#: Largest relative difference between a given dt and the spacing of a profile file's theta column.
+_SAME_DT = 1e-9
+
+
+def _theta_spacing(theta: np.ndarray, key: str, name: str) -> Optional[float]:
+    """The element travel time dt implied by the ``theta`` column of a striker profile (travel time of each
+    element's face-side edge from the impact face, (q - 1) dt, in either row order): its constant spacing, s;
+    ``None`` for a single element. Unevenly spaced values are a :class:`ModelError` naming ``key``."""
+    if theta.size < 2:
+        return None
+    dt = abs(float(theta[-1] - theta[0])) / (theta.size - 1)
+    steps = np.abs(np.diff(theta))
+    if not dt > 0.0 or np.max(np.abs(steps - dt)) > _SAME_DT * dt:
+        k = int(np.argmax(np.abs(steps - dt)))
+        raise ModelError(f"{key}: the theta column of {name} must be evenly spaced (theta = (q - 1) dt, the travel "
+                         f"time of each element's face-side edge from the impact face); rows {k + 1} and {k + 2} "
+                         f"of its data are {steps[k]!r} s apart, the mean spacing is {dt!r} s")
+    return dt
 
 
 def _run_count(run: dict, path: str, element_length: float) -> int:
@@ -538,14 +579,15 @@ _HEADER = re.compile(r"^\s*([^\[\(]+?)\s*(?:[\[\(]\s*(.*?)\s*[\]\)])?\s*$")
 def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, needed: Sequence[str] = (),
                      positional: Sequence[str] = ()) -> dict[str, np.ndarray]:
     """Read numeric columns from a CSV file whose header names them, optionally with a unit in brackets
-    (``x [mm]``, ``impedance (kN s/m)``); values are converted to SI.
+    (``x [mm]``, ``impedance (kN s/m)``); values are converted to SI. Lines starting with ``#`` are comments.
 
     ``dims`` maps the recognised column names to dimensions (other columns are ignored); with ``positional``
     the columns are taken in order instead and named accordingly (``("time", "force")``).
     """
     text = read_text_file(Path(path), key, "CSV file")
-    rows = [r for r in csv.reader(text.splitlines()) if r and any(c.strip() for c in r)]
-    rows = [r for r in rows if not r[0].lstrip().startswith("#")]
+    lines = [ln for ln in text.splitlines() if not ln.lstrip().startswith("#")]    # comment lines, never parsed
+    rows = [r for r in csv.reader(lines) if r and any(c.strip() for c in r)]
+    rows = [r for r in rows if not r[0].lstrip().startswith("#")]                   # a quoted "# ..." comment
     if len(rows) < 2:
         raise ModelError(f"{key}: {path} needs a header line and at least one row of numbers")
     header = rows[0]

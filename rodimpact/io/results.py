@@ -48,8 +48,8 @@ import numpy as np
 
 from .. import __version__
 from .._permissions import normal_mode
-from ..direct.dataset import FORMAT_VERSION, json_default, result_dataset
-from ..direct.result import (EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
+from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, json_default, result_dataset
+from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
                              SimulationResult)
 from ..lattice.discretize import RodDiscretization
 from ..lattice.lattice import Lattice
@@ -432,9 +432,16 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
     Per junction (taken at every step, whatever the recording stride): the peak compressive contact force and its
     time, the first contact phase (start, duration), every separation and re-contact time, the total time in
     contact (phases that carry no force beyond rounding are not counted, see :func:`contact_phases`). Per probe:
-    the extreme forces among the recorded samples. Per rod: initial and final energy and
-    rigid-body (centre-of-mass) velocity -- the rebound velocity once the rods have separated. Energy transfer:
-    the fraction of rod 0's initial energy it gave away. Energy balance error: max |E - E0 - W| / max E.
+    the requested position (``position_m``, from the rod's left end), the lattice node actually read
+    (``node_position_m`` in the same coordinate, ``node_index`` into the ``node`` dimension of ``result.nc``) and
+    the extreme forces among the recorded samples. ``lattice_report``: how each rod was represented on the lattice
+    (:meth:`~rodimpact.Lattice.report`, also ``result.diagnostics["lattice_report"]``). Per rod: initial and final
+    energy and rigid-body (centre-of-mass) velocity -- the rebound velocity once the rods have separated. Energy
+    transfer: the fraction of rod 0's initial energy it gave away. Energy balance error: max |E - E0 - W| / max E.
+    ``bit_rock`` (one entry per outer end with a bit-rock interaction, else empty): the energy into the rock, the
+    drilling efficiency (that energy / the striker's initial energy), the penetration per blow (permanent),
+    the largest and the final penetration, and whether the bit still presses on the rock at the end
+    (:class:`~rodimpact.direct.result.BitRockOutcome`).
     """
     t = result.time
     dt = result.dt
@@ -474,13 +481,22 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
     out["work_done_on_rods_J"] = {"ends": float(e.work_left[-1] + e.work_right[-1]),
                                   "loads": float(e.work_loads[-1]), "friction": float(e.work_friction[-1])}
     out["energy_balance_error"] = float(e.balance_error)
+    out["bit_rock"] = [{"end": o.end, "energy_into_rock_J": o.energy, "efficiency": o.efficiency,
+                        "striker": _rod_label(result, o.striker), "striker_initial_energy_J": o.striker_energy,
+                        "penetration_per_blow_m": o.penetration, "max_penetration_m": o.max_penetration,
+                        "final_penetration_m": o.final_penetration, "bit_in_contact_at_end": o.in_contact}
+                       for o in result.bit_rock]
     probes = []
     for name, p in result.probes.items():
         kmin, kmax = int(np.argmin(p.force)), int(np.argmax(p.force))
+        local, _ = result.lattice.nearest_node(p.probe.rod, p.probe.position)     # the node the run read
         probes.append({"name": name, "rod": p.probe.rod, "position_m": p.probe.position,
+                       "node_position_m": p.node_position,
+                       "node_index": result.lattice.node_index(p.probe.rod, local),
                        "min_force_N": float(p.force[kmin]), "time_of_min_s": float(t[kmin]),
                        "max_force_N": float(p.force[kmax]), "time_of_max_s": float(t[kmax])})
     out["probes"] = probes
+    out["lattice_report"] = result.lattice.report()
     d = result.diagnostics
     out["wall_time_s"] = float(d["wall_time_s"]) if "wall_time_s" in d else None
     out["warnings"] = list(d.get("warnings", []))
@@ -510,6 +526,17 @@ def format_summary(summary: dict[str, Any], title: str = "") -> str:
                          + " ms")
         lines.append("  re-contact at         " + (", ".join(f"{x * 1e3:.4g}" for x in j["recontact_times_s"])
                                                    + " ms" if j["recontact_times_s"] else "none"))
+    for b in summary["bit_rock"]:
+        lines.append(f"rock at the {b['end']} end (bit-rock):")
+        eff = b["efficiency"]
+        lines.append(f"  energy into the rock  {b['energy_into_rock_J']:.4g} J"
+                     + ("" if eff is None else f" = {eff * 100:.2f} % of {b['striker']}'s initial energy "
+                                               f"(drilling efficiency)"))
+        lines.append(f"  penetration per blow  {b['penetration_per_blow_m'] * 1e3:.4g} mm (permanent; largest "
+                     f"{b['max_penetration_m'] * 1e3:.4g} mm, at the end {b['final_penetration_m'] * 1e3:.4g} mm)")
+        if b["bit_in_contact_at_end"]:
+            lines.append("  the bit still presses on the rock at the end: the blow is not over (run longer); the "
+                         "energy includes elastic energy the rock will give back")
     et = summary["energy_transfer"]
     if et is not None and summary["junctions"]:
         first = summary["rods"][0]["name"]
@@ -525,7 +552,10 @@ def format_summary(summary: dict[str, Any], title: str = "") -> str:
         lines.append("work done on the rods    " + ", ".join(f"{k} {x:.4g} J" for k, x in w.items() if x != 0.0)
                      + " (negative: energy leaves the rods)")
     for p in summary["probes"]:
-        lines.append(f"probe {p['name']}: force {p['min_force_N'] / 1e3:.4g} .. {p['max_force_N'] / 1e3:.4g} kN")
+        node, asked = p["node_position_m"], p["position_m"]
+        moved = (f" (read at the node {node * 1e3:.4g} mm from the rod's left end; requested {asked * 1e3:.4g} mm)"
+                 if abs(node - asked) > 1e-9 * max(abs(asked), 1e-3) else "")
+        lines.append(f"probe {p['name']}: force {p['min_force_N'] / 1e3:.4g} .. {p['max_force_N'] / 1e3:.4g} kN{moved}")
     lines.append(f"energy balance error    {summary['energy_balance_error']:.2e}")
     for w in summary["warnings"]:
         lines.append(f"warning: {w}")
@@ -770,6 +800,9 @@ def _from_dataset(ds, folder: Path, nc: Path) -> SimulationResult:
                       f"model", stacklevel=2)
         system = None
     record_every = int(ds.attrs.get("record_every", 1))
+    ends = [str(e) for e in ds["bit_rock"].values] if "bit_rock" in ds.coords else []
+    bit_rock = tuple(BitRockOutcome(end=end, **{name: (int if name == "striker" else float)(v[f"bit_rock_{name}"][i])
+                                               for name in BIT_ROCK_FIELDS}) for i, end in enumerate(ends))
     events = _events(v, n_j) if "junction_min_force" in v or n_j == 0 else None   # format 1: rebuilt from histories
     return SimulationResult(
         system=system, lattice=lattice, time=time, junction_force=jf, junction_contact=jc,
@@ -777,4 +810,4 @@ def _from_dataset(ds, folder: Path, nc: Path) -> SimulationResult:
         end_velocity={"left": v["end_velocity"][0].copy(), "right": v["end_velocity"][1].copy()},
         probes=probes, snapshots=snapshots, energy=energy, final_force=v["final_force"],
         final_velocity=v["final_velocity"], diagnostics=diagnostics, record_every=record_every,
-        n_steps=int(ds.attrs.get("steps", n_steps)), junction_events=events)
+        n_steps=int(ds.attrs.get("steps", n_steps)), junction_events=events, bit_rock=bit_rock)

@@ -111,16 +111,24 @@ SEGMENT_SHAPES: dict[str, Table] = {
     "cos-horn": Table("cos-horn", "A(s) = area_start * cos(xi s)^2 (thesis Tab. 2.1); |xi| length < pi/2.", (
         _LENGTH, _q("area_start", "area", "Area A0 at the left end."),
         _q("xi", "wavenumber", "Flare constant xi.", sign=None), _SEG_MATERIAL)),
-    "table": Table("table", "A tabulated profile, interpolated linearly between points: either inline lists "
-                            "`x` with `diameter` or `area`, or a CSV `file` with a column `x` and a column "
-                            "`diameter` or `area` (units in the header, e.g. `x [mm]`; default SI).", (
+    "table": Table("table", "A tabulated profile, interpolated linearly between points, with steps where a "
+                            "position is given twice: either inline lists `x` with `diameter` or `area`, or a CSV "
+                            "`file` with a column `x` and a column `diameter` or `area` (units in the header, e.g. "
+                            "`x [mm]`; default SI; lines starting with `#` are comments). **Steps:** at a repeated x "
+                            "the profile runs up to the first value given there and continues from the second (the "
+                            "example: 40 mm up to 100 mm, then 50 mm). A step needs length on both sides and a "
+                            "position may appear at most twice. Each piece between steps becomes a segment of its "
+                            "own (`rodimpact.stepped_profile`), so a step is a segment end for the lattice: the "
+                            "mass is integrated piece by piece, and messages about the lattice count the pieces as "
+                            "segments.", (
         Field("file", "string", "CSV file, relative to the model file."),
-        Field("x", "quantities", "Positions, strictly increasing; the segment's length is x[-1] - x[0].",
-              dimension="length", sign=None),
+        Field("x", "quantities", "Positions, increasing, a position given twice for a step; the segment's length is "
+                                 "x[-1] - x[0].", dimension="length", sign=None),
         Field("diameter", "quantities", "Diameter at each x.", dimension="length", sign="positive"),
         Field("area", "quantities", "Area at each x.", dimension="area", sign="positive"),
         _SEG_MATERIAL),
-        'shape = "table"\nx = ["0 mm", "100 mm", "150 mm"]\ndiameter = ["40 mm", "40 mm", "50 mm"]'),
+        'shape = "table"\nx = ["0 mm", "100 mm", "100 mm", "150 mm", "200 mm"]\n'
+        'diameter = ["40 mm", "40 mm", "50 mm", "50 mm", "45 mm"]   # a step at 100 mm, then a taper'),
     "expression": Table("expression", "Area given by an expression of the local position `s` (m, 0..L) and the "
                                       "segment length `L`, in SI units (result in m^2); may use `[parameters]`. "
                                       "See 'Expressions' below.", (
@@ -142,7 +150,8 @@ RUN = Table("runs item", "A run of equal-travel-time elements: constant `impedan
 ELEMENTS = Table("rods.elements", "An impedance-level rod (`Rod.from_impedance`): elements listed left to right, "
                                   "each with travel time `dt` (or length `element_length`). Give exactly one of "
                                   "`impedance`, `runs`, `file`.", (
-    _q("dt", "time", "Travel time of every element; default `simulation.dt`.", required=False),
+    _q("dt", "time", "Travel time of every element; default: the spacing of the `theta` column of `file`, else "
+                     "`simulation.dt`.", required=False),
     _q("element_length", "length", "Length of every element instead of `dt` (dt = element_length / wave_speed).",
        required=False),
     _q("wave_speed", "velocity", "Wave speed (sets element lengths c*dt only); default steel, 5175.5 m/s.",
@@ -150,8 +159,12 @@ ELEMENTS = Table("rods.elements", "An impedance-level rod (`Rod.from_impedance`)
     _q("density", "density", "Density (sets the equivalent area Z/(rho c) only); default steel.", required=False),
     Field("impedance", "quantities", "Impedance of each element.", dimension="impedance", sign="positive"),
     Field("runs", "tables", "Runs of elements, see the table below.", table=RUN),
-    Field("file", "string", "CSV file (relative to the model file) with a column `impedance` "
-                            "(unit in the header, e.g. `impedance [kN s/m]`; default N s/m)."),
+    Field("file", "string", "CSV file (relative to the model file), one row per element left to right, with a "
+                            "column `impedance` (unit in the header, e.g. `impedance [kN s/m]`; default N s/m); "
+                            "lines starting with `#` are comments. An optional column `theta` (the travel time of "
+                            "each element's face-side edge from the impact face, evenly spaced) sets dt; a `dt` or "
+                            "`element_length` given as well must agree with it. The `striker.csv` of `rodimpact "
+                            "synthesize` and `rodimpact design` reads as it is: see 'Striker profiles' below."),
 ), '[rods.elements]\nelement_length = "5 mm"\nruns = [{ impedance = "51.0 kN s/m", count = 40 },\n'
    '        { impedance = "28.7 kN s/m", length = "0.5 m" }]')
 
@@ -301,6 +314,55 @@ HISTORY_DOC = """A **history** (force or velocity over time) is one of
 - a CSV file with two columns (time, value), units in the header: `force = { file = "force.csv" }`.
 
 The solver takes each history at the midpoint of every time step."""
+
+STRIKER_DOC = """`rodimpact synthesize` and `rodimpact design` write the striker as `striker.csv`
+(`StrikerShape.to_csv` and `DesignResult.to_csv` in Python), one row per element of travel time dt, **listed
+left to right as the striker lies in a simulation: the rear end first, the impact face last** (column
+`element_from_face` = 1), as `[rods.elements]` lists elements. The lines before the header start with `#` and
+state this orientation, dt, the material and the mass (`pandas.read_csv("striker.csv", comment="#")` reads the
+table). Columns, SI units in the headers: `element_from_face`, `s_start [m]` and `s_end [m]` (the element's
+face-side and rear-side edges from the impact face), `theta [s]` (travel time of the face-side edge from the
+impact face, (q - 1) dt), `impedance [N s/m]`, `area [m^2]`, `outer_diameter [m]`, `inner_diameter [m]`.
+
+A model file uses it as a rod with `[rods.elements] file = "striker.csv"`: the impedances in file order, dt from
+the `theta` column. The dynamics depend on the impedances and dt alone; give `wave_speed` and `density` of the
+striker's material (stated in the file's comment lines; default steel) for its true element lengths and areas.
+The striker of a synthesis, read back this way, reproduces the synthesized force:
+
+```python
+import numpy as np
+import rodimpact as ri
+
+dt = 1e-6
+bar = ri.Rod.from_impedance(np.full(300, 79.7e3), dt=dt, name="bar")
+res = ri.synthesize(lambda t: -200e3 * np.exp(-t / 0.1e-3), struck=bar, striker_velocity=6.0, n=60, dt=dt,
+                    far_end="nonreflecting")
+res.shape().to_csv("striker.csv")           # the file rodimpact synthesize writes
+
+with open("striker-on-bar.toml", "w") as fh:
+    fh.write('''
+[[rods]]
+name = "striker"
+velocity = "6 m/s"
+[rods.elements]
+file = "striker.csv"            # rear end first, impact face last; dt from its theta column
+
+[[rods]]
+name = "bar"
+[rods.elements]
+dt = "1 us"
+runs = [{ impedance = "79.7 kN s/m", count = 300 }]
+
+[ends]
+right = "nonreflecting"
+
+[simulation]
+steps = 120
+''')
+run = ri.load_model("striker-on-bar.toml").simulate()
+error = np.abs(run.contact_force - np.repeat(res.window_values, 2)).max() / np.abs(res.window_values).max()
+assert error < 1e-12                         # the synthesized force, to rounding
+```"""
 
 FIELD_DOC = """An initial **field** along a rod is a constant, an expression of the position `x` (m from the rod's
 left end, SI units) such as `{ expression = "-1e3*x" }`, or a list with one value per lattice element."""
@@ -614,6 +676,7 @@ def reference_markdown() -> str:
         _table_md(f"shape = \"{name}\"", t, 4, lines, key="shape")
     _table_md("`[rods.elements]`", ELEMENTS, 3, lines)
     _table_md("`runs` items", RUN, 4, lines)
+    lines.extend(["#### Striker profiles (`striker.csv`)", "", STRIKER_DOC, ""])
     _table_md("`[rods.initial]`", INITIAL, 3, lines)
     lines.extend(["## `[[junctions]]`", "", "One table per neighbouring pair of rods, in order; omit the array for "
                   "contact everywhere.", ""])

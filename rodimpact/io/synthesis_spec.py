@@ -339,7 +339,8 @@ def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite:
     """Write a synthesis to ``outdir`` (atomically; refuses a non-empty folder unless ``overwrite``, and even then
     one holding files rodimpact did not write, see :func:`rodimpact.io.results.check_output_folder`):
     ``spec.toml`` (the spec as given), ``report.txt`` (per-element table, thesis Tabs. 4.3/4.4),
-    ``striker.csv`` (profile), ``synthesis.nc`` (all per-element arrays), ``summary.json``, ``plots/`` and,
+    ``striker.csv`` (profile listed left to right, impact face last: :meth:`StrikerShape.to_csv`; a model file
+    reads it as a rod), ``synthesis.nc`` (all per-element arrays), ``summary.json``, ``plots/`` and,
     when verified, ``verification/`` -- the direct simulation of the synthesized striker hitting the struck
     system, with its ``model.toml`` ready for ``rodimpact simulate``. Returns the summary."""
     from .results import AtomicFolder, _to_json
@@ -352,7 +353,8 @@ def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite:
         (tmp / "report.txt").write_text(res.report() + "\n", encoding="utf-8")
         files += ["spec.toml", "report.txt"]
         if r.shape is not None:
-            r.shape.to_csv(tmp / "striker.csv")
+            r.shape.to_csv(tmp / "striker.csv",
+                           note=f"synthesized striker; impact velocity {res.striker_velocity!r} m/s")
             files.append("striker.csv")
         res.save(tmp / "synthesis.nc")
         files.append("synthesis.nc")

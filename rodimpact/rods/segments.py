@@ -180,29 +180,39 @@ class CosHorn(_AnalyticHorn):
         return self.area_start * np.cos(self.xi * np.asarray(s, dtype=float)) ** 2
 
 
+def _table_arrays(x, diameter, area) -> tuple[np.ndarray, np.ndarray, str]:
+    """Positions (m), values and their kind ("diameter" in m or "area" in m^2) of a tabulated profile, checked
+    for everything but the order of x: at least two finite positions, one finite value > 0 per position."""
+    xs = finite_array("TabulatedProfile.x", x, min_size=2, unit="m")
+    if (diameter is None) == (area is None):
+        raise ValueError("TabulatedProfile: give exactly one of diameter= or area=")
+    name = "diameter" if diameter is not None else "area"
+    vals = finite_array(f"TabulatedProfile.{name}", diameter if diameter is not None else area, min_size=2,
+                        unit="m" if name == "diameter" else "m^2")
+    if vals.shape != xs.shape:
+        raise ValueError(f"TabulatedProfile.{name}: needs one value per x ({xs.size}), got {vals.size}")
+    if np.any(vals <= 0):
+        i = int(np.flatnonzero(vals <= 0)[0])
+        raise ValueError(f"TabulatedProfile.{name}: every value must be > 0, entry {i} is {vals[i]}")
+    return xs, vals, name
+
+
 class TabulatedProfile(Segment):
     """A profile given by points: positions ``x`` (m, strictly increasing) and either ``diameter`` (m,
     interpolated linearly, i.e. conical pieces) or ``area`` (m^2, interpolated linearly).
 
-    The segment's length is ``x[-1] - x[0]``; local s = x - x[0].
+    The segment's length is ``x[-1] - x[0]``; local s = x - x[0]. A profile with steps (a position given twice)
+    is a chain of such segments: :func:`stepped_profile`.
     """
 
     def __init__(self, x, diameter=None, area=None, *, material: Optional[Material] = None) -> None:
-        xs = finite_array("TabulatedProfile.x", x, min_size=2, unit="m")
+        xs, vals, name = _table_arrays(x, diameter, area)
         if np.any(np.diff(xs) <= 0):
             i = int(np.flatnonzero(np.diff(xs) <= 0)[0])
+            step = (" (a step? a TabulatedProfile has none: rodimpact.stepped_profile makes one segment per piece "
+                    "between steps)" if xs[i + 1] == xs[i] else "")
             raise ValueError(f"TabulatedProfile.x: must be strictly increasing; x[{i + 1}] = {xs[i + 1]} <= "
-                             f"x[{i}] = {xs[i]}")
-        if (diameter is None) == (area is None):
-            raise ValueError("TabulatedProfile: give exactly one of diameter= or area=")
-        name = "diameter" if diameter is not None else "area"
-        vals = finite_array(f"TabulatedProfile.{name}", diameter if diameter is not None else area, min_size=2,
-                            unit="m" if name == "diameter" else "m^2")
-        if vals.shape != xs.shape:
-            raise ValueError(f"TabulatedProfile.{name}: needs one value per x ({xs.size}), got {vals.size}")
-        if np.any(vals <= 0):
-            i = int(np.flatnonzero(vals <= 0)[0])
-            raise ValueError(f"TabulatedProfile.{name}: every value must be > 0, entry {i} is {vals[i]}")
+                             f"x[{i}] = {xs[i]}{step}")
         object.__setattr__(self, "x", xs)
         object.__setattr__(self, "values", vals)
         object.__setattr__(self, "kind", name)
@@ -222,6 +232,39 @@ class TabulatedProfile(Segment):
                 and np.array_equal(self.x, other.x) and np.array_equal(self.values, other.values))
 
     __hash__ = None  # type: ignore[assignment]
+
+
+def stepped_profile(x, diameter=None, area=None, *,
+                    material: Optional[Material] = None) -> tuple[TabulatedProfile, ...]:
+    """A tabulated profile with steps, as the chain of :class:`TabulatedProfile` segments between its steps.
+
+    ``x`` (m) must not decrease; a position given twice is a step: the profile runs up to the first ``diameter``
+    (m) or ``area`` (m^2) given at that position and continues from the second (``x = [0, 0.1, 0.1, 0.15]``,
+    ``diameter = [0.04, 0.04, 0.05, 0.05]``: 40 mm up to 0.1 m, then 50 mm). Between the points the values are
+    interpolated linearly. A step must have length on both sides (not at the first or last position) and a
+    position may appear at most twice. Without repeated positions the result is a single profile.
+
+    The pieces are separate segments, listed left to right, so that each step is a segment end for the lattice
+    (the mass is integrated piece by piece; a piece shorter than one element is reported like a short segment).
+    Model files do the same for a ``table`` with repeated ``x``.
+    """
+    xs, vals, name = _table_arrays(x, diameter, area)
+    dx = np.diff(xs)
+    if np.any(dx < 0):
+        i = int(np.flatnonzero(dx < 0)[0])
+        raise ValueError(f"TabulatedProfile.x: must not decrease; x[{i + 1}] = {xs[i + 1]} < x[{i}] = {xs[i]}")
+    steps = np.flatnonzero(dx == 0)          # a step between points i and i + 1
+    if steps.size and (steps[0] == 0 or steps[-1] == xs.size - 2):
+        i = int(steps[0] if steps[0] == 0 else steps[-1])
+        raise ValueError(f"TabulatedProfile.x: x[{i}] = x[{i + 1}] = {xs[i]} is a step at the "
+                         f"{'first' if i == 0 else 'last'} position, which leaves no length on one side")
+    if np.any(np.diff(steps) == 1):
+        i = int(steps[np.flatnonzero(np.diff(steps) == 1)[0]])
+        raise ValueError(f"TabulatedProfile.x: x[{i}] = {xs[i]} appears three times; a step repeats a position "
+                         f"once")
+    bounds = np.concatenate([[0], steps + 1, [xs.size]])
+    return tuple(TabulatedProfile(xs[a:b], **{name: vals[a:b]}, material=material)
+                 for a, b in zip(bounds[:-1], bounds[1:]))
 
 
 class AreaFunction(Segment):

@@ -1,6 +1,5 @@
 """Impedance -> striker geometry, export and the rods handed to the direct solver."""
 
-import csv
 import math
 
 import numpy as np
@@ -41,18 +40,31 @@ def test_bad_shape_input():
 
 
 def test_csv_export(tmp_path):
+    """One row per element, listed left to right (impact face last), full precision; the comment lines are plain
+    '# ...' lines that pandas skips with comment='#', and they state the orientation and dt."""
+    import pandas as pd
+
     res = academic_example(1, n=20).solve()
     sh = res.shape(bore=0.01)
-    path = sh.to_csv(tmp_path / "striker.csv")
-    with path.open() as fh:
-        rows = list(csv.reader(fh))
-    assert rows[0][0].startswith("# striker profile")
-    assert rows[1][:5] == ["element", "s_start_m", "s_end_m", "theta_start_s", "impedance_Ns_per_m"]
-    data = np.array(rows[2:], dtype=float)
-    assert data.shape == (20, 8)
-    np.testing.assert_array_equal(data[:, 4], res.impedance)          # written with full precision
-    np.testing.assert_allclose(data[:, 6], sh.outer_diameter, rtol=0)
-    assert data[0, 1] == 0.0 and data[-1, 2] == pytest.approx(sh.length)
+    path = sh.to_csv(tmp_path / "striker.csv", note="impact velocity 6 m/s")
+    lines = path.read_text().splitlines()
+    comments = [ln for ln in lines if ln.startswith("#")]
+    assert lines[:len(comments)] == comments and len(comments) == 4       # all comments first, none quoted
+    assert "LEFT TO RIGHT" in comments[0] and "impact face last" in comments[0]
+    assert f"dt = {res.dt!r} s" in comments[1] and comments[2] == "# impact velocity 6 m/s"
+    df = pd.read_csv(path, comment="#")
+    assert list(df.columns) == ["element_from_face", "s_start [m]", "s_end [m]", "theta [s]", "impedance [N s/m]",
+                                "area [m^2]", "outer_diameter [m]", "inner_diameter [m]"]
+    assert df.shape == (20, 8)
+    face_first = df.iloc[::-1]
+    np.testing.assert_array_equal(face_first["element_from_face"], np.arange(1, 21))
+    np.testing.assert_array_equal(face_first["impedance [N s/m]"], res.impedance)     # written with full precision
+    np.testing.assert_array_equal(face_first["outer_diameter [m]"], sh.outer_diameter)
+    np.testing.assert_allclose(face_first["theta [s]"], res.dt * np.arange(20), rtol=1e-15)
+    assert face_first["s_start [m]"].iloc[0] == 0.0 and face_first["s_end [m]"].iloc[-1] == pytest.approx(sh.length)
+    assert np.all(df["inner_diameter [m]"] == 0.01)
+    with pytest.raises(ValueError, match="note: must be a single line"):
+        sh.to_csv(tmp_path / "other.csv", note="two\nlines")
 
 
 @pytest.mark.parametrize("bore", [0.0, 0.012])

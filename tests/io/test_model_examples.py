@@ -274,6 +274,26 @@ def test_drilling_forces_hand_calculation_and_dead_time(drill):
     assert np.all(rock <= 1e-9 * np.max(np.abs(rock)))
 
 
+def test_drilling_outcome_as_examples_readme_states_it(drill):
+    """The rock's share as examples/README.md states it: energy into the rock 100.7 J = 50.5 % of the piston's
+    kinetic energy (m v^2 / 2 with m = dt sum Z = 4.93 kg), penetration per blow 0.78 mm; the energy equals the
+    bilinear law's work at the reported penetrations, k1 dmax^2 / 2 - (k1 dmax)^2 / (2 k2) for a released bit."""
+    from pathlib import Path
+
+    readme = (Path(__file__).parents[2] / "examples" / "README.md").read_text(encoding="utf-8")
+    (o,) = drill.bit_rock
+    k1, k2 = 300e6, 3e9
+    assert not o.in_contact
+    assert o.energy == pytest.approx(0.5 * k1 * o.max_penetration ** 2 - (k1 * o.max_penetration) ** 2 / (2 * k2),
+                                     rel=1e-11)
+    piston_energy = 0.5 * drill.dt * 100 * 51.0e3 * 9.0 ** 2
+    assert o.striker_energy == pytest.approx(piston_energy, rel=1e-14)
+    stated = (f"energy\ninto the rock ({o.energy:.4g} J, a drilling efficiency of {o.efficiency * 100:.1f} % of the "
+              f"piston's {piston_energy:.4g} J) and the penetration per blow\n({o.penetration * 1e3:.2f} mm")
+    assert stated in readme
+    assert f"the energy transfer ({drill.efficiency * 100:.0f} %)" in readme
+
+
 def test_every_example_has_a_readme_paragraph_and_its_chosen_dimensions_are_declared():
     from pathlib import Path
 
