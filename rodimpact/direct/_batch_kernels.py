@@ -5,8 +5,16 @@ design's striker: the same travelling-wave update (f = right-going, g = left-goi
 v = (g - f) / Z, thesis Sec. 2.3.2), the same :func:`~rodimpact.direct._kernels.boundaries` (inlined) for ends,
 junctions and loaded nodes; like ``simulate``, the waves persist for the whole run. Every floating-point operation is the one the single-run
 kernel does in the same order, so each design's results equal :func:`rodimpact.simulate`'s bit for bit.
-The interior update writes into a second pair of wave arrays (double buffering) instead of updating in place:
-the loop carries no dependence, so the compiler vectorises it.
+
+The waves are kept in the frame in which they travel: at step i, f_i(k) = F[k + n_steps - i] and
+g_i(k) = G[k + i] (right-going waves move one element right per step, left-going one left). A plain node
+between equal impedances (R = 0) passes both waves on unchanged, which in this frame is no operation at all;
+a node with a reflection updates its two slots in place (the slot of f_i(k - 1) becomes f_{i+1}(k), that of
+g_i(k) becomes g_{i+1}(k - 1)); rod ends and loaded nodes write their slots from the node forces, and the
+outer ends write fresh slots. A step costs the reflecting and special nodes, not the number of elements: a
+uniform bar is free. Runs of consecutive reflecting nodes are updated as views indexed from 0, which the
+compiler vectorises. (At a node with R = 0 the single-run kernel computes g + 0 (f - g), which equals g; so
+the values are the same, only the sign of a zero wave may differ, and no result depends on it.)
 
 Array layout: that of :mod:`rodimpact.direct._kernels` for the template system (``z``, ``N0``, ``v0`` of all
 elements, rod 0 = the striker slot of ``n_s`` elements), plus per design: ``Zs[d]`` striker impedances (left to
@@ -14,8 +22,8 @@ right), ``vel[d]`` striker velocity, ``end_par[d]`` (the left end's parameters m
 ``gap_tol[d]`` (depends on the striker's last element length).
 
 ``quiet``: the elements from ``quiet`` on start at rest and nothing but a wave from the left can move them
-(passive right end, no prescribed load there); a wave moves one element per step, so in step i only the plain
-interior nodes left of ``quiet + i + 1`` are updated: the others would give exactly +0 again.
+(passive right end, no prescribed load there); a wave moves one element per step, so in step i only the
+reflecting nodes left of element ``quiet + i + 1`` are updated: the others would give exactly +0 again.
 
 Outputs per design d (junction index r, rod index q):
 
@@ -51,18 +59,43 @@ def _rod_energies(f, g, inv_Z, dt, rod_start, kin, pot, col):
 
 
 @njit(**_OPTS)
-def _interior(f, g, f2, g2, R, j, stop):
-    """Plain interior nodes between elements jj and jj + 1 for j <= jj < stop (eqs. 2.39/2.40 in waves).
-    Slices indexed from 0, in a function of its own (not inlined): so compiled, the loop vectorises."""
-    fa = f[j:stop]
-    gb = g[j + 1:stop + 1]
-    r = R[j:stop]
-    go = g2[j:stop]
-    fo = f2[j + 1:stop + 1]
-    for k in range(stop - j):
+def _reflect(F, G, R, a, b, fo, go):
+    """Reflecting plain nodes k = a .. b-1 (between elements k-1 and k) in place in the wave frame
+    (f_i(k) = F[k + fo], g_i(k) = G[k + go]): g_{i+1}(k-1) = g + R (f - g), f_{i+1}(k) = f + R (f - g) with
+    f = f_i(k-1), g = g_i(k) (eqs. 2.39/2.40 in waves). Views indexed from 0, in a function of its own (not
+    inlined): so compiled, the loop vectorises."""
+    fa = F[a - 1 + fo:b - 1 + fo]
+    gb = G[a + go:b + go]
+    r = R[a - 1:b - 1]
+    for k in range(b - a):
         sc = r[k] * (fa[k] - gb[k])
-        go[k] = gb[k] + sc
-        fo[k] = fa[k] + sc
+        gb[k] = gb[k] + sc
+        fa[k] = fa[k] + sc
+
+
+@njit(**_OPTS)
+def _reflecting_blocks(R, rod_start, sp_elem):
+    """Rows [a, b) of consecutive plain nodes k (not a rod end, not a loaded node) with R[k-1] != 0."""
+    n_el = R.size + 1
+    special = np.zeros(n_el + 1, dtype=np.bool_)
+    for r in range(1, rod_start.size - 1):
+        special[rod_start[r]] = True
+    for p in range(sp_elem.size):
+        special[sp_elem[p] + 1] = True
+    blocks = np.empty((n_el, 2), dtype=np.int64)
+    m = 0
+    k = 1
+    while k < n_el:
+        if R[k - 1] != 0.0 and not special[k]:
+            start = k
+            while k < n_el and R[k - 1] != 0.0 and not special[k]:
+                k += 1
+            blocks[m, 0] = start
+            blocks[m, 1] = k
+            m += 1
+        else:
+            k += 1
+    return blocks[:m]
 
 
 @njit(**_OPTS)
@@ -149,30 +182,42 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
     _rod_energies(f, g, inv_Z, dt, rod_start, kin[d], pot[d], 0)
-    f2 = f.copy()
-    g2 = g.copy()
+    blocks = _reflecting_blocks(R, rod_start, sp_elem)
+    # the wave frame: f_i(k) = F[k + n_steps - i], g_i(k) = G[k + i]
+    F = np.zeros(n_el + n_steps + 1)
+    G = np.zeros(n_el + n_steps + 1)
+    F[n_steps:n_steps + n_el] = f
+    G[:n_el] = g
     for i in range(n_steps):
-        # elements >= lim are still exactly at rest (f = g = +0 in both buffers): their update gives +0 again
+        fo = n_steps - i
+        # elements >= lim are still exactly at rest: their nodes would give +0 again
         lim = min(quiet + i + 1, n_el)
         for t in touch:
-            N[t] = f[t] + g[t]
-            v[t] = (g[t] - f[t]) / Z[t]
+            N[t] = F[t + fo] + G[t + i]
+            v[t] = (G[t + i] - F[t + fo]) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
-        # one sweep over all nodes as if plain, then the nodes that are not (rod ends, loaded nodes) overwritten
-        # from their node forces, g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b (as _kernels._run_waves)
-        _interior(f, g, f2, g2, R, 0, min(lim, n_el - 1))
-        for r in range(n_rods):
-            s = rod_start[r]
-            e = rod_start[r + 1]
-            f2[s] = rod_NL[r] - g[s]
-            g2[e - 1] = rod_NR[r] - f[e - 1]
+        # rod ends from their node forces, g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b (as _kernels._run_waves); at a
+        # junction k = rod_start[r] the slots of f_i(k-1) and g_i(k) become f_{i+1}(k) and g_{i+1}(k-1)
+        F[fo - 1] = rod_NL[0] - G[i]                                  # left outer end, a fresh slot
+        for r in range(1, n_rods):
+            k = rod_start[r]
+            f_last = F[k - 1 + fo]
+            G[k + i] , F[k - 1 + fo] = rod_NR[r - 1] - f_last, rod_NL[r] - G[k + i]
+        G[n_el + i] = rod_NR[n_rods - 1] - F[n_el - 1 + fo]           # right outer end, a fresh slot
         for p in range(n_sp):
             a = sp_elem[p]
             n_plus = N[a] + Z[a] * (sp_V[p] - v[a])
-            g2[a] = n_plus - f[a]
-            f2[a + 1] = n_plus - sp_F[p] - g[a + 1]
-        f, f2 = f2, f
-        g, g2 = g2, g
+            f_a = F[a + fo]
+            g_b = G[a + 1 + i]
+            G[a + 1 + i] = n_plus - f_a                               # g_{i+1}(a)
+            F[a + fo] = n_plus - sp_F[p] - g_b                        # f_{i+1}(a + 1)
+        for q in range(blocks.shape[0]):
+            a = blocks[q, 0]
+            if a > lim:
+                break
+            _reflect(F, G, R, a, min(blocks[q, 1], lim + 1), fo, i)
+    f = F[:n_el].copy()
+    g = G[n_steps:n_steps + n_el].copy()
     for j in range(n_el):
         N[j] = f[j] + g[j]
         v[j] = (g[j] - f[j]) / Z[j]
