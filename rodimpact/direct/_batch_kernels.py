@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import _rod_energy, boundaries
+from ._kernels import _rod_energy, boundaries, node_updates, reflecting_blocks
 
 _OPTS = dict(cache=True, error_model="numpy", nogil=True)
 
@@ -56,46 +56,6 @@ def _rod_energies(f, g, inv_Z, dt, rod_start, kin, pot, col):
         k, p, _ = _rod_energy(f, g, inv_Z, rod_start[q], rod_start[q + 1])
         kin[q, col] = 0.5 * dt * k
         pot[q, col] = 0.5 * dt * p
-
-
-@njit(**_OPTS)
-def _reflect(F, G, R, a, b, fo, go):
-    """Reflecting plain nodes k = a .. b-1 (between elements k-1 and k) in place in the wave frame
-    (f_i(k) = F[k + fo], g_i(k) = G[k + go]): g_{i+1}(k-1) = g + R (f - g), f_{i+1}(k) = f + R (f - g) with
-    f = f_i(k-1), g = g_i(k) (eqs. 2.39/2.40 in waves). Views indexed from 0, in a function of its own (not
-    inlined): so compiled, the loop vectorises."""
-    fa = F[a - 1 + fo:b - 1 + fo]
-    gb = G[a + go:b + go]
-    r = R[a - 1:b - 1]
-    for k in range(b - a):
-        sc = r[k] * (fa[k] - gb[k])
-        gb[k] = gb[k] + sc
-        fa[k] = fa[k] + sc
-
-
-@njit(**_OPTS)
-def _reflecting_blocks(R, rod_start, sp_elem):
-    """Rows [a, b) of consecutive plain nodes k (not a rod end, not a loaded node) with R[k-1] != 0."""
-    n_el = R.size + 1
-    special = np.zeros(n_el + 1, dtype=np.bool_)
-    for r in range(1, rod_start.size - 1):
-        special[rod_start[r]] = True
-    for p in range(sp_elem.size):
-        special[sp_elem[p] + 1] = True
-    blocks = np.empty((n_el, 2), dtype=np.int64)
-    m = 0
-    k = 1
-    while k < n_el:
-        if R[k - 1] != 0.0 and not special[k]:
-            start = k
-            while k < n_el and R[k - 1] != 0.0 and not special[k]:
-                k += 1
-            blocks[m, 0] = start
-            blocks[m, 1] = k
-            m += 1
-        else:
-            k += 1
-    return blocks[:m]
 
 
 @njit(**_OPTS)
@@ -182,7 +142,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
     _rod_energies(f, g, inv_Z, dt, rod_start, kin[d], pot[d], 0)
-    blocks = _reflecting_blocks(R, rod_start, sp_elem)
+    blocks = reflecting_blocks(R, rod_start, sp_elem)
     # the wave frame: f_i(k) = F[k + n_steps - i], g_i(k) = G[k + i]
     F = np.zeros(n_el + n_steps + 1)
     G = np.zeros(n_el + n_steps + 1)
@@ -190,32 +150,13 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     G[:n_el] = g
     for i in range(n_steps):
         fo = n_steps - i
-        # elements >= lim are still exactly at rest: their nodes would give +0 again
-        lim = min(quiet + i + 1, n_el)
         for t in touch:
             N[t] = F[t + fo] + G[t + i]
             v[t] = (G[t + i] - F[t + fo]) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
-        # rod ends from their node forces, g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b (as _kernels._run_waves); at a
-        # junction k = rod_start[r] the slots of f_i(k-1) and g_i(k) become f_{i+1}(k) and g_{i+1}(k-1)
-        F[fo - 1] = rod_NL[0] - G[i]                                  # left outer end, a fresh slot
-        for r in range(1, n_rods):
-            k = rod_start[r]
-            f_last = F[k - 1 + fo]
-            G[k + i] , F[k - 1 + fo] = rod_NR[r - 1] - f_last, rod_NL[r] - G[k + i]
-        G[n_el + i] = rod_NR[n_rods - 1] - F[n_el - 1 + fo]           # right outer end, a fresh slot
-        for p in range(n_sp):
-            a = sp_elem[p]
-            n_plus = N[a] + Z[a] * (sp_V[p] - v[a])
-            f_a = F[a + fo]
-            g_b = G[a + 1 + i]
-            G[a + 1 + i] = n_plus - f_a                               # g_{i+1}(a)
-            F[a + fo] = n_plus - sp_F[p] - g_b                        # f_{i+1}(a + 1)
-        for q in range(blocks.shape[0]):
-            a = blocks[q, 0]
-            if a > lim:
-                break
-            _reflect(F, G, R, a, min(blocks[q, 1], lim + 1), fo, i)
+        # elements >= quiet + i + 1 are still exactly at rest after this step: their nodes would give +0 again
+        node_updates(i, fo, F, G, N, v, Z, R, rod_start, sp_elem, sp_F, sp_V, rod_NL, rod_NR, blocks,
+                     quiet + i + 1)
     f = F[:n_el].copy()
     g = G[n_steps:n_steps + n_el].copy()
     for j in range(n_el):

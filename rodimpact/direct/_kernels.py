@@ -10,7 +10,8 @@ source ``boundaries.py_func``):
 * :func:`run_numpy` -- the readable reference: the bulk of the interior nodes is one vectorised numpy
   expression per step (eqs. 3.6-3.15 literally);
 * :func:`run_numba` -- the compiled path (``numba.njit(cache=True)``): the same lattice in travelling-wave
-  variables, one fused in-place sweep per rod. Two formulations that agree to rounding are a real check.
+  variables kept in the frame in which they travel, where a node without reflection costs nothing
+  (:func:`reflect`). Two formulations that agree to rounding are a real check.
 
 Both run many steps per call and record inside the loop (the bundles are built by
 :class:`rodimpact.direct.recording.Recorder`): every ``stride``-th step of the node histories
@@ -385,24 +386,77 @@ def _element_states(f, g, Z, N, v):
         v[j] = (g[j] - f[j]) / Z[j]
 
 
-@njit(inline="always", cache=True)
-def _interior(f, g, R, a, b, fa):
-    """Plain interior nodes from a | a+1 to b-1 | b (eqs. 2.39, 2.40) in place; ``fa`` is the right-going wave
-    of element a before the step (f[a] itself may already be overwritten). Returns that of element b.
+@njit(cache=True, error_model="numpy", nogil=True)
+def reflect(F, G, R, a, b, fo, go):
+    """Reflecting plain nodes k = a .. b-1 (between elements k-1 and k) in place in the wave frame
+    (f_i(k) = F[k + fo], g_i(k) = G[k + go], see :func:`_run_waves`): g_{i+1}(k-1) = g + R (f - g),
+    f_{i+1}(k) = f + R (f - g) with f = f_i(k-1), g = g_i(k), R = R[k-1] (eqs. 2.39/2.40 in waves; the slot of
+    f_i(k-1) becomes f_{i+1}(k), that of g_i(k) becomes g_{i+1}(k-1)). Views indexed from 0, in a function of
+    its own (not inlined): so compiled, the loop vectorises."""
+    fa = F[a - 1 + fo:b - 1 + fo]
+    gb = G[a + go:b + go]
+    r = R[a - 1:b - 1]
+    for k in range(b - a):
+        sc = r[k] * (fa[k] - gb[k])
+        gb[k] = gb[k] + sc
+        fa[k] = fa[k] + sc
 
-    Written over views indexed from 0 so that the compiler vectorises it; f[i+1] is loaded before it is
-    overwritten and carried to the next node."""
-    fs = f[a:b + 1]
-    gs = g[a:b + 1]
-    rs = R[a:b]
-    for i in range(b - a):
-        gb = gs[i + 1]
-        fb = fs[i + 1]
-        sc = rs[i] * (fa - gb)
-        gs[i] = gb + sc
-        fs[i + 1] = fa + sc
-        fa = fb
-    return fa
+
+@njit(cache=True, nogil=True)
+def reflecting_blocks(R, rod_start, sp_elem):
+    """Rows [a, b) of consecutive plain nodes k (not a rod end, not a loaded node) with R[k-1] != 0."""
+    n_el = R.size + 1
+    special = np.zeros(n_el + 1, dtype=np.bool_)
+    for r in range(1, rod_start.size - 1):
+        special[rod_start[r]] = True
+    for p in range(sp_elem.size):
+        special[sp_elem[p] + 1] = True
+    blocks = np.empty((n_el, 2), dtype=np.int64)
+    m = 0
+    k = 1
+    while k < n_el:
+        if R[k - 1] != 0.0 and not special[k]:
+            start = k
+            while k < n_el and R[k - 1] != 0.0 and not special[k]:
+                k += 1
+            blocks[m, 0] = start
+            blocks[m, 1] = k
+            m += 1
+        else:
+            k += 1
+    return blocks[:m]
+
+
+@njit(inline="always", cache=True)
+def node_updates(i, fo, F, G, N, v, Z, R, rod_start, sp_elem, sp_F, sp_V, rod_NL, rod_NR, blocks, lim):
+    """The waves leaving every node in step i, in the wave frame f_i(k) = F[k + fo], g_i(k) = G[k + i]: rod
+    ends from their node forces (g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b; the outer ends write fresh slots, a
+    junction k = rod_start[r] turns the slots of f_i(k-1) and g_i(k) into f_{i+1}(k) and g_{i+1}(k-1)), loaded
+    nodes alike (N^+ from the node velocity sp_V, N^- = N^+ - sp_F), then the reflecting plain nodes left of
+    element ``lim`` (:func:`reflect`); plain nodes without reflection pass both waves on, which in this frame
+    is nothing to do. Each node reads and writes only its own two slots."""
+    n_el = Z.size
+    n_rods = rod_start.size - 1
+    F[fo - 1] = rod_NL[0] - G[i]
+    for r in range(1, n_rods):
+        k = rod_start[r]
+        f_last = F[k - 1 + fo]
+        g_first = G[k + i]
+        G[k + i] = rod_NR[r - 1] - f_last
+        F[k - 1 + fo] = rod_NL[r] - g_first
+    G[n_el + i] = rod_NR[n_rods - 1] - F[n_el - 1 + fo]
+    for p in range(sp_elem.size):
+        a = sp_elem[p]
+        n_plus = N[a] + Z[a] * (sp_V[p] - v[a])
+        f_a = F[a + fo]
+        g_b = G[a + 1 + i]
+        G[a + 1 + i] = n_plus - f_a
+        F[a + fo] = n_plus - sp_F[p] - g_b
+    for q in range(blocks.shape[0]):
+        a = blocks[q, 0]
+        if a > lim:
+            break
+        reflect(F, G, R, a, min(blocks[q, 1], lim + 1), fo, i)
 
 
 def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, probes, outputs, acc, record):
@@ -421,10 +475,16 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
     right-going force wave f_j and a left-going g_j, N = f + g, v = (g - f) / Z (thesis Sec. 2.3.2). At a
     plain interior node with reflection factor R = (Z_b - Z_a)/(Z_b + Z_a) (eq. 2.40) the outgoing waves are
     g_a' = g_b + R (f_a - g_b) and f_b' = f_a + R (f_a - g_b) (transmission 1 +- R, eq. 2.39), which is eqs.
-    3.6-3.15 without the division and streams at memory speed. Loaded nodes, ends and junctions are solved
-    by :func:`boundaries` on (N, v), refreshed each step at the ``touch`` elements only; the outgoing waves
-    there follow from the node force: g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b. The waves (f, g) persist between
-    calls; (N, v) are brought up to date at the sample steps and at the end of the call.
+    3.6-3.15 without the division. Loaded nodes, ends and junctions are solved by :func:`boundaries` on
+    (N, v), refreshed each step at the ``touch`` elements only; the outgoing waves there follow from the node
+    force: g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b (:func:`node_updates`).
+
+    Within a call the waves live in the frame in which they travel, f_i(j) = F[j + n_steps - i] and
+    g_i(j) = G[j + i] at the call's i-th step: a node with R = 0 passes both waves on unchanged
+    (g_a' = g_b, f_b' = f_a), which in this frame is no operation, so a step costs the reflecting and special
+    nodes, not the elements (a uniform bar is free). The waves (f, g) persist between calls (copied into the
+    frame at the start and back at the end); (N, v) are brought up to date at the sample steps and at the end
+    of the call.
     """
     N, v, f, g = state
     Z, R, touch, rod_start, quiet = lattice
@@ -432,62 +492,45 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
     sp_F, sp_V = specials[3], specials[4]
     u_end = junctions[4]
     stride, kept, events, samples = record
+    e_steps, s_steps, cursor, e_kin, e_pot, e_mom, e_acc, s_N, s_v, s_u, N0, inv_Z = samples
     chunk = (outputs[0], outputs[1], outputs[2], outputs[3], probes[3], probes[4], probes[5])
+    n_el = Z.size
     n_rods = rod_start.size - 1
-    n_sp = sp_elem.size
     rod_nodes = (np.empty(n_rods), np.empty(n_rods), np.empty(n_rods), np.empty(n_rods))
     rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes
+    blocks = reflecting_blocks(R, rod_start, sp_elem)
+    F = np.zeros(n_el + n_steps + 1)          # the wave frame: f_i(j) = F[j + n_steps - i], g_i(j) = G[j + i]
+    G = np.zeros(n_el + n_steps + 1)
+    F[n_steps:n_steps + n_el] = f
+    G[:n_el] = g
     c = -(-first // stride)         # next recorded column and its step (no division inside the loop)
     next_kept = c * stride
     next_sample = _next_sample(samples)
     done = n_steps if has_room(events) else 0
     for i in range(done):
         k = first + i
+        fo = n_steps - i
         if k == next_sample:    # at i = 0, (N, v) are those the previous call (or the initial state) left
-            _take_samples(k, i == 0, state, Z, dt, rod_start, acc, u_end, samples)
+            _take_samples(k, i == 0, (N, v, F[fo:fo + n_el], G[i:i + n_el]), Z, dt, rod_start, acc, u_end,
+                          samples)
             next_sample = _next_sample(samples)
         for t in touch:
-            N[t] = f[t] + g[t]
-            v[t] = (g[t] - f[t]) / Z[t]
+            N[t] = F[t + fo] + G[t + i]
+            v[t] = (G[t + i] - F[t + fo]) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         full = track_events(k, i, outputs[0], outputs[1], events)
         if k == next_kept:
             keep_step(i, c, chunk, kept)
             c += 1
             next_kept += stride
-        ptr = 0
-        lim = quiet + k + 1         # elements >= lim are still exactly at rest after this step
-        for r in range(n_rods):
-            s = rod_start[r]
-            e = rod_start[r + 1]
-            if s >= lim:
-                break
-            f_first = rod_NL[r] - g[s]
-            g_last = rod_NR[r] - f[e - 1]
-            fa = f[s]
-            j = s
-            while j < e - 1:
-                stop = e - 1
-                if ptr < n_sp and sp_elem[ptr] < e - 1:
-                    stop = sp_elem[ptr]
-                if stop > lim:
-                    _interior(f, g, R, j, lim, fa)
-                    break
-                fa = _interior(f, g, R, j, stop, fa)
-                if stop < e - 1:
-                    gb = g[stop + 1]
-                    fb = f[stop + 1]
-                    n_plus = N[stop] + Z[stop] * (sp_V[ptr] - v[stop])
-                    g[stop] = n_plus - fa
-                    f[stop + 1] = n_plus - sp_F[ptr] - gb
-                    fa = fb
-                    ptr += 1
-                j = stop + 1
-            f[s] = f_first
-            g[e - 1] = g_last
+        # elements >= quiet + k + 1 are still exactly at rest after this step: their nodes would give +0 again
+        node_updates(i, fo, F, G, N, v, Z, R, rod_start, sp_elem, sp_F, sp_V, rod_NL, rod_NR, blocks,
+                     quiet + k + 1)
         if full:           # the caller enlarges the phase buffer and calls again from the next step
             done = i + 1
             break
+    f[:] = F[n_steps - done:n_steps - done + n_el]
+    g[:] = G[done:done + n_el]
     _element_states(f, g, Z, N, v)
     _take_samples(first + done, True, state, Z, dt, rod_start, acc, u_end, samples)
     return done
