@@ -22,7 +22,7 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Optional, Sequence
+from typing import Any, Mapping, Optional, Sequence
 
 import numpy as np
 
@@ -43,6 +43,7 @@ from . import _toml
 from ._files import read_bytes_limited
 from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression, expression_area
+from .overrides import apply_overrides, naming_overrides
 from .quantities import DIMENSIONS, ModelError, parse_quantity
 from .schema import MODEL, PLOT_NAMES, validate_table
 
@@ -134,13 +135,9 @@ class Model:
         from ..direct.simulate import simulate
         from .keypaths import MODEL_KEYS, translated
 
+        args = {**self.simulate_arguments(), "backend": backend or self.backend}
         try:
-            return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
-                            snapshot_times=list(self.output.snapshot_times) or None,
-                            snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
-                            record_every=self.output.record_every, backend=backend or self.backend,
-                            progress=progress, max_element_updates=max_element_updates,
-                            allow_discretization_error=self.allow_discretization_error)
+            return simulate(**args, progress=progress, max_element_updates=max_element_updates)
         except ModelError:
             raise
         except (ValueError, TypeError) as exc:

@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import json
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any, Mapping, Optional
 
 import numpy as np
 
@@ -26,6 +26,7 @@ from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression
 from .model import (_end, _history, _material, _materials, _rod, _rod_index, _wrap, parse_toml, read_csv_columns,
                     read_text_file)
+from .overrides import apply_overrides, naming_overrides, overridden_text
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
                      validate_table)
@@ -173,19 +174,27 @@ class SynthesisSpec:
                           quantity=self.quantity, rule=self.rule, material=self.material, backend=self.backend)
 
 
-def load_spec(path: str | Path) -> SynthesisSpec:
-    """Read a synthesis spec file (relative file names are resolved against its folder)."""
+def load_spec(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -> SynthesisSpec:
+    """Read a synthesis spec file (relative file names are resolved against its folder); ``overrides``: key path ->
+    value, set before the spec is validated (:mod:`rodimpact.io.overrides`)."""
     p = Path(path)
     text = read_text_file(p, str(p), "spec file")
-    spec = loads_spec(text, p.parent, str(p))
+    spec = loads_spec(text, p.parent, str(p), overrides)
     object.__setattr__(spec, "source", p)
     return spec
 
 
-def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> SynthesisSpec:
-    """Read a synthesis spec from TOML text."""
-    raw = parse_toml(text, name)
-    base = Path(base_dir)
+def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec",
+               overrides: Optional[Mapping[str, Any]] = None) -> SynthesisSpec:
+    """Read a synthesis spec from TOML text (``overrides`` as in :func:`load_spec`)."""
+    raw, applied = apply_overrides(parse_toml(text, name), overrides or {})
+    with naming_overrides(applied):
+        spec = _spec(raw, Path(base_dir), text)
+    return replace(spec, text=overridden_text(raw, applied, name)) if applied else spec
+
+
+def _spec(raw: dict, base: Path, text: str) -> SynthesisSpec:
+    """The validated spec of the parsed file ``raw`` (``text``: the file as given)."""
     d = validate_table(SPEC, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
