@@ -88,6 +88,12 @@ def test_bad_arguments(kwargs, error, match):
         ri.sweep(kwargs.pop("build"), kwargs.pop("grid"), **kwargs)
 
 
+def test_progress_off_a_terminal_is_a_line_at_every_tenth(capsys):
+    ri.sweep(equal_bars, {"length": [0.1, 0.2], "velocity": [3.0]}, workers=1, progress=True, batch=False)
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("sweep:  50% (1 of 2 runs") and lines[1].startswith("sweep: 100% (2 of 2 runs")
+
+
 def test_failures_name_the_grid_point():
     with pytest.raises(ValueError, match=r"sweep at length = 0.1, velocity = 3.0: .*metrics\['f'\]: must return "
                                          r"one real number"):
