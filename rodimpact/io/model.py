@@ -613,7 +613,7 @@ def dump_model(model: Model) -> str:
     equal objects."""
     doc = model_to_dict(model)
     head = (f"# rodimpact model file written by rodimpact {__version__}.\n"
-            "# Numbers are in SI units (m, s, kg, N, Pa, N s/m); see docs/model-reference.md.\n")
+            "# Numbers are in SI units (m, s, kg, N, Pa, N s/m); all keys: rodimpact docs model.\n")
     return head + "\n" + _toml.dumps(doc)
 
 

@@ -120,7 +120,7 @@ def spec_reference_markdown() -> str:
     _table_md("`[synthesis]`", SYNTHESIS, 3, lines)
     _table_md("`[output]`", SPEC_OUTPUT, 3, lines)
     lines.append("`[[struck]]`, `[[junctions]]`, `far_end` and `[[loads]]` take the keys of `[[rods]]`, "
-                 "`[[junctions]]`, `[ends]` entries and `[[loads]]` in model files (docs/model-reference.md); "
+                 "`[[junctions]]`, `[ends]` entries and `[[loads]]` in model files (`rodimpact docs model`); "
                  "rod references in `loads` name struck rods.")
     return "\n".join(lines) + "\n"
 
@@ -415,7 +415,7 @@ TEMPLATE = '''\
 #
 # Finds the striker (impedance profile, then a shape) that produces a prescribed force history, with the
 # recursive method of the thesis (chapter 4). Quantities take units ("50 mm", "239 kN"); bare numbers are SI.
-# Forces are positive in tension: an impact force is negative. All keys: docs/cli.md.
+# Forces are positive in tension: an impact force is negative. All keys: rodimpact docs synthesis.
 #
 # This template: thesis academic example 1 (Tab. 4.2): the exponentially decaying force
 # N(t) = -239 kN exp(-t / 0.383 ms) at the impact face of a semi-infinite 50 mm steel bar (Z = 79.7 kN s/m),
