@@ -17,24 +17,7 @@ from rodimpact.io import loads_model
 from rodimpact.rods.plausibility import PlausibilityWarning
 
 PACKAGE = Path(ri.__file__).parent
-MODEL = """
-[[rods]]
-name = "striker"
-velocity = "5 m/s"
-[[rods.segments]]
-shape = "cylinder"
-length = "0.3 m"
-diameter = 20
-[[rods]]
-[[rods.segments]]
-shape = "cylinder"
-length = "1 m"
-diameter = "20 mm"
-[simulation]
-duration = "0.1 ms"
-dt = "7 us"
-allow_discretization_error = true
-"""
+MODEL = (Path(__file__).parent / "data" / "warning-model.toml").read_text(encoding="utf-8")
 
 
 def _pair():

@@ -9,7 +9,7 @@ impedance bounds, bore, mass) and the ``[design]`` settings (objective, elements
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, Optional
 
@@ -17,7 +17,7 @@ from typing import Any, Mapping, Optional
 from ..rods.material import STEEL
 from .dimensions import Parameters
 from .model import _material, _materials, parse_toml, read_text_file
-from .overrides import apply_overrides, naming_overrides, overridden_text
+from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
     validate_table
@@ -134,10 +134,8 @@ def _pair(st: dict, lo: str, hi: str, prefix: str = "striker") -> Optional[tuple
 def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec",
                overrides: Optional[Mapping[str, Any]] = None) -> DesignSpec:
     """Read a design spec from TOML text (``overrides`` as in :func:`load_spec`)."""
-    raw, applied = apply_overrides(parse_toml(text, name), overrides or {})
-    with naming_overrides(applied):
-        spec = _spec(raw, Path(base_dir), text)
-    return replace(spec, text=overridden_text(raw, applied, name)) if applied else spec
+    return spec_with_overrides(parse_toml(text, name), overrides, name, text,
+                               lambda raw, given: _spec(raw, Path(base_dir), given))
 
 
 def _spec(raw: dict, base: Path, text: str) -> DesignSpec:

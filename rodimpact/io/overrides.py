@@ -19,7 +19,8 @@ import copy
 import re
 import tomllib
 from contextlib import contextmanager
-from typing import Any, Iterator, Mapping, Union
+from dataclasses import replace
+from typing import Any, Callable, Iterator, Mapping, Optional, TypeVar, Union
 
 from . import _toml
 from .quantities import ModelError
@@ -27,6 +28,7 @@ from .quantities import ModelError
 _STEP = re.compile(r'(?:(?P<bare>[A-Za-z0-9_-]+)|"(?P<quoted>[^"\\]*)")(?P<index>(?:\[\d+\])*)')
 
 Step = Union[str, int]
+Spec = TypeVar("Spec")
 
 
 def parse_value(text: str) -> Any:
@@ -130,7 +132,15 @@ def naming_overrides(applied: Mapping[str, str]) -> Iterator[None]:
         raise
 
 
-def overridden_text(raw: dict, applied: Mapping[str, str], name: str) -> str:
-    """The file ``name`` with the overrides applied, as TOML (its comments are not kept): what a spec was run as."""
+def spec_with_overrides(raw: dict, overrides: Optional[Mapping[str, Any]], name: str, text: str,
+                        build: Callable[[dict, str], Spec]) -> Spec:
+    """``build(raw, text)`` for the parsed spec file ``name`` with ``overrides`` applied (errors name the override
+    that set a bad key); the result's ``text`` (the spec as it ran, written as ``spec.toml``) is then the
+    overridden file as TOML, whose first line names the overrides (the file's comments are not kept)."""
+    raw, applied = apply_overrides(raw, overrides or {})
+    with naming_overrides(applied):
+        spec = build(raw, text)
+    if not applied:
+        return spec
     head = f"# {name} with the overrides " + "; ".join(applied.values()) + " (comments not kept)\n"
-    return head + _toml.dumps(raw)
+    return replace(spec, text=head + _toml.dumps(raw))

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import json
 import warnings
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, Optional
 
@@ -26,7 +26,7 @@ from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression
 from .model import (_end, _history, _material, _materials, _rod, _rod_index, _wrap, parse_toml, read_csv_columns,
                     read_text_file)
-from .overrides import apply_overrides, naming_overrides, overridden_text
+from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
                      validate_table)
@@ -187,10 +187,8 @@ def load_spec(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -
 def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec",
                overrides: Optional[Mapping[str, Any]] = None) -> SynthesisSpec:
     """Read a synthesis spec from TOML text (``overrides`` as in :func:`load_spec`)."""
-    raw, applied = apply_overrides(parse_toml(text, name), overrides or {})
-    with naming_overrides(applied):
-        spec = _spec(raw, Path(base_dir), text)
-    return replace(spec, text=overridden_text(raw, applied, name)) if applied else spec
+    return spec_with_overrides(parse_toml(text, name), overrides, name, text,
+                               lambda raw, given: _spec(raw, Path(base_dir), given))
 
 
 def _spec(raw: dict, base: Path, text: str) -> SynthesisSpec:

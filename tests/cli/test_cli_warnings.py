@@ -4,6 +4,7 @@ runs (a subprocess), since Python's default display is what went wrong."""
 
 import os
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -13,25 +14,6 @@ import pytest
 from rodimpact.io.synthesis_spec import TEMPLATE as SYNTHESIS
 
 ROOT = Path(__file__).resolve().parents[2]
-#: a striker of 20 m diameter (meant: mm) and a dt that misrepresents both rods (allowed): three warnings
-MODEL = """
-[[rods]]
-name = "striker"
-velocity = "5 m/s"
-[[rods.segments]]
-shape = "cylinder"
-length = "0.3 m"
-diameter = 20
-[[rods]]
-[[rods.segments]]
-shape = "cylinder"
-length = "1 m"
-diameter = "20 mm"
-[simulation]
-duration = "0.1 ms"
-dt = "7 us"
-allow_discretization_error = true
-"""
 RAW_DISPLAY = re.compile(r"Warning:|\.py:\d+|<frozen|warnings\.warn|sys\.exit")
 
 
@@ -45,7 +27,7 @@ def rodimpact(*args: str, cwd: Path) -> subprocess.CompletedProcess:
 
 @pytest.fixture
 def files(tmp_path):
-    (tmp_path / "m.toml").write_text(MODEL, encoding="utf-8")
+    shutil.copy(ROOT / "tests" / "data" / "warning-model.toml", tmp_path / "m.toml")
     (tmp_path / "s.toml").write_text(SYNTHESIS, encoding="utf-8")
     return tmp_path
 
