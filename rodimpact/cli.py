@@ -459,8 +459,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     restore_sigterm = _handle_sigterm()
     args.warning_lines = WarningLines(getattr(args, "quiet", False))
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("always")        # each distinct message once: WarningLines keeps count
+        with warnings.catch_warnings():         # the filters stay as they are (Python's: no DeprecationWarning)
             warnings.showwarning = args.warning_lines.showwarning
             return args.func(args)
     except InputError as exc:

@@ -68,3 +68,13 @@ def test_a_sweep_and_a_synthesis_warn_once(files):
     assert existence.startswith("warning: only 78 of 100 striker elements exist")
     assert shape.startswith("warning: striker shape: the outer diameter varies by a factor 126")
     assert '"warnings": [\n    "only 78 of 100' in p.stdout   # and they are listed in the JSON summary
+
+
+def test_every_command_in_one_process_shows_its_warnings(files, capsys, monkeypatch):
+    """Python shows a warning once per source line and process by default; each command still shows its own."""
+    from rodimpact import cli
+
+    monkeypatch.chdir(files)
+    for _ in range(2):
+        assert cli.main(["simulate", "m.toml", "--no-output"]) == 0
+        assert len(_warning_lines(capsys.readouterr().err)) == 2
