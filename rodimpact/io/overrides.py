@@ -74,10 +74,19 @@ def apply_overrides(raw: dict, overrides: Mapping[str, Any]) -> tuple[dict, dict
     applied: dict[str, str] = {}
     for key, value in overrides.items():
         path = _set(out, key, value)
+        given = f"{key} = {_shown(value)}"
         if path in applied:
-            raise ModelError(f"{path}: set twice, by {applied[path]} and by {key} = {value!r}")
-        applied[path] = f"{key} = {value!r}"
+            raise ModelError(f"{path}: set twice, by {applied[path]} and by {given}")
+        applied[path] = given
     return out, applied
+
+
+def _shown(value: Any) -> str:
+    """A value as TOML text (as a file would give it), or as text where TOML cannot write it."""
+    try:
+        return _toml.value(value)
+    except (TypeError, ValueError):
+        return str(value)
 
 
 def _set(raw: dict, key: str, value: Any) -> str:

@@ -143,7 +143,7 @@ def test_set_overrides_keys_on_simulate_synthesize_and_design(model, capsys, mon
     assert summary["rods"][0]["initial_velocity_m_s"] == 7.0 and summary["probes"][0]["position_m"] == 0.1
     code, _, err = main(["simulate", "m.toml", "--no-output", "--set", "rods.striker.velocity=7 kg"],
                         model, capsys, monkeypatch)
-    assert code == 2 and "rods[0].velocity: expected a velocity" in err and "rods.striker.velocity = '7 kg'" in err
+    assert code == 2 and "rods[0].velocity: expected a velocity" in err and 'rods.striker.velocity = "7 kg"' in err
     code, _, err = main(["simulate", "m.toml", "--no-output", "--set", "simulation.dt"], model, capsys, monkeypatch)
     assert code == 2 and "--set 'simulation.dt': expected KEY=VALUE" in err
     (model / "s.toml").write_text(SYNTHESIS, encoding="utf-8")
@@ -152,7 +152,7 @@ def test_set_overrides_keys_on_simulate_synthesize_and_design(model, capsys, mon
     assert code == 0, err
     assert json.loads(out)["striker_velocity_m_s"] == 7.0 and json.loads(out)["n_requested"] == 20
     spec = (model / "syn" / "spec.toml").read_text()
-    assert "striker.velocity = '7 m/s'" in spec.splitlines()[0]      # the spec as it ran
+    assert 'striker.velocity = "7 m/s"' in spec.splitlines()[0]      # the spec as it ran
     code, out, err = main(["init", "design", "-o", "d.toml"], model, capsys, monkeypatch)
     code, out, err = main(["design", "d.toml", "--no-output", "--json", "--set", "design.elements=12", "--set",
                            "design.starts=1", "--set", "design.max_iterations=3"], model, capsys, monkeypatch)

@@ -38,7 +38,7 @@ def test_overrides_set_keys_by_index_or_name_and_create_tables():
     assert model.output.record_every == 2 and model.probes[2].position == 1.9
     raw = tomllib.loads(SIMULATE)
     _, applied = apply_overrides(raw, {"rods.rod.velocity": 1, "simulation.dt": "1 us"})
-    assert applied == {"rods[1].velocity": "rods.rod.velocity = 1", "simulation.dt": "simulation.dt = '1 us'"}
+    assert applied == {"rods[1].velocity": "rods.rod.velocity = 1", "simulation.dt": 'simulation.dt = "1 us"'}
     assert raw == tomllib.loads(SIMULATE)                   # the parsed file itself is left alone
 
 
@@ -51,7 +51,7 @@ def test_overrides_set_keys_by_index_or_name_and_create_tables():
     ({"rods.piston.velocty": 5}, r"rods\[0\].velocty: unknown key \(did you mean 'velocity'\?\).*\(set by the "
                                  r"override rods.piston.velocty = 5\)"),
     ({"rods.piston.velocity": "5 kg"}, r"rods\[0\].velocity: expected a velocity .* \(set by the override "
-                                       r"rods.piston.velocity = '5 kg'\)"),
+                                       r'rods.piston.velocity = "5 kg"\)'),
     ({"rods.piston.velocity": 1, "rods[0].velocity": 2}, r"rods\[0\].velocity: set twice, by rods.piston.velocity "
                                                          r"= 1 and by rods\[0\].velocity = 2"),
 ])
@@ -63,7 +63,7 @@ def test_bad_overrides_name_the_key(overrides, match):
 def test_specs_take_overrides_and_record_what_ran():
     spec = synthesis_spec.loads_spec(synthesis_spec.TEMPLATE, overrides={"striker.velocity": "7 m/s"})
     assert spec.striker_velocity == 7.0
-    assert spec.text.startswith("# spec with the overrides striker.velocity = '7 m/s'")
+    assert spec.text.startswith('# spec with the overrides striker.velocity = "7 m/s"')
     again = synthesis_spec.loads_spec(spec.text)              # the recorded spec runs as the overridden one
     assert again.striker_velocity == 7.0 and again.n == spec.n and again.target == spec.target
     assert synthesis_spec.loads_spec(synthesis_spec.TEMPLATE).text == synthesis_spec.TEMPLATE
