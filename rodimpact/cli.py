@@ -1,7 +1,11 @@
 """The ``rodimpact`` command line: thin wrappers around the Python API.
 
-Commands: ``simulate MODEL.toml``, ``init [simulate|synthesize|design]``, ``examples [list|run|show|copy]``,
-``synthesize SPEC.toml``, ``design SPEC.toml`` and ``--version``; see docs/cli.md.
+Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design]``,
+``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``docs [TOPIC]`` and
+``--version``; see docs/cli.md.
+
+Python warnings raised while a command runs are printed once each, as ``warning: <message>`` on stderr (never with
+``--quiet``), without the source location that Python's default display adds.
 
 Exit codes: 0 success, 2 bad input (model file, arguments, existing output; the message says what and where),
 1 internal error (a bug: please report it with the traceback shown by ``RODIMPACT_DEBUG=1``), 130 interrupted
@@ -18,6 +22,8 @@ import signal
 import sys
 import threading
 import traceback
+import warnings
+from contextlib import nullcontext
 from pathlib import Path
 from typing import Any, Callable, Optional, Sequence
 
@@ -49,22 +55,76 @@ def _progress(args: argparse.Namespace) -> Optional[bool]:
     return False if args.quiet else None
 
 
-def _report(summary: dict, text: str, args: argparse.Namespace, extra: str = "") -> None:
+class WarningLines:
+    """Python warnings of one command on stderr: each distinct message once, as ``warning: <message>`` (no source
+    location), and none with ``--quiet``. Installed as ``warnings.showwarning`` while the command runs."""
+
+    def __init__(self, quiet: bool) -> None:
+        self.quiet, self.seen, self.lock = quiet, set(), threading.Lock()
+
+    def show(self, text: str) -> None:
+        with self.lock:               # sweeps warn from worker threads
+            new = text not in self.seen
+            self.seen.add(text)
+        if new and not self.quiet:
+            print(f"warning: {text}", file=sys.stderr, flush=True)
+
+    def showwarning(self, message: Any, category: Any, filename: str, lineno: int, file: Any = None,
+                    line: Any = None) -> None:
+        self.show(str(message))
+
+
+def _report(summary: dict, text: str, args: argparse.Namespace, extra: str = "",
+            warned: Sequence[str] = ()) -> None:
+    """Print the summary (``text``, or JSON with --json; nothing with --quiet) and the warnings it lists,
+    ``warned`` (on stderr, once each: :class:`WarningLines`)."""
+    from .io.results import _to_json
+
+    for w in warned:
+        args.warning_lines.show(w)
     if args.json:
-        print(json.dumps(summary, indent=2, default=str))
+        print(_to_json(summary), end="")
     elif not args.quiet:
         print(text)
         if extra:
             print(extra)
 
 
-def _claim_out(path: Path, force: bool):
-    """Claim the output folder before any work is done, for the whole command (a context manager): refused when
-    another run is writing it, when its parent cannot be created (``-o some_file/sub``), when it is non-empty
-    without --force, holds files rodimpact did not write, or is the current working folder (see
-    :func:`rodimpact.io.results.claim_output`)."""
+def _without_warnings(summary: dict) -> dict:
+    """``summary`` for the text on stdout: its warnings go to stderr (:func:`_report`)."""
+    return {**summary, "warnings": []}
+
+
+def _output(args: argparse.Namespace, default: str) -> Optional[Path]:
+    """The output folder (``-o``, else ``results/<default>``), or ``None`` when nothing is written: with
+    --no-output, and with --json unless -o names a folder."""
+    if args.no_output or (args.json and args.output is None):
+        return None
+    return Path(args.output) if args.output else Path("results") / default
+
+
+def _overrides(args: argparse.Namespace) -> dict[str, Any]:
+    """The ``--set KEY=VALUE`` options as key path -> value (TOML values or plain text)."""
+    from .io.overrides import parse_assignment, parse_value
+
+    out: dict[str, Any] = {}
+    for item in args.set or ():
+        key, text = _input_phase(lambda: parse_assignment(item))
+        if key in out:
+            raise InputError(f"--set {key}: given twice")
+        out[key] = parse_value(text)
+    return out
+
+
+def _claim_out(path: Optional[Path], force: bool):
+    """Claim the output folder before any work is done, for the whole command (a context manager; nothing to
+    claim for ``None``): refused when another run is writing it, when its parent cannot be created
+    (``-o some_file/sub``), when it is non-empty without --force, holds files rodimpact did not write, or is the
+    current working folder (see :func:`rodimpact.io.results.claim_output`)."""
     from .io.results import OutputExistsError, claim_output
 
+    if path is None:
+        return nullcontext()
     try:
         return claim_output(path, force)
     except OutputExistsError as exc:
@@ -104,19 +164,44 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     from .io.results import format_summary, save, summarize
 
     model_path = Path(args.model)
-    out = Path(args.output) if args.output else Path("results") / model_path.stem
+    out = _output(args, model_path.stem)
     with _claim_out(out, args.force):
-        model = _input_phase(lambda: load_model(model_path))
+        model = _input_phase(lambda: load_model(model_path, _overrides(args)))
         plots = () if args.no_plots else model.output.plots
         _input_phase(lambda: check_run(model, out, plots, args.max_element_updates))
         result = _input_phase(lambda: model.simulate(progress=_progress(args),
                                                      max_element_updates=args.max_element_updates))
-        save(result, out, model=model, overwrite=args.force, plots=plots, csv=model.output.csv,
-             fields=model.output.fields, snapshot_times=list(model.output.snapshot_times) or None)
+        if out is not None:
+            save(result, out, model=model, overwrite=args.force, plots=plots, csv=model.output.csv,
+                 fields=model.output.fields, snapshot_times=list(model.output.snapshot_times) or None)
+    computed = summarize(result)
+    text = format_summary(_without_warnings(computed), model.title or model_path.name)
+    if out is None:
+        _report({**computed, "title": model.title} if model.title else computed, text, args,
+                warned=computed["warnings"])
+        return EXIT_OK
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     notes = "".join(f"note: {n}\n" for n in summary.get("notes", []))
-    _report(summary, format_summary(summarize(result), model.title or model_path.name),
-            args, f"{notes}results written to {out}")
+    _report(summary, text, args, f"{notes}results written to {out}", computed["warnings"])
+    return EXIT_OK
+
+
+# ============================================================================================ sweep
+def cmd_sweep(args: argparse.Namespace) -> int:
+    from .io.model_sweep import format_sweep, parse_grid, save_sweep, summary, sweep_model
+
+    model_path = Path(args.model)
+    grid = _input_phase(lambda: parse_grid(args.grid))
+    overrides = _overrides(args)
+    out = _output(args, f"{model_path.stem}-sweep")
+    with _claim_out(out, args.force):
+        ds = _input_phase(lambda: sweep_model(model_path, grid, overrides, workers=args.workers,
+                                              progress=_progress(args), max_element_updates=args.max_element_updates))
+        data = summary(ds, model_path, overrides)
+        if out is not None:
+            save_sweep(ds, data, out, overwrite=args.force)
+    title = f"sweep of {model_path.name}: {data['points']} runs ({data['runner']}), {data['wall_time_s']:.2f} s"
+    _report(data, format_sweep(ds, title), args, f"table written to {out / 'sweep.csv'}" if out else "")
     return EXIT_OK
 
 
@@ -147,7 +232,7 @@ def _templates() -> dict[str, tuple[str, str]]:
 
 # ============================================================================================ examples
 def cmd_examples(args: argparse.Namespace) -> int:
-    from .examples import EXAMPLES, example, model_text, run_example
+    from .examples import EXAMPLES, example, load_example, model_text, run_example
 
     action = args.action or "list"
     if action == "list":
@@ -190,14 +275,18 @@ def cmd_examples(args: argparse.Namespace) -> int:
     # run
     from .io.results import format_summary, summarize
 
-    out = Path(args.output) if args.output else Path("results") / ex.name
-    with _claim_out(out, args.force):
-        runs = run_example(ex.name, out, overwrite=args.force, plots=not args.no_plots, progress=_progress(args))
-    summaries = {Path(f).stem: summarize(r) for f, r, _ in runs}
-    text = "\n\n".join(format_summary(s, f"{ex.title}" + (f" -- {k}" if len(runs) > 1 else ""))
+    out = _output(args, ex.name)
+    if out is None:
+        runs = [(f, load_example(ex.name, i).simulate(progress=_progress(args))) for i, f in enumerate(ex.models)]
+    else:
+        with _claim_out(out, args.force):
+            runs = [(f, r) for f, r, _ in run_example(ex.name, out, overwrite=args.force, plots=not args.no_plots,
+                                                      progress=_progress(args))]
+    summaries = {Path(f).stem: summarize(r) for f, r in runs}
+    text = "\n\n".join(format_summary(_without_warnings(s), f"{ex.title}" + (f" -- {k}" if len(runs) > 1 else ""))
                        for k, s in summaries.items())
     _report(summaries if len(runs) > 1 else next(iter(summaries.values())), text, args,
-            f"results written to {out}")
+            f"results written to {out}" if out else "", [w for s in summaries.values() for w in s["warnings"]])
     return EXIT_OK
 
 
@@ -211,12 +300,14 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
 def _run_spec(args: argparse.Namespace, module: Any) -> int:
     """Load a spec with ``module.load_spec``, ``run`` it, ``save`` the folder and report (synthesize, design)."""
     spec_path = Path(args.spec)
-    out = Path(args.output) if args.output else Path("results") / spec_path.stem
+    out = _output(args, spec_path.stem)
     with _claim_out(out, args.force):
-        spec = _input_phase(lambda: module.load_spec(spec_path))
+        spec = _input_phase(lambda: module.load_spec(spec_path, _overrides(args)))
         result = _input_phase(lambda: module.run(spec))
-        summary = module.save(result, spec, out, overwrite=args.force, plots=not args.no_plots)
-    _report(summary, module.format_summary(summary, spec), args, f"results written to {out}")
+        summary = (module.summarize_run(result, spec) if out is None
+                   else module.save(result, spec, out, overwrite=args.force, plots=not args.no_plots))
+    _report(summary, module.format_summary(_without_warnings(summary), spec), args,
+            f"results written to {out}" if out else "", summary["warnings"])
     return EXIT_OK
 
 
@@ -227,32 +318,85 @@ def cmd_design(args: argparse.Namespace) -> int:
     return _run_spec(args, design_spec)
 
 
+# ============================================================================================ docs
+def _doc_topics() -> dict[str, tuple[str, Callable[[], str]]]:
+    """Topic -> (description, function generating the page): the pages are generated from the schemas the
+    files are validated with, so the installed package always has them, matching its own code."""
+    from .io import design_spec, schema, synthesis_spec
+
+    return {"model": ("every key of a model file (docs/model-reference.md)", schema.reference_markdown),
+            "synthesis": ("every key of a synthesis spec (docs/cli.md)", synthesis_spec.spec_reference_markdown),
+            "design": ("every key of a design spec (docs/cli.md)", design_spec.spec_reference_markdown)}
+
+
+def cmd_docs(args: argparse.Namespace) -> int:
+    topics = _doc_topics()
+    if args.topic is None:
+        width = max(map(len, topics))
+        for name, (what, _) in topics.items():
+            print(f"{name:<{width}}  {what}")
+        print("\nprint one with:  rodimpact docs TOPIC")
+        return EXIT_OK
+    if args.topic not in topics:
+        raise InputError(f"docs: no topic {args.topic!r}; topics: {', '.join(topics)}")
+    text = topics[args.topic][1]()
+    print(text, end="" if text.endswith("\n") else "\n")
+    return EXIT_OK
+
+
 # ============================================================================================ parser
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (also used by docs/cli.md)."""
     p = argparse.ArgumentParser(
         prog="rodimpact", description="Longitudinal impact of non-uniform elastic rods: simulate impacts from "
                                       "model files, run the thesis examples, synthesize strikers.",
-        epilog="Exit codes: 0 ok, 2 bad input, 1 internal error. Model keys: docs/model-reference.md.")
+        epilog="Exit codes: 0 ok, 2 bad input, 1 internal error. Model keys: rodimpact docs model.")
     p.add_argument("--version", action="version", version=f"rodimpact {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
 
-    def output_flags(sp: argparse.ArgumentParser, what: str) -> None:
-        sp.add_argument("-o", "--output", metavar="OUTDIR", help=f"output folder (default: results/{what})")
+    def output_flags(sp: argparse.ArgumentParser, what: str, plots: bool = True) -> None:
+        where = sp.add_mutually_exclusive_group()
+        where.add_argument("-o", "--output", metavar="OUTDIR", help=f"output folder (default: results/{what})")
+        where.add_argument("--no-output", action="store_true", help="write nothing; print the summary only")
         sp.add_argument("--force", action="store_true", help="replace an existing output folder written by "
                                                              "rodimpact (never one holding other files)")
         sp.add_argument("--quiet", action="store_true", help="print nothing but errors")
-        sp.add_argument("--json", action="store_true", help="print the summary as JSON on stdout")
-        sp.add_argument("--no-plots", action="store_true", help="write no plots (faster)")
+        sp.add_argument("--json", action="store_true", help="print the summary as JSON on stdout (and nothing "
+                                                            "else); writes the output folder only with -o")
+        if plots:
+            sp.add_argument("--no-plots", action="store_true", help="write no plots (faster)")
+
+    def set_flag(sp: argparse.ArgumentParser, what: str) -> None:
+        sp.add_argument("--set", action="append", metavar="KEY=VALUE",
+                        help=f"set a key of the {what} before it is validated, e.g. --set rods.piston.velocity="
+                             f"'5 m/s' or --set 'rods[1].segments[0].length=2 m' (repeatable)")
+
+    def limit_flag(sp: argparse.ArgumentParser) -> None:
+        sp.add_argument("--max-element-updates", type=float, metavar="N", default=None,
+                        help="refuse runs of more than N element updates (elements x steps; default 1e11, about 17 "
+                             "min at 1e8 updates/s; inf: no limit); see docs/security.md")
 
     s = sub.add_parser("simulate", help="run a model file and write results, plots and a summary",
                        description="Run MODEL.toml and write results, plots and summary.json to OUTDIR.")
     s.add_argument("model", metavar="MODEL.toml", help="model file (rodimpact init simulate writes a template)")
     output_flags(s, "MODEL-NAME")
-    s.add_argument("--max-element-updates", type=float, metavar="N", default=None,
-                   help="refuse runs of more than N element updates (elements x steps; default 1e11, about 17 "
-                        "min at 1e8 updates/s; inf: no limit); see docs/security.md")
+    set_flag(s, "model file")
+    limit_flag(s)
     s.set_defaults(func=cmd_simulate)
+
+    w = sub.add_parser("sweep", help="run a model file over a grid of key values and write one table",
+                       description="Run MODEL.toml at every combination of the --grid values and write one table "
+                                   "of the first contact's peak force, contact time, energy transfer and striker "
+                                   "velocity (sweep.csv, sweep.nc, summary.json) to OUTDIR.")
+    w.add_argument("model", metavar="MODEL.toml", help="model file")
+    w.add_argument("--grid", action="append", required=True, metavar="KEY=V1,V2,...",
+                   help="a key of the model file and the values to sweep, e.g. --grid rods.piston.velocity=4,5,6 "
+                        "or --grid 'simulation.dt=0.5 us,1 us' (repeatable: all combinations are run)")
+    output_flags(w, "MODEL-NAME-sweep", plots=False)
+    set_flag(w, "model file")
+    w.add_argument("--workers", type=int, metavar="N", default=None, help="parallel runs (default: the CPUs)")
+    limit_flag(w)
+    w.set_defaults(func=cmd_sweep)
 
     i = sub.add_parser("init", help="write a commented template that runs as it is",
                        description="Write a fully commented template model (simulate), synthesis spec "
@@ -279,6 +423,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "writes a template) and write the striker profile, report and plots.")
     y.add_argument("spec", metavar="SPEC.toml", help="synthesis specification")
     output_flags(y, "SPEC-NAME")
+    set_flag(y, "spec")
     y.set_defaults(func=cmd_synthesize)
 
     g = sub.add_parser("design", help="find the best striker under constraints when no exact one exists",
@@ -287,7 +432,14 @@ def build_parser() -> argparse.ArgumentParser:
                                    "diameter, mass and step limits; writes the profile, plots and a summary.")
     g.add_argument("spec", metavar="SPEC.toml", help="design specification")
     output_flags(g, "SPEC-NAME")
+    set_flag(g, "spec")
     g.set_defaults(func=cmd_design)
+
+    d = sub.add_parser("docs", help="print reference pages of this installation (model-file keys, ...)",
+                       description="Print a reference page as Markdown, generated by the installed rodimpact from "
+                                   "the schema it validates files with; without TOPIC, list the topics.")
+    d.add_argument("topic", nargs="?", help="model, synthesis or design")
+    d.set_defaults(func=cmd_docs)
     return p
 
 
@@ -305,8 +457,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         parser.print_help()
         return EXIT_INPUT
     restore_sigterm = _handle_sigterm()
+    args.warning_lines = WarningLines(getattr(args, "quiet", False))
     try:
-        return args.func(args)
+        with warnings.catch_warnings():         # the filters stay as they are (Python's: no DeprecationWarning)
+            warnings.showwarning = args.warning_lines.showwarning
+            return args.func(args)
     except InputError as exc:
         _err(str(exc))
         return EXIT_INPUT

@@ -2,9 +2,9 @@
 :func:`~rodimpact.direct.batch.simulate_batch` designs instead of one :func:`~rodimpact.simulate` run per point.
 
 A grid qualifies when every point's ``build`` result is a dict of :func:`~rodimpact.simulate` keyword arguments
-without probes or snapshots, and the systems agree in everything but rod 0 and its velocity (the same struck
-rods, velocities of rods 1, 2, ..., junctions, end conditions, loads, initial states, time step, number of
-steps and energy stride; objects compared with ``==``) and the metrics are default metrics. The points are
+(or a model that gives them by ``simulate_arguments()``) without probes or snapshots, and the systems agree in
+everything but rod 0 and its velocity (the same struck rods, velocities of rods 1, 2, ..., junctions, end
+conditions, loads, initial states, time step, number of steps and energy stride; objects compared with ``==``) and the metrics are default metrics. The points are
 grouped by the striker's element count; each group is one batch. The metrics equal those of the per-run path
 bit for bit (the batch reproduces ``simulate``'s arithmetic).
 """
@@ -41,7 +41,10 @@ def batch_metric(name: str, res: BatchResult) -> np.ndarray:
 
 
 def _point(spec: Any) -> tuple[System, float, int, int] | str:
-    """(system, dt, steps, energy stride) of one point's simulate() arguments, or why it cannot be batched."""
+    """(system, dt, steps, energy stride) of one point's simulate() arguments (a dict, or an object such as a
+    :class:`~rodimpact.io.model.Model` that gives them by ``simulate_arguments()``), or why it cannot be batched."""
+    if not isinstance(spec, Mapping) and callable(getattr(spec, "simulate_arguments", None)):
+        spec = spec.simulate_arguments()
     if not isinstance(spec, Mapping):
         return f"build returns a {type(spec).__name__}, not a dict of simulate() arguments"
     unknown = set(spec) - _KEYS

@@ -21,7 +21,7 @@ from typing import Any, Iterator, Optional
 import numpy as np
 
 from .. import __version__
-from .._validate import finite_array, finite_values, fits_in_memory, positive
+from .._validate import caller_stacklevel, finite_array, finite_values, fits_in_memory, positive
 from ..lattice.discretize import discretize_rod
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import NonReflectingEnd
@@ -320,7 +320,7 @@ def _striker_impedances(strikers: Any, dt: float, wave_speed: Optional[float]) -
         bad = [i for i, d in enumerate(discs) if not d.exact and abs(d.time_scale - 1.0) > 0.01]
         if bad:
             warnings.warn(f"strikers {bad[:5]}{'...' if len(bad) > 5 else ''}: travel time represented with more "
-                          f"than 1 % error; use a smaller dt", stacklevel=3)
+                          f"than 1 % error; use a smaller dt", stacklevel=caller_stacklevel())
         return np.array([d.impedance for d in discs]), np.array([d.length[-1] for d in discs])
     c = STEEL.wave_speed if wave_speed is None else positive("wave_speed", wave_speed, "m/s")
     if isinstance(strikers, (list, tuple)) and any(isinstance(r, Rod) for r in strikers):

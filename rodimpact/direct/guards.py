@@ -167,17 +167,19 @@ def check_output(folder: Path, parts: dict[str, float], memory: dict[str, float]
 
 
 class Progress:
-    """Progress of a run of ``n_steps`` steps on stderr: a tqdm bar on a terminal, else a line at every 10 %."""
+    """Progress of ``n_steps`` steps of a run (or of other units of work, e.g. the runs of a sweep) on stderr: a
+    tqdm bar on a terminal, else a line at every 10 %, both labelled ``desc`` and counted in ``unit``."""
 
-    def __init__(self, n_steps: int, stream: Any = None) -> None:
+    def __init__(self, n_steps: int, stream: Any = None, unit: str = "step", desc: str = "simulate") -> None:
         self.n, self.done, self.stream = n_steps, 0, stream or sys.stderr
+        self.unit, self.desc = unit, desc
         self.t0 = time.perf_counter()
         self.next_tenth = 1
         self.bar = None
         if getattr(self.stream, "isatty", lambda: False)():
             from tqdm.auto import tqdm
 
-            self.bar = tqdm(total=n_steps, unit="step", desc="simulate", file=self.stream)
+            self.bar = tqdm(total=n_steps, unit=unit, desc=desc, file=self.stream)
 
     def update(self, steps: int) -> None:
         self.done += steps
@@ -189,8 +191,8 @@ class Progress:
             frac = self.done / self.n
             elapsed = time.perf_counter() - self.t0
             left = elapsed * (1 - frac) / frac
-            print(f"simulate: {frac:4.0%} ({self.done:,} of {self.n:,} steps, {_duration(elapsed)} elapsed, about "
-                  f"{_duration(left)} left)", file=self.stream, flush=True)
+            print(f"{self.desc}: {frac:4.0%} ({self.done:,} of {self.n:,} {self.unit}s, {_duration(elapsed)} elapsed, "
+                  f"about {_duration(left)} left)", file=self.stream, flush=True)
             self.next_tenth = tenths + 1
 
     def close(self) -> None:

@@ -25,6 +25,7 @@ from typing import Any, Callable, Mapping, Optional, Sequence
 import numpy as np
 
 from .. import __version__
+from .guards import Progress
 from .result import SimulationResult
 from .simulate import simulate
 
@@ -75,7 +76,9 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
         arguments of :func:`~rodimpact.simulate` as a dict, or an object with a ``simulate()`` method (a
         :class:`~rodimpact.io.model.Model`).
     grid:
-        Parameter name -> 1-d sequence of values (numbers or strings); all combinations are run.
+        Parameter name -> 1-d sequence of values (numbers or strings); all combinations are run. Names are the
+        keyword arguments of ``build``: identifiers, or any text without ``/`` (e.g. model-file key paths such as
+        ``"rods[0].velocity"``) when ``build`` takes ``**point``.
     metrics:
         Name -> function of the :class:`~rodimpact.SimulationResult` returning one real number. Default
         :data:`DEFAULT_METRICS`: the peak (most compressive) contact force and the total contact time at
@@ -85,13 +88,14 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
         Parallel threads (default: the number of CPUs, at most the number of points); for a batched sweep, the
         numba threads of :func:`~rodimpact.simulate_batch`.
     progress:
-        Show a progress bar over the points (default: on a terminal for more than 10 points).
+        Report progress over the points of a per-point sweep on stderr, a bar on a terminal, else a line at every
+        10 % (default: a bar on a terminal for more than 10 points).
     errors:
         ``"raise"`` (default): the first failing point stops the sweep with an error naming it. ``"nan"``: a
         failing point gets NaN metrics and is listed (with its error) in the ``failures`` attribute (JSON).
     batch:
-        ``None`` (default): when every point differs only in rod 0 (the striker) and its velocity and the
-        metrics are default metrics, run the points as batches of :func:`~rodimpact.simulate_batch` designs
+        ``None`` (default): when every point differs only in rod 0 (the striker) and its velocity, records no
+        probes or snapshots, and the metrics are default metrics, run the points as batches of :func:`~rodimpact.simulate_batch` designs
         (same numbers, much faster); otherwise one :func:`~rodimpact.simulate` run per point. ``False``: always
         per point. ``True``: batch or raise a ValueError saying why the grid cannot be batched.
     executor:
@@ -229,8 +233,9 @@ def _grid(grid: Any) -> tuple[list[str], list[list[Any]]]:
                          "{'velocity': [4.0, 5.0, 6.0]}")
     names, values = [], []
     for name, vals in grid.items():
-        if not isinstance(name, str) or not name.isidentifier():
-            raise ValueError(f"grid: parameter names must be identifiers (keyword arguments of build), got {name!r}")
+        if not isinstance(name, str) or not name or "/" in name:
+            raise ValueError(f"grid: parameter names must be non-empty strings without '/' (keyword arguments of "
+                             f"build), got {name!r}")
         if isinstance(vals, (str, bytes)) or np.ndim(vals) != 1 or len(vals) == 0:
             raise ValueError(f"grid[{name!r}]: must be a non-empty 1-d list of values, got {vals!r}")
         items = list(vals)
@@ -286,7 +291,4 @@ def _show(point: Mapping[str, Any]) -> str:
 def _progress_bar(progress: Optional[bool], n: int):
     if progress is None:
         progress = sys.stderr.isatty() and n > 10
-    if not progress:
-        return None
-    from tqdm.auto import tqdm
-    return tqdm(total=n, unit="run", desc="sweep")
+    return Progress(n, unit="run", desc="sweep") if progress else None

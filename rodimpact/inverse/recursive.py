@@ -18,7 +18,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .. import __version__
-from .._validate import finite, positive
+from .._validate import caller_stacklevel, finite, positive
 from ..rods.material import STEEL, Material
 from ..rods.system import InitialState
 from . import _kernels as K
@@ -177,7 +177,7 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
             "striker can only shape what changes every second step (thesis Sec. 4.1), so the synthesized "
             "striker reproduces the target only approximately; check with verify()")
     for w in warn_list:
-        warnings.warn(w, SynthesisWarning, stacklevel=2)
+        warnings.warn(w, SynthesisWarning, stacklevel=caller_stacklevel())
     diagnostics = {
         "version": __version__, "wall_time_s": _time.perf_counter() - wall0, "backend": backend,
         "face_response": face.method, "peeling": chosen_method(n), "odd_step_content": odd,

@@ -17,7 +17,7 @@ from typing import Optional
 
 import numpy as np
 
-from .._validate import non_negative, positive, positive_array
+from .._validate import caller_stacklevel, non_negative, positive, positive_array
 from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.segments import Cylinder, Tube
@@ -63,7 +63,7 @@ class StrikerShape:
                 f"striker shape: the outer diameter varies by a factor {self.diameter_ratio:.3g} "
                 f"({self.outer_diameter.min() * 1e3:.4g} mm to {self.outer_diameter.max() * 1e3:.4g} mm), more "
                 f"than {self.max_diameter_ratio:g}; such a striker is impractical to make and its large steps "
-                "strain the 1D model", stacklevel=3)
+                "strain the 1D model", stacklevel=caller_stacklevel())
 
     # ------------------------------------------------------------------ geometry
     @property

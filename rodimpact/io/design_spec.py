@@ -11,12 +11,13 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any, Mapping, Optional
 
 
 from ..rods.material import STEEL
 from .dimensions import Parameters
 from .model import _material, _materials, parse_toml, read_text_file
+from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
     validate_table
@@ -115,10 +116,11 @@ class DesignSpec:
             raise translated(exc, DESIGN_KEYS) from None
 
 
-def load_spec(path: str | Path) -> DesignSpec:
-    """Read a design spec file (relative file names are resolved against its folder)."""
+def load_spec(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -> DesignSpec:
+    """Read a design spec file (relative file names are resolved against its folder); ``overrides``: key path ->
+    value, set before the spec is validated (:mod:`rodimpact.io.overrides`)."""
     p = Path(path)
-    return loads_spec(read_text_file(p, str(p), "spec file"), p.parent, str(p))
+    return loads_spec(read_text_file(p, str(p), "spec file"), p.parent, str(p), overrides)
 
 
 def _pair(st: dict, lo: str, hi: str, prefix: str = "striker") -> Optional[tuple[float, float]]:
@@ -129,10 +131,15 @@ def _pair(st: dict, lo: str, hi: str, prefix: str = "striker") -> Optional[tuple
     return None if a is None else (a, b)
 
 
-def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> DesignSpec:
-    """Read a design spec from TOML text."""
-    raw = parse_toml(text, name)
-    base = Path(base_dir)
+def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec",
+               overrides: Optional[Mapping[str, Any]] = None) -> DesignSpec:
+    """Read a design spec from TOML text (``overrides`` as in :func:`load_spec`)."""
+    return spec_with_overrides(parse_toml(text, name), overrides, name, text,
+                               lambda raw, given: _spec(raw, Path(base_dir), given))
+
+
+def _spec(raw: dict, base: Path, text: str) -> DesignSpec:
+    """The validated spec of the parsed file ``raw`` (``text``: the file as given)."""
     d = validate_table(DESIGN_SPEC, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})

@@ -22,7 +22,7 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Optional, Sequence
+from typing import Any, Mapping, Optional, Sequence
 
 import numpy as np
 
@@ -43,6 +43,7 @@ from . import _toml
 from ._files import read_bytes_limited
 from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression, expression_area
+from .overrides import apply_overrides, naming_overrides
 from .quantities import DIMENSIONS, ModelError, parse_quantity
 from .schema import MODEL, PLOT_NAMES, validate_table
 
@@ -126,6 +127,17 @@ class Model:
             return max(1, self.n_steps // self.output.snapshot_count)
         return None
 
+    def simulate_arguments(self) -> dict[str, Any]:
+        """The keyword arguments of :func:`rodimpact.simulate` for this model's run (``allow_discretization_error``
+        only when it is set): what :meth:`simulate` passes, and what :func:`rodimpact.sweep` batches models by."""
+        args: dict[str, Any] = dict(
+            rods=self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
+            snapshot_times=list(self.output.snapshot_times) or None, snapshot_every=self.snapshot_every(),
+            energy_every=self.energy_every, record_every=self.output.record_every, backend=self.backend)
+        if self.allow_discretization_error:
+            args["allow_discretization_error"] = True
+        return args
+
     def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None,
                  max_element_updates: Optional[float] = None) -> SimulationResult:
         """Run :func:`rodimpact.simulate` with this model's settings (``max_element_updates``: see there); errors
@@ -134,13 +146,9 @@ class Model:
         from ..direct.simulate import simulate
         from .keypaths import MODEL_KEYS, translated
 
+        args = {**self.simulate_arguments(), "backend": backend or self.backend}
         try:
-            return simulate(self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
-                            snapshot_times=list(self.output.snapshot_times) or None,
-                            snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
-                            record_every=self.output.record_every, backend=backend or self.backend,
-                            progress=progress, max_element_updates=max_element_updates,
-                            allow_discretization_error=self.allow_discretization_error)
+            return simulate(**args, progress=progress, max_element_updates=max_element_updates)
         except ModelError:
             raise
         except (ValueError, TypeError) as exc:
@@ -195,19 +203,24 @@ def _check_nesting(raw: dict) -> None:
             stack.extend((v, f"{path}[{i}]", depth + 1) for i, v in enumerate(value))
 
 
-def load_model(path: str | Path) -> Model:
-    """Read a model file; relative file names inside it are resolved against its folder."""
+def load_model(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -> Model:
+    """Read a model file; relative file names inside it are resolved against its folder. ``overrides``: key path
+    -> value, set before the file is validated (``{"rods.piston.velocity": "5 m/s"}``, see
+    :mod:`rodimpact.io.overrides`)."""
     p = Path(path)
     text = read_text_file(p, str(p), "model file")
-    model = loads_model(text, base_dir=p.parent, name=str(p))
+    model = loads_model(text, base_dir=p.parent, name=str(p), overrides=overrides)
     object.__setattr__(model, "source", p)
     return model
 
 
-def loads_model(text: str, base_dir: str | Path | None = None, name: str = "model") -> Model:
-    """Read a model from TOML text (``base_dir``: folder for relative file names, default the current one)."""
-    raw = parse_toml(text, name)
-    return model_from_dict(raw, base_dir=Path(base_dir) if base_dir is not None else Path("."))
+def loads_model(text: str, base_dir: str | Path | None = None, name: str = "model",
+                overrides: Optional[Mapping[str, Any]] = None) -> Model:
+    """Read a model from TOML text (``base_dir``: folder for relative file names, default the current one;
+    ``overrides`` as in :func:`load_model`)."""
+    raw, applied = apply_overrides(parse_toml(text, name), overrides or {})
+    with naming_overrides(applied):
+        return model_from_dict(raw, base_dir=Path(base_dir) if base_dir is not None else Path("."))
 
 
 def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
@@ -642,7 +655,7 @@ def dump_model(model: Model) -> str:
     equal objects."""
     doc = model_to_dict(model)
     head = (f"# rodimpact model file written by rodimpact {__version__}.\n"
-            "# Numbers are in SI units (m, s, kg, N, Pa, N s/m); see docs/model-reference.md.\n")
+            "# Numbers are in SI units (m, s, kg, N, Pa, N s/m); all keys: rodimpact docs model.\n")
     return head + "\n" + _toml.dumps(doc)
 
 

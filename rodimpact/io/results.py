@@ -48,6 +48,7 @@ import numpy as np
 
 from .. import __version__
 from .._permissions import normal_mode
+from .._validate import caller_stacklevel
 from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, json_default, result_dataset
 from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
                              SimulationResult)
@@ -797,7 +798,7 @@ def _from_dataset(ds, folder: Path, nc: Path) -> SimulationResult:
     diagnostics = json.loads(ds.attrs["diagnostics"])
     if system is not None and system.n_rods != n_rods:
         warnings.warn(f"{folder}/model.toml has {system.n_rods} rods but the result has {n_rods}; ignoring the "
-                      f"model", stacklevel=2)
+                      f"model", stacklevel=caller_stacklevel())
         system = None
     record_every = int(ds.attrs.get("record_every", 1))
     ends = [str(e) for e in ds["bit_rock"].values] if "bit_rock" in ds.coords else []

@@ -15,7 +15,7 @@ import json
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any, Mapping, Optional
 
 import numpy as np
 
@@ -26,6 +26,7 @@ from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression
 from .model import (_end, _history, _material, _materials, _rod, _rod_index, _wrap, parse_toml, read_csv_columns,
                     read_text_file)
+from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
                      validate_table)
@@ -119,7 +120,7 @@ def spec_reference_markdown() -> str:
     _table_md("`[synthesis]`", SYNTHESIS, 3, lines)
     _table_md("`[output]`", SPEC_OUTPUT, 3, lines)
     lines.append("`[[struck]]`, `[[junctions]]`, `far_end` and `[[loads]]` take the keys of `[[rods]]`, "
-                 "`[[junctions]]`, `[ends]` entries and `[[loads]]` in model files (docs/model-reference.md); "
+                 "`[[junctions]]`, `[ends]` entries and `[[loads]]` in model files (`rodimpact docs model`); "
                  "rod references in `loads` name struck rods.")
     return "\n".join(lines) + "\n"
 
@@ -173,19 +174,25 @@ class SynthesisSpec:
                           quantity=self.quantity, rule=self.rule, material=self.material, backend=self.backend)
 
 
-def load_spec(path: str | Path) -> SynthesisSpec:
-    """Read a synthesis spec file (relative file names are resolved against its folder)."""
+def load_spec(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -> SynthesisSpec:
+    """Read a synthesis spec file (relative file names are resolved against its folder); ``overrides``: key path ->
+    value, set before the spec is validated (:mod:`rodimpact.io.overrides`)."""
     p = Path(path)
     text = read_text_file(p, str(p), "spec file")
-    spec = loads_spec(text, p.parent, str(p))
+    spec = loads_spec(text, p.parent, str(p), overrides)
     object.__setattr__(spec, "source", p)
     return spec
 
 
-def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec") -> SynthesisSpec:
-    """Read a synthesis spec from TOML text."""
-    raw = parse_toml(text, name)
-    base = Path(base_dir)
+def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec",
+               overrides: Optional[Mapping[str, Any]] = None) -> SynthesisSpec:
+    """Read a synthesis spec from TOML text (``overrides`` as in :func:`load_spec`)."""
+    return spec_with_overrides(parse_toml(text, name), overrides, name, text,
+                               lambda raw, given: _spec(raw, Path(base_dir), given))
+
+
+def _spec(raw: dict, base: Path, text: str) -> SynthesisSpec:
+    """The validated spec of the parsed file ``raw`` (``text``: the file as given)."""
     d = validate_table(SPEC, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
@@ -408,7 +415,7 @@ TEMPLATE = '''\
 #
 # Finds the striker (impedance profile, then a shape) that produces a prescribed force history, with the
 # recursive method of the thesis (chapter 4). Quantities take units ("50 mm", "239 kN"); bare numbers are SI.
-# Forces are positive in tension: an impact force is negative. All keys: docs/cli.md.
+# Forces are positive in tension: an impact force is negative. All keys: rodimpact docs synthesis.
 #
 # This template: thesis academic example 1 (Tab. 4.2): the exponentially decaying force
 # N(t) = -239 kN exp(-t / 0.383 ms) at the impact face of a semi-infinite 50 mm steel bar (Z = 79.7 kN s/m),

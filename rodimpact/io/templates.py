@@ -7,7 +7,7 @@ SIMULATE = '''\
 #
 # Every quantity is a number in SI units (m, s, kg, N, Pa, N s/m) or a string with a unit: "50 mm",
 # "210 GPa", "4.6 m/s", "51.0 kN s/m". Signs: x grows to the right, rods are listed left to right, the
-# normal force is positive in tension (an impact gives negative forces). All keys: docs/model-reference.md.
+# normal force is positive in tension (an impact gives negative forces). All keys: rodimpact docs model.
 #
 # This template: a stepped steel piston (40/50/40 mm, 0.5 m) hits a 50 mm x 1.8 m rod at 4.6 m/s; three
 # strain gauges on the rod (the test rig of the thesis, chapter 5).
@@ -28,7 +28,7 @@ density_factor = 1.0
 
 # ---------------------------------------------------------------------------------------------- rods
 # One [[rods]] table per rod, left to right. A rod is built from [[rods.segments]] (geometry) or given by
-# [rods.elements] (impedance level, see docs/model-reference.md).
+# [rods.elements] (impedance level, see rodimpact docs model).
 [[rods]]
 name = "piston"                # used by probes and loads, and in reports
 material = "steel"             # default material of its segments

@@ -97,7 +97,8 @@ def resolving_time_step(system: System, dt: float, tolerance: float = TOLERANCE)
 
 def check(system: System, lattice: Lattice, allow: bool) -> list[str]:
     """Raise (or, with ``allow``, warn) if the lattice misrepresents a rod by more than the tolerance
-    (:mod:`rodimpact.lattice.tolerance`); returns the problems that were allowed."""
+    (:mod:`rodimpact.lattice.tolerance`); returns the text of the warning issued (an empty list when the lattice
+    is within the tolerance), for the run's ``diagnostics["warnings"]``."""
     if not isinstance(allow, (bool, np.bool_)):
         raise TypeError(f"allow_discretization_error: must be True or False, got {allow!r}")
     found = problems(system, lattice)
@@ -110,4 +111,4 @@ def check(system: System, lattice: Lattice, allow: bool) -> list[str]:
         raise ValueError(text + " (or allow the error: allow_discretization_error=True, in a model file "
                                 "simulation.allow_discretization_error = true)")
     warnings.warn(text, stacklevel=caller_stacklevel())
-    return found
+    return [text]

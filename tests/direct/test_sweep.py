@@ -51,6 +51,25 @@ def test_build_may_return_a_model():
     assert ds["peak_contact_force"].values[0] == alone.junction_events[0].min_force
 
 
+def test_models_are_batched_and_names_may_be_key_paths():
+    """A Model without probes and snapshots is batched like a dict of simulate() arguments; grid names need not be
+    identifiers when build takes **point (as the command line's sweep over model-file keys does)."""
+    from dataclasses import replace
+
+    from rodimpact.examples import load_example
+
+    base = load_example("first-example")
+    bare = replace(base, probes=(), output=replace(base.output, snapshot_times=(), snapshot_count=None))
+
+    def at(**point):
+        return replace(bare, system=replace(bare.system, velocities=(point["rods[0].velocity"], 0.0)))
+
+    ds = ri.sweep(at, {"rods[0].velocity": [5.0, 10.0]}, workers=1)
+    assert ds.attrs["runner"] == "simulate_batch" and ds["peak_contact_force"].dims == ("rods[0].velocity",)
+    alone = load_example("first-example").simulate()
+    assert ds["peak_contact_force"].values[1] == alone.junction_events[0].min_force
+
+
 @pytest.mark.parametrize("kwargs, error, match", [
     (dict(build="bars", grid=GRID), TypeError, "build: must be a function"),
     (dict(grid={}), ValueError, "grid: must be a non-empty mapping"),
@@ -59,7 +78,7 @@ def test_build_may_return_a_model():
     (dict(grid={"length": [0.1, float("nan")]}), ValueError, r"grid\['length'\]: values must be finite"),
     (dict(grid={"length": [0.1, 0.1]}), ValueError, "must not repeat"),
     (dict(grid={"length": [None]}), TypeError, "values must be numbers or strings"),
-    (dict(grid={"not a name": [1]}), ValueError, "parameter names must be identifiers"),
+    (dict(grid={"rods/0": [1]}), ValueError, "parameter names must be non-empty strings without '/'"),
     (dict(grid=GRID, metrics={"x": 3}), TypeError, r"metrics\['x'\]: must be a function"),
     (dict(grid=GRID, workers=0), ValueError, "workers: must be an integer >= 1"),
 ])
@@ -67,6 +86,12 @@ def test_bad_arguments(kwargs, error, match):
     kwargs = {"build": equal_bars, **kwargs}
     with pytest.raises(error, match=match):
         ri.sweep(kwargs.pop("build"), kwargs.pop("grid"), **kwargs)
+
+
+def test_progress_off_a_terminal_is_a_line_at_every_tenth(capsys):
+    ri.sweep(equal_bars, {"length": [0.1, 0.2], "velocity": [3.0]}, workers=1, progress=True, batch=False)
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("sweep:  50% (1 of 2 runs") and lines[1].startswith("sweep: 100% (2 of 2 runs")
 
 
 def test_failures_name_the_grid_point():

@@ -1,0 +1,216 @@
+"""Sweeps over the keys of a model file (``rodimpact sweep``): every combination of the grid values, one table.
+
+:func:`sweep_model` loads the model once per grid point with the point's values as overrides
+(:mod:`rodimpact.io.overrides`), so that a bad key or value is an error naming the key path before anything runs,
+then runs :func:`rodimpact.sweep` (batched when only the striker and its velocity change). The summary quantities
+are :data:`rodimpact.direct.sweep.DEFAULT_METRICS` at the first contact (rod 0 | rod 1); probes and snapshots are
+not recorded. :func:`save_sweep` writes one folder with the table (``sweep.csv``, ``sweep.nc``) and
+``summary.json``; :func:`format_sweep` gives the table as text.
+"""
+
+from __future__ import annotations
+
+import csv
+import itertools
+import math
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any, Mapping, Optional, Sequence
+
+from . import _toml
+from .model import Model, load_model
+from .overrides import parse_assignment, parse_value
+from .preflight import check_run, run_size
+from .quantities import ModelError
+
+#: How the table shows each summary quantity: label, unit and factor from the SI value.
+COLUMNS: dict[str, tuple[str, str, float]] = {
+    "peak_contact_force": ("peak contact force", "kN", 1e-3),
+    "contact_time": ("contact time", "ms", 1e3),
+    "energy_transfer": ("energy transfer", "%", 100.0),
+    "striker_final_velocity": ("striker final velocity", "m/s", 1.0),
+}
+
+
+def split_values(text: str) -> list[str]:
+    """``v1,v2,...`` split at the commas that are not inside quotes, brackets or braces."""
+    items, depth, quote, start = [], 0, "", 0
+    for i, ch in enumerate(text):
+        if quote:
+            quote = "" if ch == quote else quote
+        elif ch in "\"'":
+            quote = ch
+        elif ch in "[{":
+            depth += 1
+        elif ch in "]}":
+            depth -= 1
+        elif ch == "," and depth == 0:
+            items.append(text[start:i].strip())
+            start = i + 1
+    items.append(text[start:].strip())
+    return items
+
+
+def parse_grid(options: Sequence[str]) -> dict[str, list[Any]]:
+    """``--grid KEY=V1,V2,...`` options -> key path -> values (TOML values or plain text, as ``--set`` takes)."""
+    grid: dict[str, list[Any]] = {}
+    for option in options:
+        key, text = parse_assignment(option, "--grid")
+        if key in grid:
+            raise ValueError(f"--grid {key}: given twice; list all its values in one --grid {key}=V1,V2,...")
+        values = split_values(text)
+        if "" in values:
+            raise ValueError(f"--grid {key}: an empty value in {text!r}; give values separated by commas, e.g. "
+                             f"--grid {key}=4,5,6")
+        grid[key] = [parse_value(v) for v in values]
+    return grid
+
+
+@dataclass(frozen=True)
+class _Point:
+    """One grid point for :func:`rodimpact.sweep`: the model's run with the command's element-update limit."""
+
+    model: Model
+    max_element_updates: Optional[float]
+
+    def simulate(self, progress: Optional[bool] = None):
+        return self.model.simulate(progress=progress, max_element_updates=self.max_element_updates)
+
+    def simulate_arguments(self) -> dict[str, Any]:
+        return self.model.simulate_arguments()
+
+
+def sweep_model(path: str | Path, grid: Mapping[str, Sequence[Any]], overrides: Optional[Mapping[str, Any]] = None,
+                *, workers: Optional[int] = None, progress: Optional[bool] = None,
+                max_element_updates: Optional[float] = None):
+    """Run the model file ``path`` at every combination of the ``grid`` values (key path -> values) with
+    ``overrides`` (key path -> value) set at every point; returns the :class:`xarray.Dataset` of
+    :func:`rodimpact.sweep` whose dimensions are the key paths, with the values as given (text for values that
+    are not numbers or strings, e.g. ``true``). ``progress``: ``None`` reports progress on stderr for sweeps of
+    more than :data:`~rodimpact.direct.guards.PROGRESS_UPDATES` element updates in all."""
+    from ..direct.guards import PROGRESS_UPDATES
+    from ..direct.sweep import sweep
+
+    overrides = dict(overrides or {})
+    keys, labels = _grid(grid, overrides)
+    points = {index: _point_model(path, {**overrides, **{k: grid[k][i] for k, i in zip(keys, index)}},
+                                  max_element_updates)
+              for index in itertools.product(*(range(len(labels[k])) for k in keys))}
+    if progress is None and sum(math.prod(run_size(p.model)) for p in points.values()) > PROGRESS_UPDATES:
+        progress = True
+
+    def build(**point: Any) -> _Point:
+        return points[tuple(labels[k].index(point[k]) for k in keys)]
+
+    return sweep(build, labels, workers=workers, progress=progress)
+
+
+def _grid(grid: Mapping[str, Sequence[Any]], overrides: Mapping[str, Any]) -> tuple[list[str], dict[str, list]]:
+    """The grid keys and each key's values as coordinate labels; errors name the key."""
+    if not grid:
+        raise ModelError("grid: give at least one key and its values, e.g. --grid rods[0].velocity=4,5,6")
+    labels: dict[str, list] = {}
+    for key, values in grid.items():
+        if key in overrides:
+            raise ModelError(f"{key}: both swept and set; give it either as a grid key or as an override")
+        if isinstance(values, (str, bytes)) or not isinstance(values, Sequence) or not values:
+            raise ModelError(f"{key}: give a non-empty list of values to sweep, got {values!r}")
+        labels[key] = [_label(v) for v in values]
+        if len(set(map(str, labels[key]))) != len(values):
+            raise ModelError(f"{key}: the values {labels[key]} repeat; give each value once")
+    return list(labels), labels
+
+
+def _label(value: Any) -> Any:
+    """A grid value as a coordinate: numbers and strings as they are, anything else as text (TOML where it can)."""
+    if isinstance(value, (int, float, str)) and not isinstance(value, bool):
+        return value
+    return _toml.value(value) if isinstance(value, (bool, list, dict)) else str(value)
+
+
+#: What a sweep does not record, left out before the model is validated (a probe beyond the end of a shortened
+#: rod is no error in a sweep).
+_UNRECORDED = {"probes": [], "output.snapshot_times": []}
+
+
+def _point_model(path: str | Path, overrides: Mapping[str, Any], max_element_updates: Optional[float]) -> _Point:
+    """The model at one grid point, without probes and snapshots (the sweep reports the first contact only),
+    checked before any point runs."""
+    model = load_model(path, {**_UNRECORDED, **overrides})
+    if model.system.n_rods < 2:
+        raise ModelError("rods: a sweep reports the first contact (rods[0] | rods[1]); the model has one rod")
+    check_run(model, None, (), max_element_updates)
+    output = replace(model.output, snapshot_every=None, snapshot_count=None)
+    return _Point(replace(model, output=output), max_element_updates)
+
+
+# ============================================================================================ table
+def table_rows(ds: Any) -> list[dict[str, Any]]:
+    """One dict per grid point (in grid order): the key paths with their values, then the summary quantities in
+    SI units (``None`` where a quantity does not exist, e.g. the energy transfer of a striker at rest)."""
+    keys, names = _axes(ds)
+    rows = []
+    for index in itertools.product(*(range(ds.sizes[k]) for k in keys)):
+        at = dict(zip(keys, index))
+        row = {k: ds[k].values[i].item() for k, i in at.items()}
+        for name in names:
+            value = float(ds[name].isel(at).values)
+            row[name] = value if math.isfinite(value) else None
+        rows.append(row)
+    return rows
+
+
+def format_sweep(ds: Any, title: str = "") -> str:
+    """The table of a sweep as aligned text (kN, ms, %, m/s); ``n/a`` where a quantity does not exist."""
+    keys, names = _axes(ds)
+    header = keys + [f"{COLUMNS[n][0]} [{COLUMNS[n][1]}]" if n in COLUMNS else n for n in names]
+    body = [[str(row[k]) for k in keys] + [_shown(n, row[n]) for n in names] for row in table_rows(ds)]
+    widths = [max(len(r[c]) for r in [header] + body) for c in range(len(header))]
+    lines = [title] if title else []
+    lines += ["  ".join(cell.ljust(w) for cell, w in zip(r, widths)).rstrip() for r in [header] + body]
+    return "\n".join(lines)
+
+
+def _axes(ds: Any) -> tuple[list[str], list[str]]:
+    """The grid keys (in grid order) and the names of the summary quantities of a sweep dataset."""
+    names = list(ds.data_vars)
+    return list(ds[names[0]].dims), names
+
+
+def _shown(name: str, value: Optional[float]) -> str:
+    if value is None:
+        return "n/a"
+    return f"{value * COLUMNS[name][2]:.4g}" if name in COLUMNS else f"{value:.6g}"
+
+
+def summary(ds: Any, model: str | Path, overrides: Mapping[str, Any]) -> dict[str, Any]:
+    """The sweep as JSON-ready data: the model, overrides, grid, how it ran and the table rows (SI units)."""
+    return {"model": str(model), "overrides": dict(overrides),
+            "grid": {k: ds[k].values.tolist() for k in _axes(ds)[0]},
+            "units": {n: ds[n].attrs.get("units", "") for n in ds.data_vars},
+            "points": int(ds.attrs["points"]), "runner": ds.attrs["runner"], "wall_time_s": ds.attrs["wall_time_s"],
+            "rows": table_rows(ds)}
+
+
+def save_sweep(ds: Any, data: Mapping[str, Any], outdir: str | Path, *, overwrite: bool = False) -> dict[str, Any]:
+    """Write ``sweep.csv`` (one row per point: the key paths, then the quantities with their units in the header),
+    ``sweep.nc`` (the dataset) and ``summary.json`` (``data`` plus the list of files) into ``outdir``, atomically
+    and with the output-folder safety of :func:`rodimpact.io.results.check_output_folder`. Returns the summary."""
+    from .results import AtomicFolder, _engine, _to_json
+
+    out = {**data, "files": ["sweep.csv", "sweep.nc", "summary.json"]}
+    with AtomicFolder(outdir, overwrite) as tmp:
+        _write_table(tmp / "sweep.csv", ds, data["rows"])
+        ds.to_netcdf(tmp / "sweep.nc", engine=_engine())
+        (tmp / "summary.json").write_text(_to_json(out), encoding="utf-8")
+    return out
+
+
+def _write_table(path: Path, ds: Any, rows: Sequence[Mapping[str, Any]]) -> None:
+    keys, names = _axes(ds)
+    header = keys + [f"{n} [{ds[n].attrs.get('units') or '-'}]" for n in names]
+    with open(path, "w", encoding="utf-8", newline="") as fh:
+        writer = csv.writer(fh, lineterminator="\n")
+        writer.writerow(header)
+        for row in rows:
+            writer.writerow([row[k] for k in keys] + ["" if row[n] is None else repr(row[n]) for n in names])

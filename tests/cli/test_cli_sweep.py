@@ -1,0 +1,180 @@
+"""Everyday use from the shell (issue 14, item 5): ``rodimpact sweep`` writes one table, ``--set`` overrides keys on
+every command, ``--no-output`` writes nothing, and ``--json`` without ``-o`` only prints (so the user guide's
+sequence works: a JSON summary after the results folder exists)."""
+
+import csv
+import json
+import os
+
+import pytest
+
+from rodimpact import cli
+from rodimpact.io import load_model
+from rodimpact.io.model_sweep import parse_grid, split_values
+from rodimpact.io.synthesis_spec import TEMPLATE as SYNTHESIS
+
+MODEL = """
+title = "striker on a bar"
+[[rods]]
+name = "striker"
+velocity = "5 m/s"
+[[rods.segments]]
+shape = "cylinder"
+length = "0.2 m"
+diameter = "40 mm"
+[[rods]]
+name = "bar"
+[[rods.segments]]
+shape = "cylinder"
+length = "0.6 m"
+diameter = "40 mm"
+[[probes]]
+name = "SG1"
+rod = "bar"
+position = "0.5 m"
+[simulation]
+duration = "0.4 ms"
+dt = "0.9661 us"               # 5 mm elements
+"""
+
+
+def main(args, cwd, capsys, monkeypatch):
+    """``rodimpact ARGS`` in this process (the console script's entry point); returns (code, stdout, stderr)."""
+    monkeypatch.chdir(cwd)
+    monkeypatch.delenv("RODIMPACT_DEBUG", raising=False)
+    try:
+        code = cli.main(list(args))
+    except SystemExit as exc:               # argparse usage errors
+        code = exc.code
+    cap = capsys.readouterr()
+    return code, cap.out, cap.err
+
+
+@pytest.fixture
+def model(tmp_path):
+    (tmp_path / "m.toml").write_text(MODEL, encoding="utf-8")
+    return tmp_path
+
+
+def _files(folder):
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
+
+
+def test_sweep_writes_one_table_of_the_runs_simulate_would_do(model, capsys, monkeypatch):
+    code, out, err = main(["sweep", "m.toml", "--grid", "rods.striker.velocity=4 m/s,6",
+                           "--grid", "rods[1].segments[0].length=0.5 m,0.8 m", "--set", "simulation.dt=0.48305 us"],
+                          model, capsys, monkeypatch)
+    assert code == 0, err
+    folder = model / "results" / "m-sweep"
+    assert _files(folder) == [".rodimpact-output", "summary.json", "sweep.csv", "sweep.nc"]
+    with open(folder / "sweep.csv", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [(r["rods.striker.velocity"], r["rods[1].segments[0].length"]) for r in rows] == [
+        ("4 m/s", "0.5 m"), ("4 m/s", "0.8 m"), ("6", "0.5 m"), ("6", "0.8 m")]
+    alone = load_model(model / "m.toml", {"rods.striker.velocity": 6, "rods[1].segments[0].length": "0.8 m",
+                                          "simulation.dt": "0.48305 us"}).simulate()
+    assert float(rows[3]["peak_contact_force [N]"]) == alone.junction_events[0].min_force
+    assert float(rows[3]["striker_final_velocity [m/s]"]) == pytest.approx(alone.rigid_body_velocity[0], abs=1e-12)
+    assert "peak contact force [kN]" in out and "table written to" in out
+    assert any(line.split()[:3] == ["6", "0.8", "m"] for line in out.splitlines())
+    summary = json.loads((folder / "summary.json").read_text())
+    assert summary["overrides"] == {"simulation.dt": "0.48305 us"} and summary["points"] == 4 and len(summary["rows"]) == 4
+
+
+def test_a_sweep_over_the_striker_velocity_runs_as_one_batch(model, capsys, monkeypatch):
+    code, out, err = main(["sweep", "m.toml", "--grid", "rods.striker.velocity=3,4,5", "--json"],
+                          model, capsys, monkeypatch)
+    assert code == 0, err
+    summary = json.loads(out)
+    assert summary["runner"] == "simulate_batch" and not (model / "results").exists()
+    assert [r["rods.striker.velocity"] for r in summary["rows"]] == [3, 4, 5]
+
+
+def test_nothing_a_user_saved_is_overwritten(model, capsys, monkeypatch):
+    args = ["sweep", "m.toml", "--grid", "rods.striker.velocity=3,4", "-o", "study"]
+    assert main(args, model, capsys, monkeypatch)[0] == 0
+    code, _, err = main(args, model, capsys, monkeypatch)
+    assert code == 2 and "study: exists and is not empty" in err
+    (model / "study" / "notes.txt").write_text("mine")
+    code, _, err = main(args + ["--force"], model, capsys, monkeypatch)
+    assert code == 2 and "holds files rodimpact did not write (notes.txt)" in err
+    os.remove(model / "study" / "notes.txt")
+    assert main(args + ["--force"], model, capsys, monkeypatch)[0] == 0
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--grid", "rods.striker.velocty=3,4"], r"rods[0].velocty: unknown key (did you mean 'velocity'?)"),
+    (["--grid", "rods.hammer.velocity=3,4"], "rods.hammer.velocity: rods has no entry named 'hammer' (names: "
+                                             "striker, bar; or give an index, e.g. rods[0])"),
+    (["--grid", "rods.striker.velocity=3,4 kg"], "rods[0].velocity: expected a velocity"),
+    (["--grid", "rods.striker.velocity=3,,4"], "--grid rods.striker.velocity: an empty value"),
+    (["--grid", "rods.striker.velocity"], "--grid 'rods.striker.velocity': expected KEY=VALUE"),
+    (["--grid", "rods.striker.velocity=3,3"], "rods.striker.velocity: the values [3, 3] repeat"),
+    (["--grid", "rods.striker.velocity=3", "--set", "rods.striker.velocity=4"], "rods.striker.velocity: both swept "
+                                                                                "and set"),
+    (["--grid", "rods.striker.velocity=3", "--set", "simulation.dt=-1 us"], "simulation.dt: must be > 0"),
+    (["--grid", "rods.striker.velocity=3", "--grid", "rods.striker.velocity=4"], "given twice"),
+])
+def test_bad_grids_name_the_key(model, capsys, monkeypatch, args, message):
+    code, out, err = main(["sweep", "m.toml", "--no-output", *args], model, capsys, monkeypatch)
+    assert code == 2 and message in err and "Traceback" not in err, err
+    assert _files(model) == ["m.toml"]
+
+
+def test_probes_do_not_limit_a_sweep(model, capsys, monkeypatch):
+    """A sweep records no probes: a bar shortened to end before the probe (0.5 m) is no error."""
+    code, out, err = main(["sweep", "m.toml", "--no-output", "--grid", "rods[1].segments[0].length=0.1 m,1 m"],
+                          model, capsys, monkeypatch)
+    assert code == 0 and err == "", err
+
+
+def test_grid_values_are_split_at_top_level_commas():
+    assert split_values('4 m/s, 5 m/s,"a,b", [1, 2], { x = 1, y = 2 }') == [
+        "4 m/s", "5 m/s", '"a,b"', "[1, 2]", "{ x = 1, y = 2 }"]
+    assert parse_grid(["ends.right=free,fixed", "simulation.allow_discretization_error=true,false"]) == {
+        "ends.right": ["free", "fixed"], "simulation.allow_discretization_error": [True, False]}
+
+
+def test_set_overrides_keys_on_simulate_synthesize_and_design(model, capsys, monkeypatch):
+    code, out, err = main(["simulate", "m.toml", "--set", "rods.striker.velocity=7 m/s", "--set",
+                           "probes.SG1.position=0.1 m", "--json"], model, capsys, monkeypatch)
+    assert code == 0, err
+    summary = json.loads(out)
+    assert summary["rods"][0]["initial_velocity_m_s"] == 7.0 and summary["probes"][0]["position_m"] == 0.1
+    code, _, err = main(["simulate", "m.toml", "--no-output", "--set", "rods.striker.velocity=7 kg"],
+                        model, capsys, monkeypatch)
+    assert code == 2 and "rods[0].velocity: expected a velocity" in err and 'rods.striker.velocity = "7 kg"' in err
+    code, _, err = main(["simulate", "m.toml", "--no-output", "--set", "simulation.dt"], model, capsys, monkeypatch)
+    assert code == 2 and "--set 'simulation.dt': expected KEY=VALUE" in err
+    (model / "s.toml").write_text(SYNTHESIS, encoding="utf-8")
+    code, out, err = main(["synthesize", "s.toml", "--set", "striker.velocity=7 m/s", "--set", "striker.elements=20",
+                           "--set", "synthesis.verify=false", "-o", "syn", "--json"], model, capsys, monkeypatch)
+    assert code == 0, err
+    assert json.loads(out)["striker_velocity_m_s"] == 7.0 and json.loads(out)["n_requested"] == 20
+    spec = (model / "syn" / "spec.toml").read_text()
+    assert 'striker.velocity = "7 m/s"' in spec.splitlines()[0]      # the spec as it ran
+    code, out, err = main(["init", "design", "-o", "d.toml"], model, capsys, monkeypatch)
+    code, out, err = main(["design", "d.toml", "--no-output", "--json", "--set", "design.elements=12", "--set",
+                           "design.starts=1", "--set", "design.max_iterations=3"], model, capsys, monkeypatch)
+    assert code == 0, err
+    assert json.loads(out)["elements"] == 12
+
+
+def test_no_output_writes_nothing_and_json_without_o_only_prints(model, capsys, monkeypatch):
+    """The user guide's sequence: results exist, then --json prints the summary (it was refused with rc 2)."""
+    assert main(["simulate", "m.toml", "-o", "results/m", "--no-plots"], model, capsys, monkeypatch)[0] == 0
+    before = _files(model)
+    code, out, err = main(["simulate", "m.toml", "-o", "results/m"], model, capsys, monkeypatch)
+    assert code == 2 and "exists and is not empty" in err
+    code, out, err = main(["simulate", "m.toml", "--json", "--no-plots"], model, capsys, monkeypatch)
+    assert code == 0 and json.loads(out)["junctions"][0]["peak_compressive_force_N"] < 0, err
+    code, out, err = main(["simulate", "m.toml", "--no-output"], model, capsys, monkeypatch)
+    assert code == 0 and "peak contact force" in out and "results written" not in out, err
+    for args in (["examples", "run", "first-example", "--no-output"], ["examples", "run", "first-example", "--json"]):
+        code, out, err = main(args, model, capsys, monkeypatch)
+        assert code == 0 and "255" in out, err
+    assert _files(model) == before
+    code, out, err = main(["simulate", "m.toml", "--json", "-o", "again", "--no-plots"], model, capsys, monkeypatch)
+    assert code == 0 and json.loads(out)["files"] and (model / "again" / "summary.json").is_file()
+    code, _, err = main(["simulate", "m.toml", "--no-output", "-o", "x"], model, capsys, monkeypatch)
+    assert code == 2 and "not allowed with argument" in err
