@@ -40,8 +40,8 @@ EFFICIENCY_ROUND_TRIPS = 3
 #: misfit below which the recursive method's striker is returned as the exact answer
 EXACT_MISFIT = 1e-9
 #: several starts: each runs for max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) iterations, then the best
-#: one continues up to max_iterations
-SCREEN_MIN, SCREEN_FRACTION = 10, 10
+#: CONTINUED of them continue up to max_iterations
+SCREEN_MIN, SCREEN_FRACTION, CONTINUED = 10, 10, 2
 
 
 def design(target: Any = None, struck: Any = None, striker_velocity: Optional[float] = None,
@@ -94,7 +94,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         Length of the efficiency run (default: the pulse 2 n dt plus ``EFFICIENCY_ROUND_TRIPS`` round trips
         through the struck system).
     starts, max_iterations, tolerance:
-        Number of starting profiles (each screened for max(10, max_iterations / 10) iterations, the best one
+        Number of starting profiles (each screened for max(10, max_iterations / 10) iterations, the best two
         continued), L-BFGS-B iterations per stage, and its relative ``ftol``. Where the objective is observed
         at the impact face or is the efficiency, the starts are the best of a pool of
         :data:`~rodimpact.design.screening.POOL_SIZE` candidates simulated together by
@@ -225,16 +225,19 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     else:
         profiles = named[:starts]
     diag["starts"] = [name for name, _ in profiles]
-    # screen every start briefly, then continue the best one (the tail of the convergence is slow and alike)
+    # screen every start briefly, then continue the best two (the tail of the convergence is slow and alike)
     screen = max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) if len(profiles) > 1 else max_iterations
     runs = [minimise(ev, cons, free, z0, v0, max_iterations=min(screen, max_iterations), tolerance=tolerance)
             for _, z0 in profiles]
     best = best_of(runs)
-    if max_iterations > screen and best.message.startswith("STOP"):
-        more = minimise(ev, cons, free, best.levels, best.velocity, max_iterations=max_iterations - screen,
-                        tolerance=tolerance)
-        runs.append(more)
-        best = best_of([best, more])
+    if max_iterations > screen:
+        # the best CONTINUED starts go on (a start that leads after the screen is not always the one that
+        # ends best); a start that has converged already is not continued
+        ranked = sorted(runs, key=lambda r: r.value if np.isfinite(r.value) else np.inf)[:CONTINUED]
+        more = [minimise(ev, cons, free, r.levels, r.velocity, max_iterations=max_iterations - screen,
+                         tolerance=tolerance) for r in ranked if r.message.startswith("STOP")]
+        runs += more
+        best = best_of([best, *more])
     iterations = sum(r.iterations for r in runs)
     z, v, fw = free.expand(best.levels), best.velocity, best.fw
     diag["optimizer_message"] = best.message
