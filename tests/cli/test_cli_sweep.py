@@ -178,3 +178,18 @@ def test_no_output_writes_nothing_and_json_without_o_only_prints(model, capsys, 
     assert code == 0 and json.loads(out)["files"] and (model / "again" / "summary.json").is_file()
     code, _, err = main(["simulate", "m.toml", "--no-output", "-o", "x"], model, capsys, monkeypatch)
     assert code == 2 and "not allowed with argument" in err
+
+
+def test_set_on_examples_run(model, capsys, monkeypatch):
+    """--set on 'examples run': the first example at 5 m/s instead of 10 m/s; the first contact force between
+    equal impedances Z0 = 51.0 kN s/m is Z0 v / 2 = 127.5 kN (compressive)."""
+    code, out, err = main(["examples", "run", "first-example", "--json", "--set", "rods[0].velocity=5 m/s"], model,
+                          capsys, monkeypatch)
+    assert code == 0, err
+    assert json.loads(out)["junctions"][0]["peak_compressive_force_N"] == pytest.approx(-127.5e3, rel=1e-12)
+    code, _, err = main(["examples", "run", "first-example", "--no-output", "--set", "rods[0].velocty=5 m/s"],
+                        model, capsys, monkeypatch)
+    assert code == 2 and "rods[0].velocty" in err
+    code, _, err = main(["examples", "show", "first-example", "--set", "rods[0].velocity=5 m/s"], model, capsys,
+                        monkeypatch)
+    assert code == 2 and "only with 'examples run'" in err
