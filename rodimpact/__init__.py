@@ -21,7 +21,7 @@ from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, Junct
                             SimulationResult)
 from .direct.recording import Recording
 from .direct.simulate import simulate
-from .direct.sweep import sweep
+from .direct.sweep import drilling_metrics, sweep
 from .direct.batch import BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
@@ -50,7 +50,7 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
-    "simulate", "Recording", "sweep", "simulate_batch", "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
+    "simulate", "Recording", "sweep", "drilling_metrics", "simulate_batch", "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
     "FieldSnapshots", "EnergyHistory",
     "JunctionEvents", "BitRockOutcome",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",

@@ -248,6 +248,9 @@ def cmd_examples(args: argparse.Namespace) -> int:
     if not args.name:
         raise InputError(f"examples {action}: give an example name ({', '.join(EXAMPLES)})")
     ex = _input_phase(lambda: example(args.name))
+    if args.set and action != "run":
+        raise InputError(f"--set: sets keys of the models an example runs; only with 'examples run', not "
+                         f"'examples {action}' (copy the model and edit it, or run it with --set)")
     if action == "show":
         for f in ex.models:
             if len(ex.models) > 1:
@@ -275,13 +278,15 @@ def cmd_examples(args: argparse.Namespace) -> int:
     # run
     from .io.results import format_summary, summarize
 
+    overrides = _overrides(args)
+    models = [_input_phase(lambda i=i: load_example(ex.name, i, overrides)) for i in range(len(ex.models))]
     out = _output(args, ex.name)
     if out is None:
-        runs = [(f, load_example(ex.name, i).simulate(progress=_progress(args))) for i, f in enumerate(ex.models)]
+        runs = [(f, m.simulate(progress=_progress(args))) for f, m in zip(ex.models, models)]
     else:
         with _claim_out(out, args.force):
             runs = [(f, r) for f, r, _ in run_example(ex.name, out, overwrite=args.force, plots=not args.no_plots,
-                                                      progress=_progress(args))]
+                                                      progress=_progress(args), overrides=overrides)]
     summaries = {Path(f).stem: summarize(r) for f, r in runs}
     text = "\n\n".join(format_summary(_without_warnings(s), f"{ex.title}" + (f" -- {k}" if len(runs) > 1 else ""))
                        for k, s in summaries.items())
@@ -416,6 +421,7 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("action", nargs="?", choices=("list", "run", "show", "copy"), help="what to do (default list)")
     e.add_argument("name", nargs="?", help="example name (see 'rodimpact examples list')")
     output_flags(e, "NAME")
+    set_flag(e, "example's model files (examples run)")
     e.set_defaults(func=cmd_examples)
 
     y = sub.add_parser("synthesize", help="find the striker impedance that produces a prescribed force",

@@ -31,6 +31,7 @@ Outputs per design d (junction index r, rod index q):
 * ``kin[d, q, 0/1]``, ``pot[d, q, 0/1]``: kinetic 1/2 Z dt v^2 and strain 1/2 N^2 dt / Z energy of rod q at
   the start and the end (thesis eq. 3.25), summed from the waves as :func:`rodimpact.simulate` does;
 * ``work[d, 0:4]``: work done by the left end, the right end, the loads and the friction (``acc[0:4]``), J;
+* ``ends_out[d, e]``: the outer end's state at the end, (outward displacement delta, largest delta), m;
 * ``fin_N[d]``, ``fin_v[d]``: the striker's element forces and velocities at the end;
 * junction events (every step, whatever the stride): ``low[d, r]`` most compressive force and ``low_step``
   its first step, ``peak[d, r]`` largest |force|, ``steps_on[d, r]`` steps in contact, ``n_ph[d, r]`` contact
@@ -105,7 +106,7 @@ def _events(force, contact, r, n_steps, low, low_step, peak, steps_on, n_ph, ph_
 def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
             junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
     """One design (see the module docstring); ``out`` holds the output arrays."""
-    hist, kin, pot, work, fin_N, fin_v, low, low_step, peak, steps_on, n_ph, ph_start, ph_stop, ph_peak = out
+    hist, kin, pot, work, fin_N, fin_v, low, low_step, peak, steps_on, n_ph, ph_start, ph_stop, ph_peak, ends_out = out
     n_s = Zs.shape[1]
     n_el = z0.size
     n_rods = rod_start.size - 1
@@ -133,7 +134,8 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     rod_NL = np.empty(n_rods)
     rod_NR = np.empty(n_rods)
     # the argument groups of boundaries() (see _kernels._grouped)
-    ends = (end_code, end_par[d].copy(), np.zeros((2, 2)), end_value)
+    end_state = np.zeros((2, 2))
+    ends = (end_code, end_par[d].copy(), end_state, end_value)
     junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)))
     specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
     probes = (no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0))
@@ -165,6 +167,9 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     _rod_energies(f, g, inv_Z, dt, rod_start, kin[d], pot[d], 1)
     for k in range(4):
         work[d, k] = acc[k]
+    for e in range(2):
+        ends_out[d, e, 0] = end_state[e, 0]
+        ends_out[d, e, 1] = end_state[e, 1]
     fin_N[d] = N[:n_s]
     fin_v[d] = v[:n_s]
     for k in range(hist.shape[1]):

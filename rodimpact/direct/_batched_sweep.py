@@ -19,6 +19,7 @@ from ..lattice.discretize import discretize_rod
 from ..rods.system import System
 from .batch import BatchResult, run_designs, slot_problem
 from .simulate import _step_count, _time_step
+from .sweep import ROCK_QUANTITIES, rock_value
 
 #: largest relative travel-time error of a striker that is batched (simulate reports larger ones per point)
 _TOLERANCE = 0.01
@@ -37,6 +38,9 @@ def batch_metric(name: str, res: BatchResult) -> np.ndarray:
         return res.contact_steps[:, 0] * res.dt
     if name == "energy_transfer":
         return res.efficiency
+    if name in ROCK_QUANTITIES:             # rock_energy, drilling_efficiency, penetration_per_blow
+        quantity = ROCK_QUANTITIES[name][0]
+        return np.array([rock_value(res.bit_rock(d), quantity) for d in range(res.n_designs)])
     return res.rigid_body_velocity          # striker_final_velocity
 
 

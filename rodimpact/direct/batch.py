@@ -30,7 +30,7 @@ from ..rods.rod import Rod
 from ..rods.system import System
 from . import _batch_kernels as BK
 from . import _kernels as K
-from .result import JunctionEvents
+from .result import BitRockOutcome, JunctionEvents, bit_rock_outcomes
 from .recording import step_stride
 from .simulate import (_initial_state, _kernel_arrays, _step_count, _wave_arrays, passive_right,
                        quiet_front)
@@ -73,6 +73,7 @@ class BatchResult:
     phase_start: np.ndarray        # (designs, n_junctions, max_phases) first step of each phase, -1 = none
     phase_stop: np.ndarray         # (designs, n_junctions, max_phases) step after its last, n_steps if still on
     phase_max_abs_force: np.ndarray  # (designs, n_junctions, max_phases) largest |force| in each phase
+    end_state: np.ndarray          # (designs, 2, 2) left/right end: (outward displacement, largest one) at the end, m
     diagnostics: dict[str, Any] = field(default_factory=dict)
 
     def __repr__(self) -> str:
@@ -103,6 +104,14 @@ class BatchResult:
         """The striker's mean (centre-of-mass) velocity at the end per design, m/s: momentum / lattice mass."""
         z, v = self.impedance, self.final_velocity
         return np.array([np.dot(z[d], v[d]) / z[d].sum() for d in range(self.n_designs)])
+
+    def bit_rock(self, design: int) -> tuple[BitRockOutcome, ...]:
+        """The :class:`~rodimpact.BitRockOutcome` of every outer end with a :class:`~rodimpact.BitRockEnd` for
+        ``design`` (as :attr:`SimulationResult.bit_rock`): energy into the rock, drilling efficiency,
+        penetration per blow."""
+        d = self._design(design)
+        initial = self.kinetic[d, :, 0] + self.strain[d, :, 0]
+        return bit_rock_outcomes(self.system, self.end_state[d], self.work_left[d], self.work_right[d], initial)
 
     def junction_events(self, design: int) -> tuple[JunctionEvents, ...]:
         """The :class:`~rodimpact.JunctionEvents` of every junction of ``design`` (as
@@ -255,7 +264,7 @@ def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarra
         out = _run_chunk(plan, zs, vel, end_par, gap_tol, threads)
     else:
         out = _run_on(executor, plan, zs, vel, end_par, gap_tol, chunk_size)
-    hist, kin, pot, work, fin_n, fin_v, low, low_step, peak, on, n_ph, ph_start, ph_stop, ph_peak = out
+    hist, kin, pot, work, fin_n, fin_v, low, low_step, peak, on, n_ph, ph_start, ph_stop, ph_peak, ends = out
     return BatchResult(
         system=system, impedance=zs, velocity=vel, dt=dt, n_steps=n_steps, record_every=stride,
         time=np.arange(0, n_steps, stride) * dt if contact_force else np.zeros(0),
@@ -263,7 +272,7 @@ def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarra
         kinetic=kin, strain=pot, work_left=work[:, 0], work_right=work[:, 1], work_loads=work[:, 2],
         work_friction=work[:, 3], final_force=fin_n, final_velocity=fin_v, peak_force=low, peak_force_step=low_step,
         max_abs_force=peak, contact_steps=on, n_phases=n_ph, phase_start=ph_start, phase_stop=ph_stop,
-        phase_max_abs_force=ph_peak,
+        phase_max_abs_force=ph_peak, end_state=ends,
         diagnostics={"version": __version__, "wall_time_s": _time.perf_counter() - wall0, "designs": n_d,
                      "steps": n_steps, "elements": plan.z0.size,
                      "executor": "in-process" if executor is None else type(executor).__name__})
@@ -402,7 +411,7 @@ def _run_chunk(plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray
            np.zeros((n_d, n_s)), np.zeros((n_d, n_s)), np.zeros((n_d, n_j)), np.zeros((n_d, n_j), dtype=np.int64),
            np.zeros((n_d, n_j)), np.zeros((n_d, n_j), dtype=np.int64), np.zeros((n_d, n_j), dtype=np.int64),
            np.full((n_d, n_j, m), -1, dtype=np.int64), np.full((n_d, n_j, m), -1, dtype=np.int64),
-           np.zeros((n_d, n_j, m)))
+           np.zeros((n_d, n_j, m)), np.zeros((n_d, 2, 2)))
     args = (plan.n_steps, plan.stride, plan.quiet, zs, vel, plan.z0, plan.N0, plan.v0, plan.rod_start, plan.touch,
             plan.end_code, end_par, plan.end_value, plan.junction_code, plan.gap0, gap_tol, plan.sp_elem,
             plan.sp_cap, plan.sp_force, plan.dt, out)

@@ -10,6 +10,7 @@ import numpy as np
 
 from .._validate import finite
 from ..lattice.lattice import Lattice
+from ..rods.conditions import BitRockEnd
 from ..rods.system import System
 from .tables import SimulationTables
 
@@ -187,6 +188,25 @@ class BitRockOutcome:
         return (f"BitRockOutcome({self.end} end: energy into the rock {self.energy:.6g} J{eff}, penetration per "
                 f"blow {self.penetration:.6g} m, largest {self.max_penetration:.6g} m"
                 f"{', still in contact' if self.in_contact else ''})")
+
+
+def bit_rock_outcomes(system: System, end_state: np.ndarray, work_left: float, work_right: float,
+                      initial_energy: np.ndarray) -> tuple[BitRockOutcome, ...]:
+    """A :class:`BitRockOutcome` for each outer end of ``system`` with a :class:`~rodimpact.BitRockEnd`: the
+    kernel's final end state ``end_state[e] = (delta, delta_max)`` (e = 0 left, 1 right; m), the end's work from
+    the energy bookkeeping (J; the energy into the rock is minus it) and each rod's initial energy (J). The
+    striker is the rod at the other end of the system."""
+    out = []
+    for e, (side, cond) in enumerate((("left", system.left), ("right", system.right))):
+        if not isinstance(cond, BitRockEnd):
+            continue
+        striker = system.n_rods - 1 if side == "left" else 0
+        out.append(BitRockOutcome(
+            end=side, loading_stiffness=cond.loading_stiffness, unloading_stiffness=cond.unloading_stiffness,
+            max_penetration=float(end_state[e, 1]), final_penetration=float(end_state[e, 0]),
+            energy=-float(work_left if side == "left" else work_right), striker=striker,
+            striker_energy=float(initial_energy[striker])))
+    return tuple(out)
 
 
 @dataclass(frozen=True, repr=False)

@@ -20,7 +20,7 @@ from ..rods.system import InitialState, System
 from . import _kernels as K
 from . import guards
 from .recording import Recorder, Recording, check_probes
-from .result import BitRockOutcome, EnergyHistory, Probe, ProbeHistory, SimulationResult
+from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes
 
 Backend = Literal["numba", "numpy"]
 #: longest run in steps (step indices are stored as int32 in result files)
@@ -129,7 +129,8 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
         probes=_probe_histories(system, lattice, probe_list, hist), snapshots=recorder.snapshots(lattice),
         energy=energy, final_force=N.copy(), final_velocity=v.copy(), diagnostics=diagnostics,
         record_every=recorder.stride, n_steps=n_steps, junction_events=recorder.junction_events(),
-        bit_rock=_bit_rock_outcomes(system, arrays["end_state"], energy))
+        bit_rock=bit_rock_outcomes(system, arrays["end_state"], energy.work_left[-1], energy.work_right[-1],
+                                   energy.kinetic[:, 0] + energy.strain[:, 0]))
 
 
 def _advance(run: Callable, n_steps: int, capacity: int, lat: Lattice, arrays: dict, state: dict,
@@ -199,24 +200,6 @@ def _recording(record: Optional[Recording], **keywords: Any) -> Recording:
 
 
 # ---------------------------------------------------------------------------------------------- helpers
-def _bit_rock_outcomes(system: System, end_state: np.ndarray, energy: EnergyHistory) -> tuple[BitRockOutcome, ...]:
-    """A :class:`BitRockOutcome` for each outer end with a :class:`BitRockEnd`: the kernel's final end state
-    ``end_state[e] = (delta, delta_max)`` (e = 0 left, 1 right; m) and the end's work from the energy bookkeeping.
-    The striker is the rod at the other end of the system."""
-    out = []
-    for e, (side, cond) in enumerate((("left", system.left), ("right", system.right))):
-        if not isinstance(cond, BitRockEnd):
-            continue
-        striker = system.n_rods - 1 if side == "left" else 0
-        work = energy.work_left if side == "left" else energy.work_right
-        out.append(BitRockOutcome(
-            end=side, loading_stiffness=cond.loading_stiffness, unloading_stiffness=cond.unloading_stiffness,
-            max_penetration=float(end_state[e, 1]), final_penetration=float(end_state[e, 0]),
-            energy=-float(work[-1]), striker=striker,
-            striker_energy=float(energy.kinetic[striker, 0] + energy.strain[striker, 0])))
-    return tuple(out)
-
-
 def _named_rod(probe: Any, i: int, system: System) -> Any:
     """``probe`` with a rod name replaced by the rod's index (other objects are checked later)."""
     if not isinstance(probe, Probe) or not isinstance(probe.rod, str):

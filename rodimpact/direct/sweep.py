@@ -53,6 +53,27 @@ def _first_junction(res: SimulationResult):
     return res.junction_events[0]
 
 
+#: Drilling metrics for a system with a :class:`~rodimpact.BitRockEnd` (the first such end), as
+#: :class:`~rodimpact.BitRockOutcome` defines them: name -> (outcome attribute, unit): the energy into the rock,
+#: the drilling efficiency (that energy / the striker's initial energy) and the penetration per blow.
+ROCK_QUANTITIES: dict[str, tuple[str, str]] = {"rock_energy": ("energy", "J"),
+                                               "drilling_efficiency": ("efficiency", "1"),
+                                               "penetration_per_blow": ("penetration", "m")}
+
+
+def rock_value(outcomes: Sequence[Any], quantity: str) -> float:
+    """``quantity`` of the first :class:`~rodimpact.BitRockOutcome` of ``outcomes`` (NaN without a BitRockEnd,
+    or for an efficiency without striker energy)."""
+    value = getattr(outcomes[0], quantity) if outcomes else None
+    return math.nan if value is None else float(value)
+
+
+#: :data:`ROCK_QUANTITIES` as metrics: ``sweep(build, grid, drilling_metrics())``; ``rodimpact sweep`` adds them
+#: for a model with a bit-rock end. A batched sweep computes them too.
+ROCK_METRICS: dict[str, tuple[Metric, str]] = {
+    name: ((lambda r, q=q: rock_value(r.bit_rock, q)), unit) for name, (q, unit) in ROCK_QUANTITIES.items()}
+
+
 #: Metrics of :func:`sweep` when none are given: name -> (function of the result, unit). Contact quantities are
 #: those of junction 0 and are taken at every step, whatever the recording stride.
 DEFAULT_METRICS: dict[str, tuple[Metric, str]] = {
@@ -61,6 +82,15 @@ DEFAULT_METRICS: dict[str, tuple[Metric, str]] = {
     "energy_transfer": (_energy_transfer, "1"),
     "striker_final_velocity": (lambda r: float(r.rigid_body_velocity[0]), "m/s"),
 }
+
+
+#: every metric a batched sweep can compute, with its unit
+KNOWN_METRICS: dict[str, tuple[Metric, str]] = {**DEFAULT_METRICS, **ROCK_METRICS}
+
+
+def drilling_metrics() -> dict[str, Metric]:
+    """``metrics=`` for :func:`sweep` of a drilling system: :data:`DEFAULT_METRICS` and :data:`ROCK_METRICS`."""
+    return {name: f for name, (f, _) in KNOWN_METRICS.items()}
 
 
 def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
@@ -166,8 +196,8 @@ def _batched(build, names, values, points, shape, chosen, workers, executor, chu
     (see :mod:`rodimpact.direct._batched_sweep`)."""
     from . import _batched_sweep as BS
 
-    if any(DEFAULT_METRICS.get(name, (None,))[0] is not f for name, f in chosen.items()):
-        return None, "metrics: only the default metrics are computed from a batch"
+    if any(KNOWN_METRICS.get(name, (None,))[0] is not f for name, f in chosen.items()):
+        return None, "metrics: only the default and drilling metrics are computed from a batch"
     # built lazily: planning stops at the first point that cannot be batched (the per-point path builds again)
     specs = (build(**{n: v[i] for n, v, i in zip(names, values, index)}) for index in points)
     try:
@@ -263,7 +293,8 @@ def _metrics(metrics: Any) -> tuple[dict[str, Metric], dict[str, str]]:
         if not callable(f):
             raise TypeError(f"metrics[{name!r}]: must be a function of the SimulationResult, got "
                             f"{type(f).__name__}")
-    return dict(metrics), {name: DEFAULT_METRICS[name][1] if name in DEFAULT_METRICS else "" for name in metrics}
+    return dict(metrics), {name: KNOWN_METRICS[name][1] if KNOWN_METRICS.get(name, (None,))[0] is f else ""
+                           for name, f in metrics.items()}
 
 
 def _simulate(spec: Any) -> SimulationResult:

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any, Mapping, Optional
 
 from ..io.model import Model, loads_model
 
@@ -60,26 +60,29 @@ def model_text(file: str) -> str:
     return resources.files(__name__).joinpath(file).read_text(encoding="utf-8")
 
 
-def load_example(name: str, index: int = 0) -> Model:
-    """The ``index``-th model of example ``name`` as a :class:`~rodimpact.io.model.Model`."""
+def load_example(name: str, index: int = 0, overrides: Optional[Mapping[str, Any]] = None) -> Model:
+    """The ``index``-th model of example ``name`` as a :class:`~rodimpact.io.model.Model`; ``overrides``: key path
+    -> value set before the model is validated, as in :func:`rodimpact.io.model.load_model`."""
     ex = example(name)
-    return loads_model(model_text(ex.models[index]), name=f"{name}:{ex.models[index]}")
+    return loads_model(model_text(ex.models[index]), name=f"{name}:{ex.models[index]}", overrides=overrides)
 
 
 def run_example(name: str, outdir: str | Path, *, overwrite: bool = False, plots: bool = True,
-                progress: Optional[bool] = False) -> list[tuple[str, Any, Path]]:
+                progress: Optional[bool] = False,
+                overrides: Optional[Mapping[str, Any]] = None) -> list[tuple[str, Any, Path]]:
     """Run every model of example ``name`` and write results and plots to ``outdir`` (sub-folders named after the
     model files when there are several, plus ``energy-comparison.png``). Returns (model file, result, folder)
     per model. The whole folder is written atomically and never replaces existing results unless ``overwrite``;
-    even then only a folder rodimpact wrote (:func:`rodimpact.io.results.check_output_folder`)."""
+    even then only a folder rodimpact wrote (:func:`rodimpact.io.results.check_output_folder`). ``overrides``
+    are set in every model of the example (:func:`load_example`)."""
     from ..io.results import AtomicFolder, save
     from ..plotting import plot_energy_comparison
 
     ex = example(name)
     out = []
     with AtomicFolder(outdir, overwrite) as tmp:
-        for i, file in enumerate(ex.models):
-            model = load_example(name, i)
+        models = [load_example(name, i, overrides) for i in range(len(ex.models))]    # all checked first
+        for file, model in zip(ex.models, models):
             result = model.simulate(progress=progress)
             # into the fresh temporary folder itself (it holds only AtomicFolder's marker) or a new sub-folder
             sub = tmp if len(ex.models) == 1 else tmp / Path(file).stem

@@ -3,7 +3,8 @@
 :func:`sweep_model` loads the model once per grid point with the point's values as overrides
 (:mod:`rodimpact.io.overrides`), so that a bad key or value is an error naming the key path before anything runs,
 then runs :func:`rodimpact.sweep` (batched when only the striker and its velocity change). The summary quantities
-are :data:`rodimpact.direct.sweep.DEFAULT_METRICS` at the first contact (rod 0 | rod 1); probes and snapshots are
+are :data:`rodimpact.direct.sweep.DEFAULT_METRICS` at the first contact (rod 0 | rod 1), with
+:data:`~rodimpact.direct.sweep.ROCK_METRICS` for a model with a bit-rock end; probes and snapshots are
 not recorded. :func:`save_sweep` writes one folder with the table (``sweep.csv``, ``sweep.nc``) and
 ``summary.json``; :func:`format_sweep` gives the table as text.
 """
@@ -17,6 +18,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence
 
+from ..rods.conditions import BitRockEnd
 from . import _toml
 from .model import Model, load_model
 from .overrides import parse_assignment, parse_value
@@ -29,6 +31,9 @@ COLUMNS: dict[str, tuple[str, str, float]] = {
     "contact_time": ("contact time", "ms", 1e3),
     "energy_transfer": ("energy transfer", "%", 100.0),
     "striker_final_velocity": ("striker final velocity", "m/s", 1.0),
+    "rock_energy": ("energy into the rock", "J", 1.0),
+    "drilling_efficiency": ("drilling efficiency", "%", 100.0),
+    "penetration_per_blow": ("penetration per blow", "mm", 1e3),
 }
 
 
@@ -89,7 +94,7 @@ def sweep_model(path: str | Path, grid: Mapping[str, Sequence[Any]], overrides: 
     are not numbers or strings, e.g. ``true``). ``progress``: ``None`` reports progress on stderr for sweeps of
     more than :data:`~rodimpact.direct.guards.PROGRESS_UPDATES` element updates in all."""
     from ..direct.guards import PROGRESS_UPDATES
-    from ..direct.sweep import sweep
+    from ..direct.sweep import drilling_metrics, sweep
 
     overrides = dict(overrides or {})
     keys, labels = _grid(grid, overrides)
@@ -102,7 +107,11 @@ def sweep_model(path: str | Path, grid: Mapping[str, Sequence[Any]], overrides: 
     def build(**point: Any) -> _Point:
         return points[tuple(labels[k].index(point[k]) for k in keys)]
 
-    return sweep(build, labels, workers=workers, progress=progress)
+    # a model with a bit-rock end reports what a drilling engineer wants: energy into the rock, efficiency and
+    # penetration per blow (with the default quantities)
+    system = next(iter(points.values())).model.system
+    drilling = any(isinstance(end, BitRockEnd) for end in (system.left, system.right))
+    return sweep(build, labels, drilling_metrics() if drilling else None, workers=workers, progress=progress)
 
 
 def _grid(grid: Mapping[str, Sequence[Any]], overrides: Mapping[str, Any]) -> tuple[list[str], dict[str, list]]:

@@ -206,8 +206,8 @@ def test_multi_model_example_writes_subfolders_and_comparison(tmp_path, monkeypa
     import rodimpact.examples as ex
 
     original = ex.load_example
-    monkeypatch.setattr(ex, "load_example", lambda name, i=0: dataclasses.replace(original(name, i), dt=4e-6,
-                                                                                    duration=2e-3))
+    monkeypatch.setattr(ex, "load_example", lambda name, i=0, overrides=None: dataclasses.replace(
+        original(name, i, overrides), dt=4e-6, duration=2e-3))
     runs = ex.run_example("complex-example-energy", tmp_path / "e")
     assert [f for f, _, _ in runs] == ["complex-example-friction.toml", "complex-example-no-friction.toml"]
     assert (tmp_path / "e" / "energy-comparison.png").is_file()

@@ -178,3 +178,38 @@ def test_no_output_writes_nothing_and_json_without_o_only_prints(model, capsys, 
     assert code == 0 and json.loads(out)["files"] and (model / "again" / "summary.json").is_file()
     code, _, err = main(["simulate", "m.toml", "--no-output", "-o", "x"], model, capsys, monkeypatch)
     assert code == 2 and "not allowed with argument" in err
+
+
+def test_set_on_examples_run(model, capsys, monkeypatch):
+    """--set on 'examples run': the first example at 5 m/s instead of 10 m/s; the first contact force between
+    equal impedances Z0 = 51.0 kN s/m is Z0 v / 2 = 127.5 kN (compressive)."""
+    code, out, err = main(["examples", "run", "first-example", "--json", "--set", "rods[0].velocity=5 m/s"], model,
+                          capsys, monkeypatch)
+    assert code == 0, err
+    assert json.loads(out)["junctions"][0]["peak_compressive_force_N"] == pytest.approx(-127.5e3, rel=1e-12)
+    code, _, err = main(["examples", "run", "first-example", "--no-output", "--set", "rods[0].velocty=5 m/s"],
+                        model, capsys, monkeypatch)
+    assert code == 2 and "rods[0].velocty" in err
+    code, _, err = main(["examples", "show", "first-example", "--set", "rods[0].velocity=5 m/s"], model, capsys,
+                        monkeypatch)
+    assert code == 2 and "only with 'examples run'" in err
+
+
+def test_a_drilling_sweep_reports_the_rock(model, capsys, monkeypatch):
+    """A model with a bit-rock end: the sweep's table adds the energy into the rock, the drilling efficiency and the
+    penetration per blow, equal to a simulate run of the same point; a model without one does not."""
+    assert main(["examples", "copy", "percussion-drilling", "-o", "drill.toml"], model, capsys, monkeypatch)[0] == 0
+    code, out, err = main(["sweep", "drill.toml", "--grid", "rods[0].velocity=8 m/s,10 m/s", "--json"], model,
+                          capsys, monkeypatch)
+    assert code == 0, err
+    rows = json.loads(out)["rows"]
+    rock = load_model(model / "drill.toml", {"rods[0].velocity": "10 m/s"}).simulate().bit_rock[0]
+    assert rows[1]["rock_energy"] == pytest.approx(rock.energy, rel=1e-12) and rock.energy > 0
+    assert rows[1]["drilling_efficiency"] == pytest.approx(rock.efficiency, rel=1e-12)
+    assert rows[1]["penetration_per_blow"] == pytest.approx(rock.penetration, rel=1e-12)
+    code, out, err = main(["sweep", "drill.toml", "--grid", "rods[0].velocity=8 m/s,10 m/s", "--no-output"], model,
+                          capsys, monkeypatch)
+    assert code == 0 and "energy into the rock [J]" in out and "penetration per blow [mm]" in out, err
+    code, out, err = main(["sweep", "m.toml", "--grid", "rods[0].velocity=4,5", "--no-output"], model, capsys,
+                          monkeypatch)
+    assert code == 0 and "energy into the rock" not in out, err

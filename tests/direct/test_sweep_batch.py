@@ -113,3 +113,22 @@ def test_finding_out_that_a_grid_cannot_be_batched_builds_one_point_only():
 
     ds = ri.sweep(with_probe, {"length": [0.1, 0.16, 0.2]})
     assert ds.attrs["runner"] == "simulate" and sorted(calls) == [0.1, 0.1, 0.16, 0.2]
+
+
+def test_drilling_metrics_from_a_batch_equal_the_per_point_runs():
+    """Energy into the rock, drilling efficiency and penetration per blow (BitRockOutcome) of every point: the
+    batched sweep (one simulate_batch call per striker length) gives the per-point runs' numbers."""
+    grid = {"length": [0.1, 0.16], "velocity": [4.0, 8.0]}
+    batched = ri.sweep(stepped, grid, ri.drilling_metrics())
+    per_point = ri.sweep(stepped, grid, ri.drilling_metrics(), batch=False)
+    assert batched.attrs["runner"] == "simulate_batch" and per_point.attrs["runner"] == "simulate"
+    same(batched, per_point)
+    run = ri.simulate(**stepped(0.16, 8.0))
+    rock = run.bit_rock[0]
+    point = batched.sel(length=0.16, velocity=8.0)
+    assert float(point["rock_energy"]) == rock.energy > 0.0
+    assert float(point["drilling_efficiency"]) == rock.efficiency
+    assert float(point["penetration_per_blow"]) == rock.penetration > 0.0
+    assert batched["rock_energy"].attrs["units"] == "J"
+    plain = ri.sweep(small, {"length": [0.1], "velocity": [3.0]}, ri.drilling_metrics())     # no rock: NaN
+    assert np.isnan(plain["rock_energy"]).all()
