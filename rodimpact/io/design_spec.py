@@ -21,7 +21,7 @@ from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
     validate_table
-from .synthesis_spec import TARGET_TYPES, _target, read_struck, write_plots
+from .synthesis_spec import TARGET_TYPES, _target, finish_folder, read_struck, write_plots
 
 # ============================================================================================ schema
 STRIKER = Table("striker", "The striker to be designed and its constraints.", (
@@ -264,24 +264,15 @@ def save(r: DesignRun, spec: DesignSpec, outdir: str | Path, *, overwrite: bool 
     :func:`rodimpact.io.results.check_output_folder`): ``spec.toml``, ``striker.csv`` (profile listed left to
     right, readable by ``[rods.elements] file``), ``design.nc``, ``summary.json``, ``plots/`` and
     ``verification/`` (the direct simulation with its ``model.toml``). Returns the summary."""
-    from .results import AtomicFolder, _to_json
-    from .results import save as save_result
+    from .results import AtomicFolder
 
     res = r.result
-    files = ["spec.toml", "striker.csv", "design.nc"]
     with AtomicFolder(outdir, overwrite) as tmp:
         (tmp / "spec.toml").write_text(spec.text, encoding="utf-8")
         res.to_csv(tmp / "striker.csv", spec.material, spec.bore)
         res.save(tmp / "design.nc")
-        if r.verification is not None:
-            save_result(r.verification.simulation, tmp / "verification", overwrite=True,
-                        plots=("forces", "profile") if plots and spec.plots else (), snapshot_times=None)
-            files.append("verification/")
-        if plots and spec.plots:
-            files += [f"plots/{p}" for p in _plots(res, tmp / "plots")]
-        summary = summarize_run(r, spec)
-        summary["files"] = files + ["summary.json"]
-        (tmp / "summary.json").write_text(_to_json(summary), encoding="utf-8")
+        summary = finish_folder(tmp, ["spec.toml", "striker.csv", "design.nc"], r.verification,
+                                plots and spec.plots, lambda: _plots(res, tmp / "plots"), summarize_run(r, spec))
     return summary
 
 

@@ -350,8 +350,7 @@ def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite:
     reads it as a rod), ``synthesis.nc`` (all per-element arrays), ``summary.json``, ``plots/`` and,
     when verified, ``verification/`` -- the direct simulation of the synthesized striker hitting the struck
     system, with its ``model.toml`` ready for ``rodimpact simulate``. Returns the summary."""
-    from .results import AtomicFolder, _to_json
-    from .results import save as save_result
+    from .results import AtomicFolder
 
     files: list[str] = []
     res = r.result
@@ -365,16 +364,28 @@ def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite:
             files.append("striker.csv")
         res.save(tmp / "synthesis.nc")
         files.append("synthesis.nc")
-        if r.verification is not None:
-            save_result(r.verification.simulation, tmp / "verification", overwrite=True,
-                        plots=("forces", "profile") if plots else (),
-                        snapshot_times=None)
-            files.append("verification/")
-        if plots and spec.plots:
-            files += [f"plots/{p}" for p in _plots(r, tmp / "plots")]
-        summary = summarize_run(r, spec)
-        summary["files"] = files + ["summary.json"]
-        (tmp / "summary.json").write_text(_to_json(summary), encoding="utf-8")
+        summary = finish_folder(tmp, files, r.verification, plots and spec.plots, lambda: _plots(r, tmp / "plots"),
+                                summarize_run(r, spec))
+    return summary
+
+
+def finish_folder(tmp: Path, files: list[str], verification: Any, plots: bool, draw: Any,
+                  summary: dict[str, Any]) -> dict[str, Any]:
+    """The common end of a synthesis or design output folder ``tmp``: ``verification/`` (the direct simulation
+    of the striker, with its ``model.toml``, and its force and profile plots when ``plots``), ``plots/`` (the
+    files ``draw()`` writes there), and ``summary.json`` (``summary`` with the list of ``files``)."""
+    from .results import _to_json
+    from .results import save as save_result
+
+    files = list(files)
+    if verification is not None:
+        save_result(verification.simulation, tmp / "verification", overwrite=True,
+                    plots=("forces", "profile") if plots else (), snapshot_times=None)
+        files.append("verification/")
+    if plots:
+        files += [f"plots/{p}" for p in draw()]
+    summary["files"] = files + ["summary.json"]
+    (tmp / "summary.json").write_text(_to_json(summary), encoding="utf-8")
     return summary
 
 
