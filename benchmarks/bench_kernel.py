@@ -87,7 +87,7 @@ def _rates(n: int, n_steps: int, rounds: int) -> tuple[float, float]:
         arrays = sim._kernel_arrays(system, lat, state, [])
         recorder = Recorder(Recording(energy_every=n_steps), lat, arrays, state["N"].copy(), n_steps, n_steps)
         t0 = time.perf_counter()
-        sim._advance(K.run_numba, n_steps, n_steps, lat, arrays, state, recorder, None)
+        sim._advance("numba", n_steps, n_steps, lat, arrays, state, recorder, None)
         best_kernel = min(best_kernel, time.perf_counter() - t0)
         t0 = time.perf_counter()
         _stream(n_steps, f, g, R)

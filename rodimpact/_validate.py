@@ -38,6 +38,8 @@ def non_negative(name: str, value: Any, unit: str = "") -> float:
 def finite(name: str, value: Any, unit: str = "") -> float:
     """Return ``value`` as a float after checking it is a finite real number; with a ``unit`` (SI), a unit
     string (``"300 mm"``) or a pint Quantity is converted to it (:func:`rodimpact._units.to_si`)."""
+    if type(value) is float and math.isfinite(value):       # the common case, without the conversions below
+        return value
     converted = to_si(name, value, unit)
     if converted is not None:
         value = converted

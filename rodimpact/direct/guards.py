@@ -113,11 +113,13 @@ def check_run_memory(n_elements: int, n_steps: int, rows: int, stride: int, n_sn
     """The memory of a run's lattice, histories and snapshots against the available memory, before anything is
     allocated (:func:`rodimpact.simulate` checks the element-update limit first, :func:`check_element_updates`).
     Messages name the argument that changes it."""
-    parts = run_bytes(n_elements, n_steps, rows, stride, n_snapshots)
-    _check_memory(parts, {"histories": "keep every n-th step with record_every=n, or split the run",
-                          "snapshots": "fewer snapshots (a larger snapshot_every, fewer snapshot_times)",
-                          "lattice": "a larger dt (fewer elements)"},
-                  {"histories": "steps", "snapshots": "snapshot_every", "lattice": "dt"})
+    _check_memory(run_bytes(n_elements, n_steps, rows, stride, n_snapshots), _RUN_HINTS, _RUN_NAMES)
+
+
+_RUN_HINTS = {"histories": "keep every n-th step with record_every=n, or split the run",
+              "snapshots": "fewer snapshots (a larger snapshot_every, fewer snapshot_times)",
+              "lattice": "a larger dt (fewer elements)"}
+_RUN_NAMES = {"histories": "steps", "snapshots": "snapshot_every", "lattice": "dt"}
 
 
 def _check_memory(parts: dict[str, float], hints: dict[str, str], names: dict[str, str]) -> None:

@@ -7,6 +7,8 @@ histories (contact force, end values, probes) are the values held during step k,
 
 from __future__ import annotations
 
+import functools
+import math
 from dataclasses import dataclass
 from typing import Any, Iterable, Optional
 
@@ -170,14 +172,15 @@ class Recorder:
         """Contact phases of every junction; a phase still open at the end stops at ``n_steps``."""
         state, phases, count = self.events
         out = []
-        for j in range(state.shape[0]):
-            rows = phases[j, :count[j]]
-            if state[j, 0] >= 0:
-                rows = np.vstack([rows, [[state[j, 0], self.n_steps, state[j, 1]]]])
-            low = state[j, 2]
-            out.append(JunctionEvents(start=rows[:, 0].astype(np.int64), stop=rows[:, 1].astype(np.int64),
-                                      max_abs_force=rows[:, 2].copy(), min_force=float(low) if np.isfinite(low)
-                                      else 0.0, min_force_step=int(state[j, 3]), max_abs_force_run=float(state[j, 4])))
+        for j, (open_start, open_peak, low, low_step, peak) in enumerate(state.tolist()):
+            rows = phases[j, :count[j]].T
+            start, stop, top = rows[0].astype(np.int64), rows[1].astype(np.int64), rows[2].copy()
+            if open_start >= 0:
+                start, stop = np.append(start, int(open_start)), np.append(stop, self.n_steps)
+                top = np.append(top, open_peak)
+            out.append(JunctionEvents(start=start, stop=stop, max_abs_force=top,
+                                      min_force=low if math.isfinite(low) else 0.0, min_force_step=int(low_step),
+                                      max_abs_force_run=peak))
         return tuple(out)
 
     def energy(self, dt: float) -> EnergyHistory:
@@ -185,7 +188,7 @@ class Recorder:
         steps, _, _, kin, pot, mom, acc = self.samples[:7]
         return EnergyHistory(time=steps * dt, kinetic=kin.T, strain=pot.T, momentum=mom.T, work_left=acc[:, 0],
                              work_right=acc[:, 1], work_loads=acc[:, 2], work_friction=acc[:, 3],
-                             impulse=acc[:, 4:].sum(axis=1))
+                             impulse=functools.reduce(np.add, acc[:, 4:].T))     # I_left + I_right + ...
 
     def snapshots(self, lattice: Lattice) -> Optional[FieldSnapshots]:
         """The field snapshots (``None`` if none were requested)."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import functools
 import math
 from typing import Any, Optional
 
@@ -98,8 +99,9 @@ class EnergyHistory:
 
     @property
     def total(self) -> np.ndarray:
-        """Total mechanical energy of all rods, J."""
-        return self.kinetic.sum(axis=0) + self.strain.sum(axis=0)
+        """Total mechanical energy of all rods, J (rod by rod, as ``sum(axis=0)`` adds them; row additions are
+        faster than a reduction across the short rod axis)."""
+        return functools.reduce(np.add, self.kinetic) + functools.reduce(np.add, self.strain)
 
     @property
     def exchanged(self) -> np.ndarray:
@@ -111,7 +113,7 @@ class EnergyHistory:
         """max |E(t) - E(0) - W(t)| relative to max(E): the energy bookkeeping error."""
         total = self.total
         err = total - total[0] - self.exchanged
-        return float(np.abs(err).max() / max(np.abs(total).max(), 1e-300))
+        return float(np.abs(err).max() / max(float(np.abs(total).max()), 1e-300))
 
 
 @dataclass(frozen=True, repr=False)

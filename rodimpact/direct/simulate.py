@@ -26,6 +26,7 @@ Backend = Literal["numba", "numpy"]
 #: longest run in steps (step indices are stored as int32 in result files)
 _MAX_STEPS = 2_000_000_000
 _MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-step input and output arrays
+_DEFAULT_RECORDING = Recording()      # immutable: one instance serves every run that gives no outputs
 
 
 def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[float]] = None,
@@ -110,8 +111,7 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     bar = guards.progress(progress, n_steps, lattice.n_elements)
     capacity = max(1, min(n_steps, _MAX_CHUNK, int(1e8 // lattice.n_elements) if bar is not None else _MAX_CHUNK))
     recorder = Recorder(record, lattice, arrays, state["N"].copy(), n_steps, capacity)
-    _advance(K.run_numba if backend == "numba" else K.run_numpy, n_steps, capacity, lattice, arrays, state,
-             recorder, bar)
+    _advance(backend, n_steps, capacity, lattice, arrays, state, recorder, bar)
     wall = _time.perf_counter() - wall0
 
     N, v = state["N"], state["v"]
@@ -133,15 +133,22 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
                                    energy.kinetic[:, 0] + energy.strain[:, 0]))
 
 
-def _advance(run: Callable, n_steps: int, capacity: int, lat: Lattice, arrays: dict, state: dict,
+def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays: dict, state: dict,
              recorder: Recorder, bar: Any) -> None:
-    """Run all steps in compiled calls of at most ``capacity`` steps (the per-step inputs of each are evaluated
-    before it), the array bundles of :mod:`rodimpact.direct._kernels` built once."""
+    """Run all steps in calls of the ``backend``'s loop of at most ``capacity`` steps (the per-step inputs of
+    each are evaluated before it), the array bundles of :mod:`rodimpact.direct._kernels` built once."""
     z = lat.impedance
     N, v = state["N"], state["v"]
-    reflection, touch = _wave_arrays(lat, arrays)
-    wave_state = (N, v, *K.waves(N, v, z))
-    quiet = quiet_front(N, v, 0, passive_right(arrays), arrays["sp_elem"][arrays["sp_loaded"]])
+    run = K.run_numba if backend == "numba" else K.run_numpy
+    if backend == "numba":       # the same arrays as below, in one compiled call
+        f, g, reflection, touch, quiet = K.wave_setup(N, v, z, arrays["rod_start"], arrays["sp_elem"],
+                                                      arrays["sp_loaded"], arrays["pr_rod"], arrays["pr_local"],
+                                                      passive_right(arrays))
+    else:
+        reflection, touch = _wave_arrays(lat, arrays)
+        f, g = K.waves(N, v, z)
+        quiet = quiet_front(N, v, 0, passive_right(arrays), arrays["sp_elem"][arrays["sp_loaded"]])
+    wave_state = (N, v, f, g)
     lattice = (z, reflection, touch, arrays["rod_start"], quiet)
     junctions = tuple(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end"))
     n_sp = arrays["sp_elem"].size
@@ -189,7 +196,7 @@ def _recording(record: Optional[Recording], **keywords: Any) -> Recording:
     """``record``, or a :class:`Recording` of the keywords that were given (not both)."""
     given = {key: val for key, val in keywords.items() if val is not None}
     if record is None:
-        return Recording(**given)
+        return Recording(**given) if given else _DEFAULT_RECORDING
     if not isinstance(record, Recording):
         raise TypeError(f"record: must be a Recording(probes=..., snapshot_times=..., ...), got "
                         f"{type(record).__name__}")
@@ -269,15 +276,15 @@ def _field(value, x: np.ndarray, n: int, name: str) -> np.ndarray:
 
 def _initial_state(system: System, lat: Lattice) -> dict[str, np.ndarray]:
     N = np.zeros(lat.n_elements)
-    v = np.zeros(lat.n_elements)
-    offsets = system.rod_offsets()
-    for r in range(system.n_rods):
-        a, b = lat.rod_start[r], lat.rod_start[r + 1]
-        v[a:b] = system.velocities[r]
-        st = system.initial[r]
+    v = np.empty(lat.n_elements)
+    rs = lat.rod_start.tolist()
+    for r, velocity in enumerate(system.velocities):
+        v[rs[r]:rs[r + 1]] = velocity
+    for r, st in enumerate(system.initial):
         if st is None:
             continue
-        x_local = lat.element_x[a:b] - offsets[r]
+        a, b = lat.rod_start[r], lat.rod_start[r + 1]
+        x_local = lat.element_x[a:b] - system.rod_offsets()[r]
         if st.force is not None:
             N[a:b] = _field(st.force, x_local, b - a, f"initial[{r}].force")
         if st.velocity is not None:
@@ -325,9 +332,13 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
     dt = lat.dt
     N, v, z = state["N"], state["v"], lat.impedance
     n_rods = lat.n_rods
-    codes, pars, end_values = zip(*(_end_setup(c, s, N, v, z, dt) for s, c in enumerate((system.left, system.right))))
+    left, right = _end_setup(system.left, 0, N, v, z, dt), _end_setup(system.right, 1, N, v, z, dt)
+    codes, pars, end_values = (left[0], right[0]), (left[1], right[1]), (left[2], right[2])
     junction_code = np.array([j.code for j in system.junctions], dtype=np.int64)
     gap = np.array([getattr(j, "gap", 0.0) for j in system.junctions], dtype=float)
+    rs = lat.rod_start.tolist()
+    length = lat.element_length
+    gap_tol = np.array([1e-9 * min(length[a - 1], length[a]) for a in rs[1:-1]], dtype=float)
     # ---- special interior nodes
     sp: dict[int, list[float]] = {}        # element-left-of-node -> [friction capacity]
     node_loads: dict[int, list] = {}        # element-left-of-node -> prescribed force histories
@@ -390,7 +401,7 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
         rod_start=lat.rod_start.astype(np.int64), end_code=np.array(codes, dtype=np.int64),
         end_par=np.array(pars, dtype=float), end_state=np.zeros((2, 2)), step_inputs=step_inputs,
         junction_code=junction_code, junction_state=np.zeros(n_j, dtype=np.int64), gap=gap,
-        gap_tol=1e-9 * np.minimum(lat.element_length[lat.rod_start[1:-1] - 1], lat.element_length[lat.rod_start[1:-1]]),
+        gap_tol=gap_tol,
         u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap,
         sp_loaded=np.array([a in node_loads for a in sp_elem], dtype=bool),
         pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),

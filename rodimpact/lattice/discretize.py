@@ -52,10 +52,11 @@ def discretize_rod(rod: Rod, dt: float, index: int = 0) -> RodDiscretization:
         ratio = native.dt / dt
         k = int(round(ratio))
         if k >= 1 and abs(ratio - k) <= 1e-9 * ratio:
-            z = np.repeat(native.impedance, k)
+            z = native.impedance.copy() if k == 1 else np.repeat(native.impedance, k)
             length = np.full(z.size, native.wave_speed * dt)
             mass = float(native.impedance.sum() * native.dt)
-            return RodDiscretization(z, length, z.size, 1.0, rod.length, mass, float(z.sum() * dt),
+            return RodDiscretization(z, length, z.size, 1.0, rod.length, mass,
+                                     mass if k == 1 and dt == native.dt else float(z.sum() * dt),
                                      native.impedance.size * native.dt, True, 0.0,
                                      f"impedance-level rod taken element by element ({k} lattice element(s) each)")
     tau = rod.segment_travel_times

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
 
 from .._validate import fits_in_memory, positive
 from ..rods.system import System
+from ._kernels import positions
 from .discretize import RodDiscretization, discretize_rod
 
 
@@ -97,11 +99,11 @@ def build_lattice(system: System, dt: float) -> Lattice:
     discs = tuple(discretize_rod(rod, dt, i) for i, rod in enumerate(system.rods))
     z = np.concatenate([d.impedance for d in discs])
     length = np.concatenate([d.length for d in discs])
-    rod_start = np.concatenate([[0], np.cumsum([d.n_elements for d in discs])]).astype(np.int64)
-    offsets = system.rod_offsets()
-    node_x = np.concatenate([off + np.concatenate([[0.0], np.cumsum(d.length)]) for off, d in zip(offsets, discs)])
-    element_x = np.concatenate([off + np.cumsum(d.length) - 0.5 * d.length for off, d in zip(offsets, discs)])
+    counts = [d.n_elements for d in discs]
+    rod_start = np.array([0, *itertools.accumulate(counts)], dtype=np.int64)
+    node_x, element_x = positions(length, rod_start, system.rod_offsets())
     return Lattice(dt, z, length, rod_start, node_x, element_x, discs)
+
 
 
 def default_time_step(system: System, min_elements: int = 200, min_per_segment: int = 4) -> float:

@@ -238,8 +238,13 @@ class Rod:
 
     @property
     def total_travel_time(self) -> float:
-        """Travel time theta(L) of a wavefront from the left to the right end, s."""
-        return float(self.segment_travel_times.sum())
+        """Travel time theta(L) of a wavefront from the left to the right end, s (computed once: a rod does not
+        change)."""
+        theta = self.__dict__.get("_total_travel_time")
+        if theta is None:
+            theta = float(self.segment_travel_times.sum())
+            object.__setattr__(self, "_total_travel_time", theta)
+        return theta
 
     def travel_time(self, x) -> np.ndarray | float:
         """Travel time theta(x) = int_0^x dx'/c(x') from the left end, s (thesis eq. 2.10)."""

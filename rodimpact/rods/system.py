@@ -14,6 +14,9 @@ from .loads import Bearings, NodalForce
 from .plausibility import check_strikers
 from .rod import Rod
 
+#: the default junction (immutable, so one instance serves every system)
+_TOUCHING = Contact()
+
 #: Initial field of a rod: a number, a callable of x (m from the rod's left end) or per-element values.
 FieldLike = float | Callable[[np.ndarray], np.ndarray] | Sequence[float] | np.ndarray
 
@@ -67,12 +70,14 @@ class System:
         for i, r in enumerate(rods):
             if not isinstance(r, Rod):
                 raise TypeError(f"rods[{i}]: must be a Rod, got {type(r).__name__}")
-        vel = np.atleast_1d(np.asarray(array_to_si("velocities", self.velocities, "m/s"), dtype=object))
-        if vel.size != len(rods):
-            raise ValueError(f"velocities: need one initial velocity per rod ({len(rods)}), got {vel.size}")
-        vel = tuple(finite(f"velocities[{i}]", v, "m/s") for i, v in enumerate(vel))
+        given = self.velocities
+        if not (isinstance(given, (list, tuple)) and all(type(v) is float for v in given)):   # else: plain floats
+            given = np.atleast_1d(np.asarray(array_to_si("velocities", given, "m/s"), dtype=object))
+        if len(given) != len(rods):
+            raise ValueError(f"velocities: need one initial velocity per rod ({len(rods)}), got {len(given)}")
+        vel = tuple(finite(f"velocities[{i}]", v, "m/s") for i, v in enumerate(given))
         n_j = len(rods) - 1
-        juncs = [Contact()] * n_j if self.junctions is None else list(self.junctions)
+        juncs = [_TOUCHING] * n_j if self.junctions is None else list(self.junctions)
         if len(juncs) != n_j:
             raise ValueError(f"junctions: need one per neighbouring pair ({n_j}), got {len(juncs)}")
         juncs = tuple(as_junction(j, f"junctions[{i}]") for i, j in enumerate(juncs))
@@ -117,11 +122,7 @@ class System:
     def rod_offsets(self) -> np.ndarray:
         """Global x of each rod's left end (m): with junctions, rod 0 ends at x = 0 (the first contact face),
         the others follow left to right separated by their initial gaps; a single rod starts at x = 0."""
-        lengths = np.array([r.length for r in self.rods])
-        gaps = np.array([j.gap if isinstance(j, Contact) else 0.0 for j in self.junctions])
-        starts = np.zeros(self.n_rods)
-        if self.n_rods > 1:
-            starts[0] = -lengths[0]
-            for i in range(1, self.n_rods):
-                starts[i] = starts[i - 1] + lengths[i - 1] + gaps[i - 1]
-        return starts
+        starts = [0.0] if self.n_rods == 1 else [-self.rods[0].length]
+        for rod, junction in zip(self.rods[:-1], self.junctions):
+            starts.append(starts[-1] + rod.length + (junction.gap if isinstance(junction, Contact) else 0.0))
+        return np.array(starts)
