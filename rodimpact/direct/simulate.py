@@ -293,12 +293,12 @@ def _initial_state(system: System, lat: Lattice) -> dict[str, np.ndarray]:
 
 
 def _end_setup(cond: EndCondition, side: int, N: np.ndarray, v: np.ndarray, z: np.ndarray,
-               dt: float) -> tuple[int, tuple[float, float], Callable[[int, int], np.ndarray]]:
-    """Kernel code, parameters and the per-step values (a function of first step and count) of one outer end
-    (side 0 = left, 1 = right)."""
+               dt: float) -> tuple[int, tuple[float, float], Optional[Callable[[int, int], np.ndarray]]]:
+    """Kernel code, parameters and the per-step values (a function of first step and count; ``None``: the end
+    has none, its row stays 0) of one outer end (side 0 = left, 1 = right)."""
     e = 0 if side == 0 else z.size - 1
     sign = -1.0 if side == 0 else 1.0        # outward direction in x
-    values: Callable[[int, int], np.ndarray] = lambda first, n: np.zeros(n)  # noqa: E731
+    values: Optional[Callable[[int, int], np.ndarray]] = None
     par = (0.0, 0.0)
     if isinstance(cond, FreeEnd):
         code = K.FREE
@@ -378,7 +378,11 @@ def _kernel_arrays(system: System, lat: Lattice, state: dict, probes: list[Probe
         for i, histories in loaded:
             for h in histories:
                 sp_force[i] += h.step_values(n, dt, first)
-        return np.vstack([f(first, n) for f in end_values]), sp_force
+        end_value = np.zeros((2, n))
+        for e, values in enumerate(end_values):
+            if values is not None:
+                end_value[e] = values(first, n)
+        return end_value, sp_force
 
     # ---- probes
     pr_rod, pr_local, pr_sp = [], [], []
