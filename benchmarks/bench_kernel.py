@@ -124,7 +124,8 @@ def _compiled_share(call, repeat: int) -> tuple[float, str]:
     prof.disable()
     out = io.StringIO()
     pstats.Stats(prof, stream=out).sort_stats("tottime").print_stats(12)
-    lines = [ln for ln in out.getvalue().splitlines() if ln.strip()][3:]
+    root = os.path.dirname(os.path.dirname(os.path.abspath(ri.__file__))) + os.sep
+    lines = [ln.replace(root, "") for ln in out.getvalue().splitlines() if ln.strip()][3:]
     return float(np.median(shares)), "\n".join(lines)
 
 
