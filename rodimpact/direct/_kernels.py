@@ -584,6 +584,15 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
     stride, kept, events, samples = record
     e_steps, s_steps, cursor, e_kin, e_pot, e_mom, e_acc, s_N, s_v, s_u, N0, inv_Z = samples
     chunk = (outputs[0], outputs[1], outputs[2], outputs[3], probes[3], probes[4], probes[5])
+    # with every step kept the step outputs go straight into the histories (column first + i), else into the
+    # step columns (column i), of which every stride-th is copied (keep_step)
+    direct = stride == 1
+    src = kept if direct else chunk
+    col0 = first if direct else 0
+    cols = (src[0][:, col0:], src[1][:, col0:], src[2][:, col0:], src[3][:, col0:], src[4][:, col0:],
+            src[5][:, col0:], src[6][:, col0:])
+    outputs = (cols[0], cols[1], cols[2], cols[3])
+    probes = (probes[0], probes[1], probes[2], cols[4], cols[5], cols[6], probes[6])
     n_el = Z.size
     n_rods = rod_start.size - 1
     rod_nodes = (np.empty(n_rods), np.empty(n_rods), np.empty(n_rods), np.empty(n_rods))
@@ -610,7 +619,7 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
             v[t] = (G[t + i] - F[t + fo]) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         full = track_events(k, i, outputs[0], outputs[1], events)
-        if k == next_kept:
+        if k == next_kept and not direct:
             keep_step(i, c, chunk, kept)
             c += 1
             next_kept += stride
