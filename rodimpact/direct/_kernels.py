@@ -614,9 +614,12 @@ def _run_waves(first, n_steps, state, lattice, dt, ends, junctions, specials, pr
             _take_samples(k, i == 0, (N, v, F[fo:fo + n_el], G[i:i + n_el]), Z, dt, rod_start, acc, u_end,
                           samples)
             next_sample = _next_sample(samples)
-        for t in touch:
-            N[t] = F[t + fo] + G[t + i]
-            v[t] = (G[t + i] - F[t + fo]) / Z[t]
+        for q in range(touch.size):
+            t = _index(touch[q])
+            f_t = F[_index(t + fo)]
+            g_t = G[_index(t + i)]
+            N[t] = f_t + g_t
+            v[t] = (g_t - f_t) / Z[t]
         boundaries(i, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
         full = track_events(k, i, outputs[0], outputs[1], events)
         if k == next_kept and not direct:
