@@ -11,7 +11,7 @@ source ``boundaries.py_func``):
   expression per step (eqs. 3.6-3.15 literally);
 * :func:`run_numba` -- the compiled path (``numba.njit(cache=True)``): the same lattice in travelling-wave
   variables kept in the frame in which they travel, where a node without reflection costs nothing
-  (:func:`reflect`). Two formulations that agree to rounding are a real check.
+  (:func:`reflect_blocks`). Two formulations that agree to rounding are a real check.
 
 Both run many steps per call and record inside the loop (the bundles are built by
 :class:`rodimpact.direct.recording.Recorder`): every ``stride``-th step of the node histories
@@ -417,8 +417,8 @@ def reflecting_blocks(R, rod_start, sp_elem):
 @njit(cache=True, nogil=True)
 def pair_blocks(blocks, touch):
     """The rows of ``blocks`` split between the two nodes of every ``touch`` element (ascending) that has both in
-    one row, so that such nodes are the first or last of a row: in the second step of a pair
-    (:func:`reflect_pair`) those are updated after the boundary solver has read the element."""
+    one row, so that such nodes are the first or last of a row: in the second step of a pair of steps
+    (:func:`reflect_blocks`) those are updated after the boundary solver has read the element."""
     out = np.empty((blocks.shape[0] + touch.size, 2), dtype=np.int64)
     m = 0
     for q in range(blocks.shape[0]):
@@ -577,10 +577,10 @@ def reflect_blocks(F, G, R, blocks, lim, fo, go, part):
             ra = _index(a)              # R[ra + m]: R of node a+1+m
             f2 = F[fa]                  # f_{i+1}(k-2) and f_{i+1}(k-1) for k = a + 2
             f1 = F[fa + 1]
+            # node k = a + 2 + m in step i with node k-1 in step i + 1
             n_vec = (b - a - 2) // LANES
             f2, f1 = _pair_lanes(F, G, R, fa, gb, ra, n_vec, f2, f1)
-            for m in range(_index(LANES * n_vec), _index(b - a - 2)):   # the rest: node k = a + 2 + m in step i,
-                # node k-1 in step i + 1
+            for m in range(_index(LANES * n_vec), _index(b - a - 2)):   # the rest, one node at a time
                 gn, fn = reflection(F[fa + m + 2], G[gb + m], R[ra + m + 1])     # g_{i+1}(k-1), f_{i+1}(k)
                 g, f = reflection(f2, gn, R[ra + m])                             # g_{i+2}(k-2), f_{i+2}(k-1)
                 G[gb + m] = g
