@@ -122,7 +122,8 @@ class Recorder:
     """The preallocated arrays of one run that the time loop fills (see :mod:`rodimpact.direct._kernels`):
 
     * ``chunk``: the step columns :func:`~rodimpact.direct._kernels.boundaries` writes, for at most ``capacity``
-      steps of one compiled call; ``kept``: every ``stride``-th step of them (the recorded histories);
+      steps of one call of the loop (0 when the compiled loop keeps every step: it then writes them straight into
+      ``kept``); ``kept``: every ``stride``-th step of them (the recorded histories);
     * ``events``: per junction (open phase start or -1, its peak |N|, min N, its step, max |N|), the closed
       phases (start, stop, peak |N|) and their count;
     * ``samples``: the energy and snapshot step indices, a cursor into each, the energy sums per rod

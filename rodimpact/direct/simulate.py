@@ -110,7 +110,9 @@ def simulate(rods: System | Sequence[Rod] | Rod, velocities: Optional[Sequence[f
     arrays = _kernel_arrays(system, lattice, state, probe_list)
     bar = guards.progress(progress, n_steps, lattice.n_elements)
     capacity = max(1, min(n_steps, _MAX_CHUNK, int(1e8 // lattice.n_elements) if bar is not None else _MAX_CHUNK))
-    recorder = Recorder(record, lattice, arrays, state["N"].copy(), n_steps, capacity)
+    # the compiled loop writes the steps straight into the histories when it keeps every step (no step columns)
+    columns = 0 if backend == "numba" and record.record_every == 1 else capacity
+    recorder = Recorder(record, lattice, arrays, state["N"].copy(), n_steps, columns)
     _advance(backend, n_steps, capacity, lattice, arrays, state, recorder, bar)
     wall = _time.perf_counter() - wall0
 
