@@ -12,8 +12,8 @@ between equal impedances (R = 0) passes both waves on unchanged, which in this f
 a node with a reflection updates its two slots in place (the slot of f_i(k - 1) becomes f_{i+1}(k), that of
 g_i(k) becomes g_{i+1}(k - 1)); rod ends and loaded nodes write their slots from the node forces, and the
 outer ends write fresh slots. A step costs the reflecting and special nodes, not the number of elements: a
-uniform bar is free. Runs of consecutive reflecting nodes are updated as views indexed from 0, which the
-compiler vectorises. (At a node with R = 0 the single-run kernel computes g + 0 (f - g), which equals g; so
+uniform bar is free. Runs of consecutive reflecting nodes are updated one step at a time by the loop of
+:func:`rodimpact.direct._kernels.reflect_blocks` (offsets the compiler can see are not negative: it vectorises). (At a node with R = 0 the single-run kernel computes g + 0 (f - g), which equals g; so
 the values are the same, only the sign of a zero wave may differ, and no result depends on it.)
 
 Array layout: that of :mod:`rodimpact.direct._kernels` for the template system (``z``, ``N0``, ``v0`` of all
