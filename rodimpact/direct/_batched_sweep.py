@@ -136,7 +136,8 @@ def run(groups: list[Group], names: Sequence[str], threads: int, executor: Any,
     n = sum(len(g[4]) for g in groups)
     out = {name: np.full(n, np.nan) for name in names}
     for system, dt, n_steps, idx, zs, tail, vel in groups:
-        res = run_designs(system, zs, tail, vel, dt, n_steps, n_steps, False, 1, threads, executor, chunk_size)
+        res = run_designs(system, zs, tail, vel, dt, n_steps, n_steps, False, False, 1, threads, executor,
+                          chunk_size)
         for name in names:
             out[name][idx] = batch_metric(name, res)
     return out

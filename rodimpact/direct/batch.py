@@ -63,8 +63,10 @@ class BatchResult:
     work_right: np.ndarray         # (designs,) ... by the right (far) end, e.g. a BitRockEnd
     work_loads: np.ndarray         # (designs,) ... by prescribed nodal loads
     work_friction: np.ndarray      # (designs,) ... by bearing friction (<= 0)
-    final_force: np.ndarray        # (designs, n_striker) striker element forces at the end
-    final_velocity: np.ndarray     # (designs, n_striker) striker element velocities at the end
+    final_force: Optional[np.ndarray]     # (designs, n_striker) striker element forces at the end, or None
+    final_velocity: Optional[np.ndarray]  # (designs, n_striker) striker element velocities at the end, or None
+    rigid_body_velocity: np.ndarray  # (designs,) striker's mean (centre-of-mass) velocity at the end, m/s:
+                                     # momentum / lattice mass, as SimulationResult.rigid_body_velocity
     peak_force: np.ndarray         # (designs, n_junctions) most compressive junction force (JunctionEvents.min_force)
     peak_force_step: np.ndarray    # (designs, n_junctions) its first step
     max_abs_force: np.ndarray      # (designs, n_junctions) largest |junction force|
@@ -98,12 +100,6 @@ class BatchResult:
         e0 = self.kinetic[:, 0] + self.strain[:, 0]
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(e0[:, 0] > 0.0, (e0[:, 0] - e0[:, -1]) / e0[:, 0], np.nan)
-
-    @property
-    def rigid_body_velocity(self) -> np.ndarray:
-        """The striker's mean (centre-of-mass) velocity at the end per design, m/s: momentum / lattice mass."""
-        z, v = self.impedance, self.final_velocity
-        return np.array([np.dot(z[d], v[d]) / z[d].sum() for d in range(self.n_designs)])
 
     def bit_rock(self, design: int) -> tuple[BitRockOutcome, ...]:
         """The :class:`~rodimpact.BitRockOutcome` of every outer end with a :class:`~rodimpact.BitRockEnd` for
@@ -179,8 +175,8 @@ class BatchResult:
 def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Optional[float] = None,
                    dt: Optional[float] = None, *, steps: Optional[int] = None, wave_speed: Optional[float] = None,
                    record_every: int = 1, contact_force: bool = True,
-                   max_phases: int = MAX_PHASES, threads: Optional[int] = None, executor: Any = None,
-                   chunk_size: Optional[int] = None) -> BatchResult:
+                   final_state: bool = True, max_phases: int = MAX_PHASES, threads: Optional[int] = None,
+                   executor: Any = None, chunk_size: Optional[int] = None) -> BatchResult:
     """Simulate many strikers against one struck system (thesis Sec. 3.1), one compiled call for all.
 
     Design ``d`` is the run ``simulate(dataclasses.replace(system, rods=(striker_d, *system.rods[1:]),
@@ -210,6 +206,10 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
         Keep every n-th step of the contact force (``time = [0, n dt, ...]``); events use every step.
     contact_force:
         Record the contact-force history at junction 0 (False: only events, energies and work).
+    final_state:
+        Keep the striker's element forces and velocities at the end (``final_force``, ``final_velocity``;
+        False: None, and only its :attr:`~BatchResult.rigid_body_velocity` is kept). False makes the result
+        smaller and, with an ``executor``, what the workers send back: 2 x designs x striker elements floats less.
     max_phases:
         Contact phases kept per design and junction (all are counted in ``n_phases``).
     threads:
@@ -237,22 +237,25 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
     stride = step_stride("record_every", record_every)
     if not isinstance(contact_force, (bool, np.bool_)):
         raise TypeError(f"contact_force: must be True or False, got {contact_force!r}")
+    if not isinstance(final_state, (bool, np.bool_)):
+        raise TypeError(f"final_state: must be True or False, got {final_state!r}")
     if isinstance(max_phases, bool) or not isinstance(max_phases, (int, np.integer)) or max_phases < 1:
         raise ValueError(f"max_phases: must be an integer >= 1, got {max_phases!r}")
     zs, tail = _striker_impedances(strikers, dt, wave_speed)
     vel = _velocities(velocities, zs.shape[0])
-    return run_designs(system, zs, tail, vel, dt, n_steps, stride, contact_force, int(max_phases),
-                       _threads(threads), executor, chunk_size)
+    return run_designs(system, zs, tail, vel, dt, n_steps, stride, contact_force, bool(final_state),
+                       int(max_phases), _threads(threads), executor, chunk_size)
 
 
 def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarray, dt: float, n_steps: int,
-                stride: int, contact_force: bool, max_phases: int, threads: int,
+                stride: int, contact_force: bool, final_state: bool, max_phases: int, threads: int,
                 executor: Any, chunk_size: Optional[int]) -> BatchResult:
     """:func:`simulate_batch` on checked input: striker impedances ``zs`` (designs x elements), the length of
     each striker's last element ``tail`` (m) and the velocities ``vel``."""
     n_d, n_s = zs.shape
     n_rec = -(-n_steps // stride) if contact_force else 0
     n_j = system.n_rods - 1
+    # (the kernel fills the striker's final fields even when final_state is False)
     per_design = 8.0 * (n_rec + 3 * n_s + 5 * system.n_rods + (3 * max_phases + 6) * n_j)
     # each running design also keeps its per-step junction and end values (events are taken from them)
     per_thread = 8.0 * (2 * n_j + 4) * n_steps
@@ -261,18 +264,19 @@ def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarra
     wall0 = _time.perf_counter()
     plan, end_par, gap_tol = _plan(system, zs, vel, tail, dt, n_steps, stride, n_rec, max_phases)
     if executor is None:
-        out = _run_chunk(plan, zs, vel, end_par, gap_tol, threads)
+        out = _run_chunk(plan, zs, vel, end_par, gap_tol, final_state, threads)
     else:
-        out = _run_on(executor, plan, zs, vel, end_par, gap_tol, chunk_size)
-    hist, kin, pot, work, fin_n, fin_v, low, low_step, peak, on, n_ph, ph_start, ph_stop, ph_peak, ends = out
+        out = _run_on(executor, plan, zs, vel, end_par, gap_tol, final_state, chunk_size)
+    hist, kin, pot, work, fin_n, fin_v, rbv, low, low_step, peak, on, n_ph, ph_start, ph_stop, ph_peak, ends = out
     return BatchResult(
         system=system, impedance=zs, velocity=vel, dt=dt, n_steps=n_steps, record_every=stride,
         time=np.arange(0, n_steps, stride) * dt if contact_force else np.zeros(0),
         contact_force=hist if contact_force else None, energy_time=np.array([0.0, n_steps * dt]),
         kinetic=kin, strain=pot, work_left=work[:, 0], work_right=work[:, 1], work_loads=work[:, 2],
-        work_friction=work[:, 3], final_force=fin_n, final_velocity=fin_v, peak_force=low, peak_force_step=low_step,
-        max_abs_force=peak, contact_steps=on, n_phases=n_ph, phase_start=ph_start, phase_stop=ph_stop,
-        phase_max_abs_force=ph_peak, end_state=ends,
+        work_friction=work[:, 3], final_force=fin_n if final_state else None,
+        final_velocity=fin_v if final_state else None, rigid_body_velocity=rbv, peak_force=low,
+        peak_force_step=low_step, max_abs_force=peak, contact_steps=on, n_phases=n_ph, phase_start=ph_start,
+        phase_stop=ph_stop, phase_max_abs_force=ph_peak, end_state=ends,
         diagnostics={"version": __version__, "wall_time_s": _time.perf_counter() - wall0, "designs": n_d,
                      "steps": n_steps, "elements": plan.z0.size,
                      "executor": "in-process" if executor is None else type(executor).__name__})
@@ -402,8 +406,10 @@ def _plan(system: System, zs: np.ndarray, vel: np.ndarray, tail: np.ndarray, dt:
 
 
 def _run_chunk(plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray, gap_tol: np.ndarray,
-               threads: int = 1) -> tuple[np.ndarray, ...]:
-    """Run the designs ``zs`` (rows) with ``threads`` numba threads; returns the kernel's output arrays."""
+               final_state: bool, threads: int = 1) -> tuple[np.ndarray, ...]:
+    """Run the designs ``zs`` (rows) with ``threads`` numba threads; returns the kernel's output arrays with
+    the striker's rigid-body velocity after its final velocities (which, with ``final_state`` False, are left
+    out with the final forces: zero columns)."""
     n_d, n_s = zs.shape
     n_rods = plan.rod_start.size - 1
     n_j, m = n_rods - 1, plan.max_phases
@@ -417,16 +423,19 @@ def _run_chunk(plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray
             plan.sp_cap, plan.sp_force, plan.dt, out)
     if threads <= 1 or n_d == 1:
         BK.run_batch_serial(*args)
-        return out
-    import numba
+    else:
+        import numba
 
-    before = numba.get_num_threads()
-    numba.set_num_threads(threads)
-    try:
-        BK.run_batch_parallel(*args)
-    finally:
-        numba.set_num_threads(before)
-    return out
+        before = numba.get_num_threads()
+        numba.set_num_threads(threads)
+        try:
+            BK.run_batch_parallel(*args)
+        finally:
+            numba.set_num_threads(before)
+    # momentum / lattice mass, the expression of SimulationResult.rigid_body_velocity (so equal bit for bit)
+    rbv = np.array([np.dot(z, v) / z.sum() for z, v in zip(zs, out[5])])
+    fin = out[4:6] if final_state else (np.zeros((n_d, 0)), np.zeros((n_d, 0)))   # no views: free the fields
+    return (*out[:4], *fin, rbv, *out[6:])
 
 
 def default_chunk_size(n_designs: int) -> int:
@@ -437,27 +446,31 @@ def default_chunk_size(n_designs: int) -> int:
 def gather(executor: Any, fn: Any, arguments: list[tuple]) -> Iterator[Any]:
     """Submit ``fn(*args)`` for every entry of ``arguments`` to ``executor`` (``submit``/``result`` of
     concurrent.futures or dask.distributed) and yield the results in order; pending tasks are cancelled when
-    one fails."""
+    one fails or the caller stops early. Finished tasks are not cancelled: dask names a task after its
+    arguments, so cancelling a finished one could cancel the same task resubmitted by the next call."""
     if not callable(getattr(executor, "submit", None)):
         raise TypeError(f"executor: must be a concurrent.futures.Executor or a dask.distributed.Client, got "
                         f"{type(executor).__name__}")
     futures = [executor.submit(fn, *args) for args in arguments]
+    complete = False
     try:
         for fut in futures:
             yield fut.result()
+        complete = True
     finally:
-        for fut in futures:
-            fut.cancel()
+        if not complete:
+            for fut in futures:
+                fut.cancel()
 
 
 def _run_on(executor: Any, plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray,
-            gap_tol: np.ndarray, chunk_size: Optional[int]) -> tuple[np.ndarray, ...]:
+            gap_tol: np.ndarray, final_state: bool, chunk_size: Optional[int]) -> tuple[np.ndarray, ...]:
     """Send batches of designs to ``executor`` and join their outputs in design order."""
     n_d = zs.shape[0]
     size = default_chunk_size(n_d) if chunk_size is None else chunk_size
     if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or size < 1:
         raise ValueError(f"chunk_size: must be an integer >= 1 (designs per task), got {chunk_size!r}")
     bounds = list(range(0, n_d, int(size))) + [n_d]
-    parts = list(gather(executor, _run_chunk, [(plan, zs[a:b], vel[a:b], end_par[a:b], gap_tol[a:b])
-                                               for a, b in zip(bounds[:-1], bounds[1:])]))
+    parts = list(gather(executor, _run_chunk, [(plan, zs[a:b], vel[a:b], end_par[a:b], gap_tol[a:b],
+                                                final_state) for a, b in zip(bounds[:-1], bounds[1:])]))
     return tuple(np.concatenate(arrays, axis=0) for arrays in zip(*parts))

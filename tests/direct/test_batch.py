@@ -1,12 +1,14 @@
 """rodimpact.simulate_batch: every design equals the simulate() run of the same system bit for bit."""
 
 import dataclasses
-from concurrent.futures import ThreadPoolExecutor
+import operator
+from concurrent.futures import Future, ThreadPoolExecutor
 
 import numpy as np
 import pytest
 
 import rodimpact as ri
+from rodimpact.direct.batch import gather
 
 DT = 1e-6
 C = ri.STEEL.wave_speed
@@ -117,6 +119,61 @@ def test_energy_stride_and_threads_and_executor_do_not_change_the_numbers():
                 assert np.array_equal(getattr(res, f.name), getattr(other, f.name)), f.name
 
 
+@pytest.mark.parametrize("pooled", [False, True], ids=["in-process", "executor"])
+def test_without_the_final_state_only_the_final_fields_are_left_out(pooled):
+    """final_state=False drops the striker's final forces and velocities and keeps the rest, including the
+    rigid-body velocity taken from them, bit for bit."""
+    zs = random_strikers(5, 20, seed=3)
+    system = ri.System([bar(1), bar(60)], [0.0, 0.0], right="free")
+    full = ri.simulate_batch(system, zs, np.linspace(3.0, 8.0, 5), dt=DT, steps=300)
+    with ThreadPoolExecutor(2) as pool:
+        slim = ri.simulate_batch(system, zs, np.linspace(3.0, 8.0, 5), dt=DT, steps=300, final_state=False,
+                                 executor=pool if pooled else None, chunk_size=2)
+    assert slim.final_force is None and slim.final_velocity is None
+    assert np.all(np.abs(full.rigid_body_velocity) > 0.0)
+    for f in dataclasses.fields(full):
+        if f.name not in ("system", "diagnostics", "final_force", "final_velocity"):
+            assert np.array_equal(getattr(full, f.name), getattr(slim, f.name)), f.name
+
+
+class _Future(Future):
+    """A finished future that remembers whether it was asked to cancel."""
+
+    asked_to_cancel = False
+
+    def cancel(self):
+        self.asked_to_cancel = True
+        return super().cancel()
+
+
+class _RecordingExecutor:
+    """Runs each task when submitted and keeps its future."""
+
+    def __init__(self):
+        self.futures = []
+
+    def submit(self, fn, *args):
+        fut = _Future()
+        try:
+            fut.set_result(fn(*args))
+        except Exception as exc:
+            fut.set_exception(exc)
+        self.futures.append(fut)
+        return fut
+
+
+def test_gather_cancels_the_tasks_only_when_it_stops_early():
+    """Finished tasks are left alone (dask names a task after its arguments: cancelling the first call's
+    finished tasks cancelled the identical tasks of the next call); a failure cancels all."""
+    pool = _RecordingExecutor()
+    assert list(gather(pool, operator.truediv, [(1.0, 2.0), (3.0, 4.0)])) == [0.5, 0.75]
+    assert not any(f.asked_to_cancel for f in pool.futures)
+    pool = _RecordingExecutor()
+    with pytest.raises(ZeroDivisionError):
+        list(gather(pool, operator.truediv, [(1.0, 2.0), (1.0, 0.0), (3.0, 4.0)]))
+    assert all(f.asked_to_cancel for f in pool.futures)
+
+
 def test_equal_impedances_give_the_closed_form():
     """A striker of the bar's impedance Z at v on a non-reflecting bar: -Z v / 2 during 2 L / c, then 0;
     all the energy goes into the bar (thesis Sec. 2.3)."""
@@ -173,6 +230,7 @@ SYSTEM = ri.System([bar(1), bar(20)], [0.0, 0.0])
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, max_phases=0), ValueError, "max_phases: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, contact_force="yes"), TypeError, "contact_force: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, threads=0), ValueError, "threads: must be"),
+    ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, final_state=None), TypeError, "final_state: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, executor="pool"), TypeError, "executor: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, executor=ThreadPoolExecutor(1), chunk_size=0),
      ValueError, "chunk_size: must be"),

@@ -100,8 +100,11 @@ def test_dask_local_cluster_of_two_processes_gives_the_in_process_dataset():
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
         on_dask = ri.sweep(small, grid, executor=client, chunk_size=50)
+        # the same tasks again right away (dask gives them the same names as the first call's)
+        again = ri.sweep(small, grid, executor=client, chunk_size=50)
     assert on_dask.attrs["executor"] == "Client"
     same(on_dask, in_process)
+    same(again, in_process)
 
 
 def test_finding_out_that_a_grid_cannot_be_batched_builds_one_point_only():
