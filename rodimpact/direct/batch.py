@@ -30,6 +30,7 @@ from ..rods.rod import Rod
 from ..rods.system import System
 from . import _batch_kernels as BK
 from . import _kernels as K
+from ._momentum import mean_velocities
 from .result import BitRockOutcome, JunctionEvents, bit_rock_outcomes
 from .recording import step_stride
 from .simulate import (_initial_state, _kernel_arrays, _step_count, _wave_arrays, passive_right,
@@ -432,8 +433,8 @@ def _run_chunk(plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray
             BK.run_batch_parallel(*args)
         finally:
             numba.set_num_threads(before)
-    # momentum / lattice mass, the expression of SimulationResult.rigid_body_velocity (so equal bit for bit)
-    rbv = np.array([np.dot(z, v) / z.sum() for z, v in zip(zs, out[5])])
+    # momentum / lattice mass by the function of SimulationResult.rigid_body_velocity (so equal bit for bit)
+    rbv = mean_velocities(zs, out[5], np.array([0, n_s]))[:, 0]
     fin = out[4:6] if final_state else (np.zeros((n_d, 0)), np.zeros((n_d, 0)))   # no views: free the fields
     return (*out[:4], *fin, rbv, *out[6:])
 

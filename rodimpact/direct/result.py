@@ -13,6 +13,7 @@ from .._validate import finite
 from ..lattice.lattice import Lattice
 from ..rods.conditions import BitRockEnd
 from ..rods.system import System
+from ._momentum import mean_velocities
 from .tables import SimulationTables
 
 
@@ -394,10 +395,10 @@ class SimulationResult(SimulationTables):
 
     @property
     def rigid_body_velocity(self) -> np.ndarray:
-        """Mean (centre-of-mass) velocity of each rod at the end of the run, m/s: momentum / lattice mass."""
-        z = self.lattice.impedance
-        rs = self.lattice.rod_start
-        return np.array([np.dot(z[a:b], self.final_velocity[a:b]) / z[a:b].sum() for a, b in zip(rs[:-1], rs[1:])])
+        """Mean (centre-of-mass) velocity of each rod at the end of the run, m/s: momentum / lattice mass,
+        sum(Z_i v_i) / sum(Z_i) over its elements (element mass Z_i dt)."""
+        z, v = self.lattice.impedance, self.final_velocity
+        return mean_velocities(z[None], v[None], np.asarray(self.lattice.rod_start, dtype=np.int64))[0]
 
     @property
     def efficiency(self) -> float:
