@@ -301,8 +301,10 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
                  allow_discretization_error=sim["allow_discretization_error"])
 
 
-def _wrap(path: str, build):
-    """Call ``build()``; re-raise errors of the core classes with the key path in front."""
+def _wrap(path: str, build, owner: Optional[str] = None):
+    """Call ``build()``; re-raise errors of the core classes with the key path in front. With ``owner`` (the
+    class's name), the message's ``Owner.field`` names become the file's key paths ``path.field`` instead, so a
+    message that compares two fields names both keys."""
     try:
         return build()
     except ModelError:
@@ -311,6 +313,8 @@ def _wrap(path: str, build):
         from .keypaths import MODEL_KEYS, translate
 
         msg = str(exc)
+        if owner is not None and msg.startswith(f"{owner}."):
+            raise ModelError(msg.replace(f"{owner}.", f"{path}.")) from None
         raise ModelError(translate(msg, MODEL_KEYS) if path == "model" else f"{path}: {msg}") from None
 
 
@@ -573,7 +577,7 @@ def _end(e: dict, path: str, params: dict[str, float], base_dir: Path) -> EndCon
                                                         "velocity"), e["interpolation"]))
     if kind == "spring":
         return SpringEnd(e["stiffness"], e["damping"])
-    return _wrap(path, lambda: BitRockEnd(e["loading_stiffness"], e["unloading_stiffness"]))
+    return _wrap(path, lambda: BitRockEnd(e["loading_stiffness"], e["unloading_stiffness"]), "BitRockEnd")
 
 
 def _rod_index(ref: int | str, names: dict[str, int], n: int, path: str) -> int:

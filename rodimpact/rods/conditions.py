@@ -110,6 +110,8 @@ class BitRockEnd(EndCondition):
     Loading along F = k1 delta (``loading_stiffness``, N/m) while the penetration delta exceeds its previous
     maximum; unloading and reloading along the line of slope k2 (``unloading_stiffness``, default k1) through
     the maximum point; the force F >= 0 pushes back on the bit (N = -F) and never pulls (no tension).
+    A passive rock needs k2 >= k1 (the work returned on unloading, F_max^2 / (2 k2), cannot exceed the work
+    put in, F_max^2 / (2 k1)); k2 < k1 is refused.
 
     In a time step the bit moves at a constant velocity and the end force is the mean of F over that linear
     path, so load reversal, release and return to virgin loading are located inside the step and the impulse
@@ -125,6 +127,13 @@ class BitRockEnd(EndCondition):
         k1 = positive("BitRockEnd.loading_stiffness", self.loading_stiffness, "N/m")
         k2 = k1 if self.unloading_stiffness is None else positive(
             "BitRockEnd.unloading_stiffness", self.unloading_stiffness, "N/m")
+        if k2 < k1:
+            # Unloading along k2 < k1 from the maximum returns more work than loading put in: the rock would
+            # give out energy (negative energy into the rock, negative permanent penetration).
+            raise ValueError(
+                f"BitRockEnd.unloading_stiffness: must be >= BitRockEnd.loading_stiffness for a passive rock "
+                f"(k2 >= k1), got unloading_stiffness = {k2:.6g} N/m < loading_stiffness = {k1:.6g} N/m; "
+                f"unloading less stiff than loading would give energy back that was never put in")
         object.__setattr__(self, "loading_stiffness", k1)
         object.__setattr__(self, "unloading_stiffness", k2)
 

@@ -88,3 +88,26 @@ def test_elements_accepts_numpy_integers():
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(1.0, 0.04)])]
     res = ri.simulate(rods, [5.0, 0.0], steps=10, elements=(np.int64(1), np.int32(10)))
     assert res.lattice.rod_start[2] - res.lattice.rod_start[1] == 10
+
+
+def test_a_rock_that_unloads_less_stiffly_than_it_loads_is_refused():
+    """A passive rock needs k2 >= k1: unloading along k2 < k1 from the largest force F returns F^2 / (2 k2) of
+    work, more than the F^2 / (2 k1) that loading put in (issue 20, item 1: k1 = 1600 MN/m with k2 = 1200 MN/m
+    reported -18.5 % energy into the rock and a negative penetration)."""
+    with pytest.raises(ValueError, match=r"unloading_stiffness: must be >= BitRockEnd.loading_stiffness .*"
+                                         r"1\.2e\+09 N/m < loading_stiffness = 1\.6e\+09 N/m"):
+        ri.BitRockEnd(1.6e9, 1.2e9)
+    assert ri.BitRockEnd(1.6e9, 1.6e9).unloading_stiffness == 1.6e9      # equal stiffnesses: elastic rock
+
+
+@pytest.mark.parametrize("make", [
+    lambda: ri.SpringEnd(-1e6), lambda: ri.SpringEnd(1e6, -5.0), lambda: ri.NonReflectingEnd(-1e4),
+    lambda: ri.NonReflectingEnd(0.0), lambda: ri.Contact(-1e-3), lambda: ri.BitRockEnd(-1e6),
+    lambda: ri.Bearings(0, [(0.0, 0.1)], -0.2),
+], ids=["negative spring", "negative dashpot", "negative impedance", "zero impedance", "negative gap",
+        "negative rock", "negative friction"])
+def test_end_and_junction_laws_that_would_create_energy_are_refused(make):
+    """Audit of item 1: every end or junction parameter whose sign decides whether the law absorbs or creates
+    energy is refused on the creating side."""
+    with pytest.raises(ValueError, match="must be"):
+        make()

@@ -262,6 +262,8 @@ def _bad(edit_from: str, edit_to: str) -> str:
                'position = 0.2\n', "probes[1].name: 'g' is already used"),
     (MINIMAL + '\n[ends]\nright = "sticky"\n', "ends.right.type: unknown type 'sticky'"),
     (MINIMAL + '\n[ends]\nright = { type = "spring" }\n', "ends.right.stiffness: missing"),
+    (MINIMAL + '\n[ends]\nright = { type = "bit-rock", loading_stiffness = "1600 MN/m", unloading_stiffness = '
+               '"1200 MN/m" }\n', "ends.right.unloading_stiffness: must be >= ends.right.loading_stiffness"),
     (MINIMAL + '\n[[junctions]]\ntype = "contact"\ngap = "-1 mm"\n', "junctions[0].gap: must be >= 0, got -1 mm"),
     (MINIMAL + '\n[[junctions]]\ntype = "contact"\n[[junctions]]\ntype = "bonded"\n', "junctions: need one per "
                                                                                        "neighbouring pair"),
