@@ -30,6 +30,9 @@ from typing import Any, Callable, Optional, Sequence
 from . import __version__
 
 EXIT_OK, EXIT_INTERNAL, EXIT_INPUT = 0, 1, 2
+#: ``synthesize``: the exact striker does not exist over the requested span; the part that exists is reported
+#: (and written, with an output folder). docs/cli.md, "Exit codes".
+EXIT_NO_EXACT = 3
 
 
 class InputError(Exception):
@@ -313,7 +316,7 @@ def _run_spec(args: argparse.Namespace, module: Any) -> int:
                    else module.save(result, spec, out, overwrite=args.force, plots=not args.no_plots))
     _report(summary, module.format_summary(_without_warnings(summary), spec), args,
             f"results written to {out}" if out else "", summary["warnings"])
-    return EXIT_OK
+    return EXIT_NO_EXACT if summary.get("feasible") is False else EXIT_OK
 
 
 # ============================================================================================ design

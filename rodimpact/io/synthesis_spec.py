@@ -292,7 +292,10 @@ def run(spec: SynthesisSpec) -> SynthesisRun:
         result = spec.synthesize()
         verification = result.verify(spec.backend) if spec.verify and result.n_feasible > 0 else None
         shape = result.shape(spec.material, spec.bore, spec.max_diameter_ratio) if result.n_feasible else None
-    return SynthesisRun(result, verification, shape, [str(w.message) for w in caught])
+    # the existence diagnosis is the summary's own line (format_summary): not repeated as a warning
+    repeated = None if result.failure is None else (
+        f"only {result.n_feasible} of {result.n_requested} striker elements exist: {result.failure.message}")
+    return SynthesisRun(result, verification, shape, [str(w.message) for w in caught if str(w.message) != repeated])
 
 
 def summarize_run(r: SynthesisRun, spec: SynthesisSpec) -> dict[str, Any]:
@@ -300,6 +303,9 @@ def summarize_run(r: SynthesisRun, spec: SynthesisSpec) -> dict[str, Any]:
     res = r.result
     out: dict[str, Any] = {"title": spec.title, "n_requested": res.n_requested, "n_feasible": res.n_feasible,
                            "feasible": bool(res.feasible),
+                           # the exact striker's span: windows 1..m of 2 dt each at the impact face
+                           "exact_span_s": 2.0 * res.n_feasible * res.dt,
+                           "requested_span_s": 2.0 * res.n_requested * res.dt,
                            "failure": None if res.failure is None else res.failure.message,
                            "dt_s": res.dt, "striker_velocity_m_s": res.striker_velocity,
                            "impact_force_n0_N": res.impact_force_n0,
@@ -321,9 +327,16 @@ def summarize_run(r: SynthesisRun, spec: SynthesisSpec) -> dict[str, Any]:
 
 def format_summary(summary: dict[str, Any], spec: SynthesisSpec) -> str:
     """A short text version of the summary."""
-    lines = [spec.title] if spec.title else []
-    lines.append(f"recursive method: {summary['n_feasible']} of {summary['n_requested']} elements exist"
-                 + ("" if summary["feasible"] else " -- the target cannot be produced for its whole duration"))
+    lines = []
+    m, n = summary["n_feasible"], summary["n_requested"]
+    span = f"0 <= t < {summary['exact_span_s']:.4g} s"
+    if not summary["feasible"]:
+        lines.append(f"NO EXACT STRIKER: the target cannot be produced over the requested {summary['requested_span_s']:.4g} "
+                     f"s; only elements 1..{m} of {n} exist (target produced for {span})" if m else
+                     f"NO EXACT STRIKER: the target cannot be produced at all (not even element 1 of {n} exists)")
+    if spec.title:
+        lines.append(spec.title)
+    lines.append(f"recursive method: {m} of {n} elements exist")
     if summary["failure"]:
         lines.append(summary["failure"])
     s = summary.get("striker")
@@ -335,7 +348,11 @@ def format_summary(summary: dict[str, Any], spec: SynthesisSpec) -> str:
     v = summary["verification"]
     if v:
         lines.append(f"verification with the direct solver: max deviation {v['max_deviation']:.2e} "
-                     f"(relative, {v['compared']})")
+                     f"(relative, {v['compared']}"
+                     + (")" if summary["feasible"] else f"; only over the span that exists, {span})"))
+    if not summary["feasible"]:
+        lines.append("the best striker that exists for the whole target: rodimpact design (rodimpact init design; "
+                     "docs/design.md), with diameter, mass and velocity limits")
     for w in summary["warnings"]:
         lines.append(f"warning: {w}")
     return "\n".join(lines)

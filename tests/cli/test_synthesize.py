@@ -109,3 +109,29 @@ def test_spec_reference_is_in_the_cli_docs():
 
     page = (Path(__file__).parents[2] / "docs" / "cli.md").read_text(encoding="utf-8")
     assert spec_reference_markdown() in page, "docs/cli.md: regenerate the spec reference section"
+
+
+def test_a_striker_that_does_not_exist_over_the_requested_span_says_so_first_and_exits_3(tmp_path):
+    """Issue 20, item 2: a growing target that only 5 of 25 elements can produce. The summary's first line says
+    that no exact striker exists and over which span it does; the verification names that span; `rodimpact design`
+    is suggested; the existence diagnosis is printed once; the exit status is 3 (docs/cli.md) and the partial
+    result is written."""
+    spec = (TEMPLATE.replace("elements = 100 ", "elements = 25 ")
+            .replace('type = "exponential-decay"', 'type = "exponential-growth"')
+            .replace('peak = "239 kN"', 'initial = "400 kN"').replace('time_constant = "0.383 ms"', 'rate = "20000 1/s"'))
+    (tmp_path / "grow.toml").write_text(spec)
+    p = run_cli("synthesize", "grow.toml", "-o", "out", cwd=tmp_path, code=3)
+    lines = p.stdout.splitlines()
+    dt = 1.93e-6
+    assert lines[0].startswith("NO EXACT STRIKER") and "only elements 1..5 of 25 exist" in lines[0], lines[0]
+    assert f"0 <= t < {10 * dt:.4g} s" in lines[0] and f"requested {50 * dt:.4g} s" in lines[0]
+    verification = next(line for line in lines if line.startswith("verification"))
+    assert f"only over the span that exists, 0 <= t < {10 * dt:.4g} s" in verification
+    assert any("rodimpact design" in line for line in lines)
+    assert (p.stdout + p.stderr).count("existence condition") == 1
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert not summary["feasible"] and summary["n_feasible"] == 5
+    assert summary["exact_span_s"] == pytest.approx(10 * dt, rel=1e-12)
+    # --json reports the same and keeps the exit status
+    p = run_cli("synthesize", "grow.toml", "--no-output", "--json", cwd=tmp_path, code=3)
+    assert json.loads(p.stdout)["n_feasible"] == 5
