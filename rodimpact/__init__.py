@@ -5,7 +5,7 @@ analytical references and measurement tools, after J. Burgert, *On direct and in
 longitudinal impact of non-uniform elastic rods* (KIT).
 """
 
-__version__ = "0.1.0"
+from ._version import __version__
 
 from .rods.material import ALUMINIUM_7075, MATERIALS, STEEL, TITANIUM_TI6AL4V, Material
 from .rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, ExponentialHorn, LinearAreaTaper,

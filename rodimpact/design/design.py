@@ -15,7 +15,7 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import BitRockEnd
 from ..rods.material import STEEL, Material

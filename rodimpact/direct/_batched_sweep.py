@@ -19,7 +19,7 @@ from ..lattice.discretize import discretize_rod
 from ..rods.system import System
 from .batch import BatchResult, run_designs, slot_problem
 from .simulate import _step_count, _time_step
-from .sweep import ROCK_QUANTITIES, rock_value
+from .result import ROCK_QUANTITIES, rock_value
 
 #: largest relative travel-time error of a striker that is batched (simulate reports larger ones per point)
 _TOLERANCE = 0.01

@@ -20,7 +20,7 @@ from typing import Any, Iterator, Optional
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .._validate import caller_stacklevel, finite_array, finite_values, fits_in_memory, positive
 from ..lattice.discretize import discretize_rod
 from ..lattice.lattice import build_lattice

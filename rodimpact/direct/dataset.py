@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 
 #: Version of the layout (``format_version`` attribute of ``result.nc``). 1: histories only; 2: recording stride,
 #: steps and contact events; 3: ``probe``, ``junction``, ``end``, ``rod`` and time coordinates (probe names were a

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import functools
 import math
-from typing import Any, Optional
+from typing import Any, Optional, Sequence
 
 import numpy as np
 
@@ -191,6 +191,21 @@ class BitRockOutcome:
         return (f"BitRockOutcome({self.end} end: energy into the rock {self.energy:.6g} J{eff}, penetration per "
                 f"blow {self.penetration:.6g} m, largest {self.max_penetration:.6g} m"
                 f"{', still in contact' if self.in_contact else ''})")
+
+
+#: Drilling metrics for a system with a :class:`~rodimpact.BitRockEnd` (the first such end), as
+#: :class:`~rodimpact.BitRockOutcome` defines them: name -> (outcome attribute, unit): the energy into the rock,
+#: the drilling efficiency (that energy / the striker's initial energy) and the penetration per blow.
+ROCK_QUANTITIES: dict[str, tuple[str, str]] = {"rock_energy": ("energy", "J"),
+                                               "drilling_efficiency": ("efficiency", "1"),
+                                               "penetration_per_blow": ("penetration", "m")}
+
+
+def rock_value(outcomes: Sequence[Any], quantity: str) -> float:
+    """``quantity`` of the first :class:`~rodimpact.BitRockOutcome` of ``outcomes`` (NaN without a BitRockEnd,
+    or for an efficiency without striker energy)."""
+    value = getattr(outcomes[0], quantity) if outcomes else None
+    return math.nan if value is None else float(value)
 
 
 def bit_rock_outcomes(system: System, end_state: np.ndarray, work_left: float, work_right: float,

@@ -8,7 +8,7 @@ from typing import Any, Callable, Iterable, Literal, Optional, Sequence
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .._validate import positive
 from ..lattice import tolerance
 from ..lattice.lattice import Lattice, build_lattice, default_time_step

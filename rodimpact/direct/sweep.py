@@ -24,9 +24,9 @@ from typing import Any, Callable, Mapping, Optional, Sequence
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .guards import Progress
-from .result import SimulationResult
+from .result import ROCK_QUANTITIES, SimulationResult, rock_value
 from .simulate import simulate
 
 Metric = Callable[[SimulationResult], float]
@@ -51,21 +51,6 @@ def _first_junction(res: SimulationResult):
         raise ValueError("metrics: the default metrics need a junction (two or more rods); give metrics= for a "
                          "single rod, e.g. {'end_force': lambda r: r.end_force['right'].min()}")
     return res.junction_events[0]
-
-
-#: Drilling metrics for a system with a :class:`~rodimpact.BitRockEnd` (the first such end), as
-#: :class:`~rodimpact.BitRockOutcome` defines them: name -> (outcome attribute, unit): the energy into the rock,
-#: the drilling efficiency (that energy / the striker's initial energy) and the penetration per blow.
-ROCK_QUANTITIES: dict[str, tuple[str, str]] = {"rock_energy": ("energy", "J"),
-                                               "drilling_efficiency": ("efficiency", "1"),
-                                               "penetration_per_blow": ("penetration", "m")}
-
-
-def rock_value(outcomes: Sequence[Any], quantity: str) -> float:
-    """``quantity`` of the first :class:`~rodimpact.BitRockOutcome` of ``outcomes`` (NaN without a BitRockEnd,
-    or for an efficiency without striker energy)."""
-    value = getattr(outcomes[0], quantity) if outcomes else None
-    return math.nan if value is None else float(value)
 
 
 #: :data:`ROCK_QUANTITIES` as metrics: ``sweep(build, grid, drilling_metrics())``; ``rodimpact sweep`` adds them

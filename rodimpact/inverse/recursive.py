@@ -17,7 +17,7 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .._validate import caller_stacklevel, finite, positive
 from ..rods.material import STEEL, Material
 from ..rods.system import InitialState

@@ -1,4 +1,4 @@
-"""Reading input files safely: regular files only, with a size limit.
+"""Reading input files safely (regular files only, with a size limit) and writing text files atomically.
 
 Model files, synthesis specs, the CSV tables and force files they name, and gauge recordings are read through
 :func:`read_bytes_limited`: a folder, FIFO, socket or device (``/dev/zero``, ``/dev/urandom``) is refused before
@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import os
 import stat
+import tempfile
 from pathlib import Path
 
+from .._permissions import normal_mode
 from .quantities import ModelError
 
 #: Largest model, spec or table file read, bytes; the environment variable ``RODIMPACT_MAX_INPUT_MB`` (MiB) lifts it.
@@ -71,3 +73,26 @@ def read_bytes_limited(path: Path, label: str, kind: str) -> bytes:
         raise ModelError(f"{label}: cannot read {name} ({exc.strerror or exc})") from None
     finally:
         os.close(fd)
+
+
+def write_text_atomic(path: str | Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in the same folder and an atomic rename.
+
+    The file gets normal permissions (0o666 less the umask, or those of the file it replaces), not the 0o600 of a
+    temporary file. ``path`` may not be a folder (:class:`IsADirectoryError` naming it).
+    """
+    p = Path(path)
+    if p.is_dir():
+        raise IsADirectoryError(f"{p}: is a folder, not a file; give a file name")
+    p.parent.mkdir(parents=True, exist_ok=True)
+    mode = normal_mode(p if p.is_file() else None)
+    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.chmod(tmp, mode)
+        os.replace(tmp, p)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise

@@ -26,7 +26,7 @@ from typing import Any, Mapping, Optional, Sequence
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .._validate import fits_in_memory
 from ..direct.result import Probe, SimulationResult
 from ..rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd,
@@ -40,7 +40,7 @@ from ..rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, Ex
                              QuadraticHorn, Segment, TabulatedProfile, Tube, stepped_profile)
 from ..rods.system import InitialState, System
 from . import _toml
-from ._files import read_bytes_limited
+from ._files import read_bytes_limited, write_text_atomic
 from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression, expression_area
 from .overrides import apply_overrides, naming_overrides
@@ -665,8 +665,6 @@ def dump_model(model: Model) -> str:
 
 def save_model(model: Model, path: str | Path, *, overwrite: bool = False) -> Path:
     """Write :func:`dump_model` to ``path`` (refuses to replace an existing file unless ``overwrite``)."""
-    from .results import write_text_atomic
-
     p = Path(path)
     if p.exists() and not overwrite:
         raise FileExistsError(f"{p}: exists; pass overwrite=True to replace it")

@@ -46,7 +46,7 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .._permissions import normal_mode
 from .._validate import caller_stacklevel
 from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, json_default, result_dataset
@@ -54,6 +54,7 @@ from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, Junc
                              SimulationResult)
 from ..lattice.discretize import RodDiscretization
 from ..lattice.lattice import Lattice
+from ._files import write_text_atomic  # noqa: F401  (public here: the CLI writes single files with it)
 
 RESULT_FILE = "result.nc"
 
@@ -72,30 +73,7 @@ _MARKER_NOTE = (f"This folder was written by rodimpact (version {__version__}); 
                 f"may replace it as a whole. Entries written:")
 
 
-# ============================================================================================ atomic writes
-def write_text_atomic(path: str | Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in the same folder and an atomic rename.
-
-    The file gets normal permissions (0o666 less the umask, or those of the file it replaces), not the 0o600 of a
-    temporary file. ``path`` may not be a folder (:class:`IsADirectoryError` naming it).
-    """
-    p = Path(path)
-    if p.is_dir():
-        raise IsADirectoryError(f"{p}: is a folder, not a file; give a file name")
-    p.parent.mkdir(parents=True, exist_ok=True)
-    mode = normal_mode(p if p.is_file() else None)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.chmod(tmp, mode)
-        os.replace(tmp, p)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
+# ============================================================================================ output folders
 def _contains_cwd(folder: Path) -> bool:
     """True if ``folder`` is the current working folder or one of its parents."""
     try:

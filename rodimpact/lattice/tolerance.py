@@ -13,13 +13,15 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .._validate import caller_stacklevel
-
 from ..rods.system import System
-from .lattice import Lattice
+
+if TYPE_CHECKING:          # a type only: lattice.py imports this module (no import circle)
+    from .lattice import Lattice
 
 #: Largest relative travel-time or mass error of a rod's lattice accepted by default.
 TOLERANCE = 0.01
