@@ -16,7 +16,8 @@ from numba import njit
 from rodimpact import __version__
 from rodimpact.direct._kernels import boundaries
 from rodimpact.direct.result import EnergyHistory, EventTracker, FieldSnapshots, SimulationResult
-from rodimpact.direct.simulate import _initial_state, _kernel_arrays, _probe_histories, _wave_arrays
+from rodimpact.direct.problem import initial_state, kernel_arrays, wave_arrays
+from rodimpact.direct.simulate import _probe_histories
 from rodimpact.lattice.lattice import build_lattice
 
 _MAX_CHUNK = 65536
@@ -166,14 +167,15 @@ def old_simulate(system, steps: int, dt: float, probes=(), snapshot_every=None, 
     backend = "numba"
     lattice = build_lattice(system, dt)
     wall0 = _time.perf_counter()
-    state = _initial_state(system, lattice)
-    arrays = _kernel_arrays(system, lattice, state, probe_list)
+    N0, v0 = initial_state(system, lattice)
+    state = {"N": N0, "v": v0}
+    arrays = kernel_arrays(system, lattice, N0, v0, probe_list)
     history = _History(arrays, n_steps, stride)
     run = old_run_numba
 
     N, v = state["N"], state["v"]
     N0 = N.copy()
-    reflection, touch = _wave_arrays(lattice, arrays)
+    reflection, touch = wave_arrays(lattice, arrays)
     z = lattice.impedance
     rs = lattice.rod_start
     energy_steps = sorted(set(range(0, n_steps + 1, every)) | {n_steps})

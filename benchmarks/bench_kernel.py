@@ -35,6 +35,7 @@ import numpy as np
 import rodimpact as ri
 from rodimpact.direct import _kernels as K
 from rodimpact.direct import simulate as sim
+from rodimpact.direct.problem import Problem, TimeGrid
 from rodimpact.direct.recording import Recorder, Recording
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -83,8 +84,8 @@ def _rates(n: int, n_steps: int, rounds: int) -> tuple[float, float]:
     f, g, R = np.zeros(n), np.zeros(n), np.full(n - 1, 0.1)
     best_kernel = best_roof = np.inf
     for _ in range(rounds):
-        state = sim._initial_state(system, lat)
-        arrays = sim._kernel_arrays(system, lat, state, [])
+        compiled = Problem(system, TimeGrid(DT, n_steps)).compile()
+        state, arrays = {"N": compiled.N, "v": compiled.v}, compiled.arrays
         recorder = Recorder(Recording(energy_every=n_steps), lat, arrays, state["N"].copy(), n_steps, n_steps)
         t0 = time.perf_counter()
         sim._advance("numba", n_steps, n_steps, lat, arrays, state, recorder, None)

@@ -21,8 +21,8 @@ from typing import Any, Optional
 import numpy as np
 
 from .._validate import finite, fits_in_memory, positive_array
-from ..direct.simulate import _initial_state, _kernel_arrays, _wave_arrays
-from ..lattice.lattice import build_lattice
+from ..direct.problem import Problem, TimeGrid
+from ..direct.recording import Recording
 from ..rods.rod import Rod
 from ..rods.system import System
 from ..inverse.struck import Location, as_struck_system, position_probe, with_striker
@@ -101,7 +101,9 @@ class ImpactProblem:
         self.struck, self.location, self.quantity, self.backend = struck, location, quantity, backend
         # the complete system with a placeholder striker: only the striker's impedances and velocity change
         template = with_striker(struck, Rod.from_impedance(np.ones(self.n), dt=dt), 1.0)
-        lat = build_lattice(template, dt)
+        probes = [position_probe(location, 1)] if location is not None else []
+        compiled = Problem(template, TimeGrid(dt, self.steps), Recording(probes=probes)).compile()
+        lat = compiled.lattice
         self.dt = lat.dt
         if int(lat.rod_start[1]) != self.n:   # pragma: no cover - impedance-level rods are exact
             raise ValueError(f"dt: the striker lattice has {lat.rod_start[1]} elements instead of n = {self.n}")
@@ -110,10 +112,9 @@ class ImpactProblem:
         fits_in_memory("steps", 8.0 * (n_el * (2 * n_ck + self.checkpoint_every) + 16 * self.steps),
                        f"the checkpoints of {self.steps} steps of {n_el} elements",
                        "use fewer steps or fewer, longer elements")
-        self._state = _initial_state(template, lat)
-        probes = [position_probe(location, 1)] if location is not None else []
-        arrays = _kernel_arrays(template, lat, self._state, probes)
-        _, self._touch = _wave_arrays(lat, arrays)
+        self._state = {"N": compiled.N, "v": compiled.v}
+        arrays = compiled.arrays
+        _, self._touch = compiled.wave_arrays()
         self._arrays = arrays
         self._end_value, self._sp_force = (np.ascontiguousarray(x) for x in arrays["step_inputs"](0, self.steps))
         self._z = lat.impedance.copy()
@@ -130,7 +131,7 @@ class ImpactProblem:
         v_striker = finite("velocity", velocity, "m/s")
         Z = self._z.copy()
         Z[:self.n] = zq[::-1]
-        R = (Z[1:] - Z[:-1]) / (Z[1:] + Z[:-1])            # eq. 2.40, as rodimpact.direct.simulate._wave_arrays
+        R = (Z[1:] - Z[:-1]) / (Z[1:] + Z[:-1])            # eq. 2.40, as rodimpact.direct.problem.wave_arrays
         N0 = self._state["N"]
         v0 = self._state["v"].copy()
         v0[:self.n] = v_striker

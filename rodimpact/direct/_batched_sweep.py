@@ -2,7 +2,7 @@
 :func:`~rodimpact.direct.batch.simulate_batch` designs instead of one :func:`~rodimpact.simulate` run per point.
 
 A grid qualifies when every point's ``build`` result is a dict of :func:`~rodimpact.simulate` keyword arguments
-(or a model that gives them by ``simulate_arguments()``) without probes or snapshots, and the systems agree in
+(or a :class:`~rodimpact.direct.problem.Problem`, or a model that holds one) without probes or snapshots, and the systems agree in
 everything but rod 0 and its velocity (the same struck rods, velocities of rods 1, 2, ..., junctions, end
 conditions, loads, initial states, time step, number of steps and energy stride; objects compared with ``==``) and the metrics are default metrics. The points are
 grouped by the striker's element count; each group is one batch. The metrics equal those of the per-run path
@@ -18,7 +18,7 @@ import numpy as np
 from ..lattice.discretize import discretize_rod
 from ..rods.system import System
 from .batch import BatchResult, run_designs, slot_problem
-from .simulate import _step_count, _time_step
+from .problem import Problem, TimeGrid
 from .result import ROCK_QUANTITIES, rock_value
 
 #: largest relative travel-time error of a striker that is batched (simulate reports larger ones per point)
@@ -44,11 +44,18 @@ def batch_metric(name: str, res: BatchResult) -> np.ndarray:
     return res.rigid_body_velocity          # striker_final_velocity
 
 
-def _point(spec: Any) -> tuple[System, float, int, int] | str:
-    """(system, dt, steps, energy stride) of one point's simulate() arguments (a dict, or an object such as a
-    :class:`~rodimpact.io.model.Model` that gives them by ``simulate_arguments()``), or why it cannot be batched."""
-    if not isinstance(spec, Mapping) and callable(getattr(spec, "simulate_arguments", None)):
-        spec = spec.simulate_arguments()
+def _point(spec: Any) -> tuple[System, float, int] | str:
+    """(system, dt, steps) of one point: a dict of simulate() arguments, a :class:`~rodimpact.direct.problem.Problem`
+    or an object that holds one as ``problem`` (a :class:`~rodimpact.io.model.Model`, with its ``backend``); or
+    why it cannot be batched."""
+    problem = spec if isinstance(spec, Problem) else getattr(spec, "problem", None)
+    if isinstance(problem, Problem):
+        out = problem.outputs
+        if out.probes or out.snapshot_times is not None or out.snapshot_every is not None:
+            return "probes and snapshots are not recorded by simulate_batch"
+        if getattr(spec, "backend", "numba") != "numba":
+            return "backend='numpy' runs the reference path"
+        return problem.system, problem.time.dt, problem.time.steps
     if not isinstance(spec, Mapping):
         return f"build returns a {type(spec).__name__}, not a dict of simulate() arguments"
     unknown = set(spec) - _KEYS
@@ -63,8 +70,9 @@ def _point(spec: Any) -> tuple[System, float, int, int] | str:
         system = rods if isinstance(rods, System) else System(
             rods, spec["velocities"], spec.get("junctions"), spec.get("left", "free"), spec.get("right", "free"),
             tuple(spec.get("loads", ())), spec.get("initial"))
-        dt = _time_step(system, spec.get("dt"), spec.get("elements"), spec.get("resolution"))
-        n_steps = _step_count(spec.get("duration"), spec.get("steps"), dt)
+        time = TimeGrid.of(system, duration=spec.get("duration"), steps=spec.get("steps"), dt=spec.get("dt"),
+                           elements=spec.get("elements"), resolution=spec.get("resolution"))
+        dt, n_steps = time.dt, time.steps
     except Exception as exc:       # the per-run path reports it, naming the point
         return f"{type(exc).__name__}: {exc}"
     return system, dt, n_steps

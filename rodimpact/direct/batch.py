@@ -23,7 +23,6 @@ import numpy as np
 from .._version import __version__
 from .._validate import caller_stacklevel, finite_array, finite_values, fits_in_memory, positive
 from ..lattice.discretize import discretize_rod
-from ..lattice.lattice import build_lattice
 from ..rods.conditions import NonReflectingEnd
 from ..rods.material import STEEL
 from ..rods.rod import Rod
@@ -33,8 +32,8 @@ from . import _kernels as K
 from ._momentum import mean_velocities
 from .result import BitRockOutcome, JunctionEvents, bit_rock_outcomes
 from .recording import step_stride
-from .simulate import (_initial_state, _kernel_arrays, _step_count, _wave_arrays, passive_right,
-                       quiet_front)
+from .problem import Problem, TimeGrid
+from .simulate import passive_right, quiet_front
 
 #: contact phases per junction and design kept by default (all are counted)
 MAX_PHASES = 16
@@ -234,7 +233,7 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
     if dt is None:
         raise ValueError("dt: required (s): the time step is the element travel time of every striker")
     dt = positive("dt", dt, "s")
-    n_steps = _step_count(duration, steps, dt)
+    n_steps = TimeGrid.of(system, duration=duration, steps=steps, dt=dt).steps
     stride = step_stride("record_every", record_every)
     if not isinstance(contact_force, (bool, np.bool_)):
         raise TypeError(f"contact_force: must be True or False, got {contact_force!r}")
@@ -384,15 +383,15 @@ def _plan(system: System, zs: np.ndarray, vel: np.ndarray, tail: np.ndarray, dt:
     re-contact tolerances."""
     template = dataclasses.replace(system, rods=(Rod.from_impedance(zs[0], dt), *system.rods[1:]),
                                    velocities=(float(vel[0]), *system.velocities[1:]))
-    lattice = build_lattice(template, dt)
-    state = _initial_state(template, lattice)
-    arrays = _kernel_arrays(template, lattice, state, [])
-    _, touch = _wave_arrays(lattice, arrays)
+    compiled = Problem(template, TimeGrid(dt, n_steps)).compile()
+    lattice, arrays = compiled.lattice, compiled.arrays
+    state = {"N": compiled.N, "v": compiled.v}
+    _, touch = compiled.wave_arrays()
     n_s = zs.shape[1]
     end_value, sp_force = arrays["step_inputs"](0, n_steps)
     end_par = np.repeat(arrays["end_par"][None], zs.shape[0], axis=0)
     if isinstance(system.left, NonReflectingEnd):
-        # the continuation starts in the state of the striker's first element (see simulate._end_setup)
+        # the continuation starts in the state of the striker's first element (see problem._end_setup)
         zx = zs[:, 0] if system.left.impedance is None else np.full(zs.shape[0], system.left.impedance)
         end_par[:, 0, 0] = zx
         end_par[:, 0, 1] = 0.0 + -1.0 * zx * vel

@@ -17,6 +17,7 @@ written file gives identical objects.
 from __future__ import annotations
 
 import csv
+import functools
 import math
 import re
 import tomllib
@@ -28,6 +29,8 @@ import numpy as np
 
 from .._version import __version__
 from .._validate import fits_in_memory
+from ..direct.problem import Problem, TimeGrid
+from ..direct.recording import Recording
 from ..direct.result import Probe, SimulationResult
 from ..rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd,
                                NonReflectingEnd, SpringEnd, VelocityEnd)
@@ -104,20 +107,21 @@ class Model:
             raise ValueError("simulation: give exactly one of duration (s) or steps")
         object.__setattr__(self, "probes", tuple(self.probes))
 
+    @functools.cached_property
+    def time(self) -> TimeGrid:
+        """The run's :class:`~rodimpact.direct.problem.TimeGrid`: ``dt`` (or the solver's default for this system)
+        and the number of steps (``steps``, or ``duration`` rounded as :meth:`TimeGrid.of` does)."""
+        return TimeGrid.of(self.system, duration=self.duration, steps=self.steps, dt=self.dt)
+
     @property
     def time_step(self) -> float:
         """The time step the run will use, s (``dt`` or the solver's default for this system)."""
-        from ..lattice.lattice import default_time_step
-
-        return self.dt if self.dt is not None else default_time_step(self.system)
+        return self.time.dt
 
     @property
     def n_steps(self) -> int:
         """Number of time steps of the run."""
-        if self.steps is not None:
-            return self.steps
-        x = self.duration / self.time_step
-        return max(1, int(round(x)) if abs(x - round(x)) <= 1e-9 * max(x, 1.0) else int(math.ceil(x)))
+        return self.time.steps
 
     def snapshot_every(self) -> Optional[int]:
         """The snapshot stride in steps implied by ``output`` (``None``: only ``snapshot_times``)."""
@@ -127,16 +131,14 @@ class Model:
             return max(1, self.n_steps // self.output.snapshot_count)
         return None
 
-    def simulate_arguments(self) -> dict[str, Any]:
-        """The keyword arguments of :func:`rodimpact.simulate` for this model's run (``allow_discretization_error``
-        only when it is set): what :meth:`simulate` passes, and what :func:`rodimpact.sweep` batches models by."""
-        args: dict[str, Any] = dict(
-            rods=self.system, duration=self.duration, steps=self.steps, dt=self.dt, probes=self.probes,
-            snapshot_times=list(self.output.snapshot_times) or None, snapshot_every=self.snapshot_every(),
-            energy_every=self.energy_every, record_every=self.output.record_every, backend=self.backend)
-        if self.allow_discretization_error:
-            args["allow_discretization_error"] = True
-        return args
+    @property
+    def problem(self) -> Problem:
+        """The run as a :class:`~rodimpact.direct.problem.Problem`: the system, :attr:`time` and the outputs the
+        file declares (probes, snapshots, energy and history strides)."""
+        outputs = Recording(probes=self.probes, snapshot_times=list(self.output.snapshot_times) or None,
+                            snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
+                            record_every=self.output.record_every)
+        return Problem(self.system, self.time, outputs)
 
     def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None,
                  max_element_updates: Optional[float] = None) -> SimulationResult:
@@ -146,9 +148,10 @@ class Model:
         from ..direct.simulate import simulate
         from .keypaths import MODEL_KEYS, translated
 
-        args = {**self.simulate_arguments(), "backend": backend or self.backend}
         try:
-            return simulate(**args, progress=progress, max_element_updates=max_element_updates)
+            return simulate(self.problem, backend=backend or self.backend, progress=progress,
+                            allow_discretization_error=self.allow_discretization_error,
+                            max_element_updates=max_element_updates)
         except ModelError:
             raise
         except (ValueError, TypeError) as exc:

@@ -81,8 +81,14 @@ class _Point:
     def simulate(self, progress: Optional[bool] = None):
         return self.model.simulate(progress=progress, max_element_updates=self.max_element_updates)
 
-    def simulate_arguments(self) -> dict[str, Any]:
-        return self.model.simulate_arguments()
+    @property
+    def problem(self):
+        """The point's :class:`~rodimpact.direct.problem.Problem` (what a batched sweep groups points by)."""
+        return self.model.problem
+
+    @property
+    def backend(self) -> str:
+        return self.model.backend
 
 
 def sweep_model(path: str | Path, grid: Mapping[str, Sequence[Any]], overrides: Optional[Mapping[str, Any]] = None,

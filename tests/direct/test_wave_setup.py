@@ -7,7 +7,8 @@ from hypothesis import given, settings, strategies as st
 
 import rodimpact as ri
 from rodimpact.direct import _kernels as K
-from rodimpact.direct.simulate import _initial_state, _kernel_arrays, _wave_arrays, passive_right, quiet_front
+from rodimpact.direct.problem import Problem, TimeGrid
+from rodimpact.direct.simulate import passive_right, quiet_front
 
 DT = 1e-6
 
@@ -26,19 +27,17 @@ def test_compiled_setup_equals_the_numpy_functions(seed, n_rods, right, moving_s
         loads.append(ri.Bearings(0, [(0.0, rods[0].length)], friction_coefficient=0.2, normal_load=50.0))
     end = ri.ForceEnd(lambda t: 0.0 * t) if right == "force" else right
     system = ri.System(rods, velocities, right=end, loads=loads)
-    lat = ri.build_lattice(system, DT)
     probes = [ri.Probe(f"p{i}", int(rng.integers(0, n_rods)), 0.0) for i in range(n_probes)]
     probes = [ri.Probe(p.name, p.rod, float(rng.uniform(0, rods[p.rod].length))) for p in probes]
-    state = _initial_state(system, lat)
-    N, v = state["N"], state["v"]
-    arrays = _kernel_arrays(system, lat, state, probes)
+    compiled = Problem(system, TimeGrid(DT, 10), ri.Recording(probes=probes)).compile()
+    lat, N, v, arrays = compiled.lattice, compiled.N, compiled.v, compiled.arrays
 
     f, g, R, touch, quiet = K.wave_setup(N, v, lat.impedance, arrays["rod_start"], arrays["sp_elem"],
                                          arrays["sp_loaded"], arrays["pr_rod"], arrays["pr_local"],
                                          passive_right(arrays))
 
     f_ref, g_ref = K.waves(N, v, lat.impedance)
-    R_ref, touch_ref = _wave_arrays(lat, arrays)
+    R_ref, touch_ref = compiled.wave_arrays()
     quiet_ref = quiet_front(N, v, 0, passive_right(arrays), arrays["sp_elem"][arrays["sp_loaded"]])
     for got, ref in ((f, f_ref), (g, g_ref), (R, R_ref), (touch, touch_ref)):
         assert np.array_equal(got, ref)
