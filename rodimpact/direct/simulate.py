@@ -89,11 +89,11 @@ def simulate(rods: Problem | System | Sequence[Rod] | Rod, velocities: Optional[
 
     Physical quantities may be numbers in SI units, unit strings (``"2 ms"``) or pint Quantities.
     """
-    keywords = dict(velocities=velocities, duration=duration, dt=dt, steps=steps, elements=elements,
-                    resolution=resolution, junctions=junctions, initial=initial, record=record, probes=probes,
-                    snapshot_times=snapshot_times, snapshot_every=snapshot_every, energy_every=energy_every,
-                    record_every=record_every)
     if isinstance(rods, Problem):
+        keywords = dict(velocities=velocities, duration=duration, dt=dt, steps=steps, elements=elements,
+                        resolution=resolution, junctions=junctions, initial=initial, record=record, probes=probes,
+                        snapshot_times=snapshot_times, snapshot_every=snapshot_every, energy_every=energy_every,
+                        record_every=record_every)
         given = [k for k, v in keywords.items() if v is not None] + [k for k, v in (("left", left), ("right", right))
                                                                       if v != "free"] + (["loads"] if loads else [])
         if given:
