@@ -1,8 +1,8 @@
 """Measurement side (thesis chapter 5): gauges and bridges, measuring-chain filters,
 comparison of measured and simulated signals, first-mode dispersion.
 
-No plotting and no file I/O here; readers for recording files are in
-:mod:`rodimpact.io.recordings`.
+No plotting, no file I/O and no solver here; readers for recording files are in
+:mod:`rodimpact.io.recordings`, the simulated test rig of thesis chapter 5 in :mod:`rodimpact.testrig`.
 """
 
 from .compare import (
@@ -49,38 +49,8 @@ from .pulses import (
     striker_velocity_from_strain,
 )
 from .recording import Recording
-from .testrig import (
-    GAUGE_ANGLES,
-    GAUGE_POSITIONS,
-    IMPACT_VELOCITIES,
-    RigSetup,
-    RigSignals,
-    WavePathEvent,
-    build_rig,
-    piston_1,
-    piston_2,
-    piston_from_face,
-    rig_rod,
-    rig_time_step,
-    simulate_rig,
-    wave_paths,
-)
 
 __all__ = [
-    "GAUGE_ANGLES",
-    "GAUGE_POSITIONS",
-    "IMPACT_VELOCITIES",
-    "RigSetup",
-    "RigSignals",
-    "WavePathEvent",
-    "build_rig",
-    "piston_1",
-    "piston_2",
-    "piston_from_face",
-    "rig_rod",
-    "rig_time_step",
-    "simulate_rig",
-    "wave_paths",
     "Bridge",
     "GaugedBar",
     "MeasuringChain",

@@ -7,6 +7,7 @@ from scipy import signal
 
 import rodimpact as ri
 import rodimpact.signals as S
+import rodimpact.testrig as RIG
 from rodimpact.signals.filters import MAX_ORDER
 
 NAN = float("nan")
@@ -305,27 +306,27 @@ def test_recording_arguments():
 # ----------------------------------------------------------------------------------------------- test rig
 def test_build_rig_gauges_must_be_a_mapping():
     with pytest.raises(TypeError, match=r"gauges: must be a mapping name -> position \(m"):
-        S.build_rig(1, gauges=[0.1, 0.2])
-    setup = S.build_rig(1, gauges={"A": 0.1, "B": 0.2})
+        RIG.build_rig(1, gauges=[0.1, 0.2])
+    setup = RIG.build_rig(1, gauges={"A": 0.1, "B": 0.2})
     assert setup.gauges == (("A", 0.1), ("B", 0.2))
 
 
 def test_simulate_rig_names_the_minimum_duration():
-    setup = S.build_rig(1)
+    setup = RIG.build_rig(1)
     with pytest.raises(ValueError, match=r"duration: must be at least .*1 / sampling_rate.* got 1e-07 s"):
-        S.simulate_rig(setup, duration=1e-7)
-    dt = S.rig_time_step(setup)
+        RIG.simulate_rig(setup, duration=1e-7)
+    dt = RIG.rig_time_step(setup)
     minimum = (1e-6 + dt) * (1 + 1e-6)
-    signals = S.simulate_rig(setup, duration=minimum)
+    signals = RIG.simulate_rig(setup, duration=minimum)
     assert signals.filtered_time.size == 2
     with pytest.raises(ValueError, match="duration: must be at least"):
-        S.simulate_rig(setup, duration=0.99 * minimum)
+        RIG.simulate_rig(setup, duration=0.99 * minimum)
 
 
 def test_rig_helpers_check_their_arguments():
     with pytest.raises(TypeError, match="setup: must be a RigSetup"):
-        S.rig_time_step(None)
-    setup = S.build_rig(1)
+        RIG.rig_time_step(None)
+    setup = RIG.build_rig(1)
     with pytest.raises(ValueError, match="position: must be finite"):
         setup.gauge_travel_time(NAN)
     with pytest.raises(ValueError, match="position: must lie on the rod"):

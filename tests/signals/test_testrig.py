@@ -17,7 +17,7 @@ from scipy import signal
 
 import rodimpact as ri
 from rodimpact.signals import MeasuringChain, normalize_by_global_minimum
-from rodimpact.signals.testrig import (
+from rodimpact.testrig import (
     GAUGE_POSITIONS,
     IMPACT_VELOCITIES,
     RigSetup,

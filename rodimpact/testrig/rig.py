@@ -60,7 +60,7 @@ from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.segments import Cone, Cylinder, Segment, Tube
 from ..rods.system import System
-from .filters import MeasuringChain
+from ..signals.filters import MeasuringChain
 
 __all__ = [
     "GAUGE_ANGLES",
