@@ -36,7 +36,7 @@ import rodimpact as ri
 from rodimpact.direct import _kernels as K
 from rodimpact.direct import simulate as sim
 from rodimpact.direct.problem import Problem, TimeGrid
-from rodimpact.direct.recording import Recorder, Recording
+from rodimpact.direct.recording import Recorder, Outputs
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from _old_loop import old_simulate  # noqa: E402
@@ -86,7 +86,7 @@ def _rates(n: int, n_steps: int, rounds: int) -> tuple[float, float]:
     for _ in range(rounds):
         compiled = Problem(system, TimeGrid(DT, n_steps)).compile()
         state, arrays = {"N": compiled.N, "v": compiled.v}, compiled.arrays
-        recorder = Recorder(Recording(energy_every=n_steps), lat, arrays, state["N"].copy(), n_steps, n_steps)
+        recorder = Recorder(Outputs(energy_every=n_steps), lat, arrays, state["N"].copy(), n_steps, n_steps)
         t0 = time.perf_counter()
         sim._advance("numba", n_steps, n_steps, lat, arrays, state, recorder, None)
         best_kernel = min(best_kernel, time.perf_counter() - t0)

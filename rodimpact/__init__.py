@@ -19,7 +19,7 @@ from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
 from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
                             SimulationResult)
-from .direct.recording import Recording
+from .direct.recording import Outputs
 from .direct.problem import Problem, TimeGrid
 from .direct.simulate import simulate
 from .direct.sweep import drilling_metrics, sweep
@@ -51,7 +51,7 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
-    "Problem", "TimeGrid", "simulate", "Recording", "sweep", "drilling_metrics", "simulate_batch", "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
+    "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
     "FieldSnapshots", "EnergyHistory",
     "JunctionEvents", "BitRockOutcome",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",

@@ -22,7 +22,7 @@ import numpy as np
 
 from .._validate import finite, fits_in_memory, positive_array
 from ..direct.problem import Problem, TimeGrid
-from ..direct.recording import Recording
+from ..direct.recording import Outputs
 from ..rods.rod import Rod
 from ..rods.system import System
 from ..inverse.struck import Location, as_struck_system, position_probe, with_striker
@@ -102,7 +102,7 @@ class ImpactProblem:
         # the complete system with a placeholder striker: only the striker's impedances and velocity change
         template = with_striker(struck, Rod.from_impedance(np.ones(self.n), dt=dt), 1.0)
         probes = [position_probe(location, 1)] if location is not None else []
-        compiled = Problem(template, TimeGrid(dt, self.steps), Recording(probes=probes)).compile()
+        compiled = Problem(template, TimeGrid(dt, self.steps), Outputs(probes=probes)).compile()
         lat = compiled.lattice
         self.dt = lat.dt
         if int(lat.rod_start[1]) != self.n:   # pragma: no cover - impedance-level rods are exact

@@ -2,7 +2,7 @@
 
 A :class:`Problem` holds everything that defines a run: the :class:`~rodimpact.System` (rods, junctions, ends,
 loads, initial state), the :class:`TimeGrid` (time step and number of steps) and the declared outputs
-(:class:`~rodimpact.Recording`). It is validated once, when it is made. :meth:`Problem.compile` builds the
+(:class:`~rodimpact.Outputs`). It is validated once, when it is made. :meth:`Problem.compile` builds the
 equal-travel-time lattice (thesis Sec. 3.1) and the arrays of :mod:`rodimpact.direct._kernels`: the solvers
 (:func:`~rodimpact.simulate`, :func:`~rodimpact.simulate_batch`, the design adjoint, sweeps, model files) all
 go through it, so no solver sets up a run by itself (docs/architecture.md, "The problem object").
@@ -25,13 +25,13 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
 from . import _kernels as K
-from .recording import Recording, check_probes
+from .recording import Outputs, check_probes
 from .result import Probe
 
 #: longest run in steps (step indices are stored as int32 in result files)
 MAX_STEPS = 2_000_000_000
 #: the outputs of a run that declares none: one immutable instance serves every such run
-NO_OUTPUTS = Recording()
+NO_OUTPUTS = Outputs()
 
 
 @dataclass(frozen=True)
@@ -79,7 +79,7 @@ class TimeGrid:
 @dataclass(frozen=True, eq=False)
 class Problem:
     """Everything that defines a run of the direct problem: ``system`` (a :class:`~rodimpact.System`), ``time``
-    (a :class:`TimeGrid`) and ``outputs`` (a :class:`~rodimpact.Recording`: probes, snapshots, energy and
+    (a :class:`TimeGrid`) and ``outputs`` (a :class:`~rodimpact.Outputs`: probes, snapshots, energy and
     history strides; the contact force and end values are always kept). Validated when made: probes that name a
     rod are resolved to its index. :meth:`compile` turns it into the lattice and the kernel inputs;
     :func:`~rodimpact.simulate` solves it.
@@ -94,15 +94,15 @@ class Problem:
 
     system: System
     time: TimeGrid
-    outputs: Recording = NO_OUTPUTS
+    outputs: Outputs = NO_OUTPUTS
 
     def __post_init__(self) -> None:
         if not isinstance(self.system, System):
             raise TypeError(f"system: must be a System, got {type(self.system).__name__}")
         if not isinstance(self.time, TimeGrid):
             raise TypeError(f"time: must be a TimeGrid(dt, steps), got {type(self.time).__name__}")
-        if not isinstance(self.outputs, Recording):
-            raise TypeError(f"outputs: must be a Recording(probes=..., snapshot_times=..., ...), got "
+        if not isinstance(self.outputs, Outputs):
+            raise TypeError(f"outputs: must be an Outputs(probes=..., snapshot_times=..., ...), got "
                             f"{type(self.outputs).__name__}")
         probes = tuple(_named_rod(p, i, self.system) for i, p in enumerate(self.outputs.probes))
         if probes != self.outputs.probes:
@@ -115,7 +115,7 @@ class Problem:
            left: EndCondition | str = "free", right: EndCondition | str = "free",
            junctions: Optional[Sequence[Any]] = None, loads: Sequence[NodalForce | Bearings] = (),
            initial: Optional[Sequence[Optional[InitialState]]] = None,
-           outputs: Optional[Recording] = None) -> Problem:
+           outputs: Optional[Outputs] = None) -> Problem:
         """The short form: rods listed left to right with their initial ``velocities`` (m/s) and the system's
         other parts as keywords (or a ready :class:`~rodimpact.System`, and then none of them), the time rule
         of :meth:`TimeGrid.of`, and the ``outputs``."""
@@ -213,7 +213,7 @@ def _step_count(duration: Optional[float], steps: Optional[int], dt: float) -> i
 
 # ---------------------------------------------------------------------------------------------- outputs
 def _named_rod(probe: Any, i: int, system: System) -> Any:
-    """``probe`` with a rod name replaced by the rod's index (other objects are checked by the Recording)."""
+    """``probe`` with a rod name replaced by the rod's index (other objects are checked by the Outputs)."""
     if not isinstance(probe, Probe) or not isinstance(probe.rod, str):
         return probe
     names = [r.name for r in system.rods]
@@ -222,7 +222,7 @@ def _named_rod(probe: Any, i: int, system: System) -> Any:
     return Probe(probe.name, names.index(probe.rod), probe.position)
 
 
-def _with_probes(outputs: Recording, probes: tuple[Probe, ...]) -> Recording:
+def _with_probes(outputs: Outputs, probes: tuple[Probe, ...]) -> Outputs:
     import dataclasses
 
     return dataclasses.replace(outputs, probes=probes)

@@ -1,4 +1,4 @@
-"""What :func:`rodimpact.simulate` records, declared up front (:class:`Recording`), and the preallocated arrays
+"""What :func:`rodimpact.simulate` records, declared up front (:class:`Outputs`), and the preallocated arrays
 the time loop fills at precomputed step indices (:class:`Recorder`).
 
 Samples belong to a step index k: element fields and energies are taken at t = k dt (before step k), node
@@ -48,7 +48,7 @@ def check_probes(probes: Iterable[Any]) -> tuple[Probe, ...]:
 
 
 @dataclass(frozen=True)
-class Recording:
+class Outputs:
     """The outputs of a run besides the contact force and end values (which are always kept).
 
     probes:
@@ -131,7 +131,7 @@ class Recorder:
       initial element forces (for u) and 1 / Z (for the energy sums of the compiled path).
     """
 
-    def __init__(self, recording: Recording, lattice: Lattice, arrays: dict, initial_force: np.ndarray, n_steps: int,
+    def __init__(self, recording: Outputs, lattice: Lattice, arrays: dict, initial_force: np.ndarray, n_steps: int,
                  capacity: int) -> None:
         self.n_steps, self.stride = n_steps, recording.record_every
         rows = {key: arrays[key].shape[0] for key in HISTORIES}

@@ -17,7 +17,7 @@ from ..rods.system import InitialState, System
 from . import _kernels as K
 from . import guards
 from .problem import NO_OUTPUTS, Problem, TimeGrid, wave_arrays
-from .recording import Recorder, Recording
+from .recording import Recorder, Outputs
 from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes
 
 Backend = Literal["numba", "numpy"]
@@ -29,7 +29,7 @@ def simulate(rods: Problem | System | Sequence[Rod] | Rod, velocities: Optional[
              steps: Optional[int] = None, elements: Optional[int | tuple[int, int]] = None,
              resolution: Optional[float] = None, left: EndCondition | str = "free", right: EndCondition | str = "free",
              junctions: Optional[Sequence[Any]] = None, loads: Sequence[NodalForce | Bearings] = (),
-             initial: Optional[Sequence[Optional[InitialState]]] = None, record: Optional[Recording] = None,
+             initial: Optional[Sequence[Optional[InitialState]]] = None, outputs: Optional[Outputs] = None,
              probes: Optional[Iterable[Probe]] = None, snapshot_times: Optional[Sequence[float]] = None,
              snapshot_every: Optional[int] = None, energy_every: Optional[int] = None,
              record_every: Optional[int] = None, backend: Backend = "numba",
@@ -63,11 +63,11 @@ def simulate(rods: Problem | System | Sequence[Rod] | Rod, velocities: Optional[
         :class:`~rodimpact.NodalForce` / :class:`~rodimpact.Bearings`.
     initial:
         Optional per-rod :class:`~rodimpact.InitialState` (non-uniform initial force/velocity).
-    record:
-        What to record besides the contact force and end values: a :class:`~rodimpact.Recording` (probes,
+    outputs:
+        What to record besides the contact force and end values: an :class:`~rodimpact.Outputs` (probes,
         snapshots, energy stride, history stride). Or give its fields as the keywords below (not both).
     probes, snapshot_times, snapshot_every, energy_every, record_every:
-        The fields of :class:`~rodimpact.Recording`: probe histories; field snapshots at the steps nearest to
+        The fields of :class:`~rodimpact.Outputs`: probe histories; field snapshots at the steps nearest to
         the given times and/or every k steps; the energy sampling stride (default: about 256 samples per run);
         keep every ``record_every``-th step of the histories (default 1). Contact and separation times, contact
         durations and the peak contact force are taken at every step whatever the stride
@@ -91,7 +91,7 @@ def simulate(rods: Problem | System | Sequence[Rod] | Rod, velocities: Optional[
     """
     if isinstance(rods, Problem):
         keywords = dict(velocities=velocities, duration=duration, dt=dt, steps=steps, elements=elements,
-                        resolution=resolution, junctions=junctions, initial=initial, record=record, probes=probes,
+                        resolution=resolution, junctions=junctions, initial=initial, outputs=outputs, probes=probes,
                         snapshot_times=snapshot_times, snapshot_every=snapshot_every, energy_every=energy_every,
                         record_every=record_every)
         given = [k for k, v in keywords.items() if v is not None] + [k for k, v in (("left", left), ("right", right))
@@ -101,7 +101,7 @@ def simulate(rods: Problem | System | Sequence[Rod] | Rod, velocities: Optional[
                              f"the Problem or the rods with {', '.join(f'{k}=' for k in given)}")
         problem = rods
     else:
-        outputs = _recording(record, probes=probes, snapshot_times=snapshot_times, snapshot_every=snapshot_every,
+        outputs = _outputs(outputs, probes=probes, snapshot_times=snapshot_times, snapshot_every=snapshot_every,
                              energy_every=energy_every, record_every=record_every)
         if isinstance(rods, System):     # the System holds its velocities, ends, junctions, loads, initial state
             problem = Problem(rods, TimeGrid.of(rods, duration=duration, steps=steps, dt=dt, elements=elements,
@@ -213,18 +213,18 @@ def passive_right(arrays: dict) -> bool:
     return code in (K.FREE, K.FIXED, K.SPRING, K.BITROCK) or (code == K.NONREFLECTING and par[1] == 0.0)
 
 
-def _recording(record: Optional[Recording], **keywords: Any) -> Recording:
-    """``record``, or a :class:`Recording` of the keywords that were given (not both)."""
+def _outputs(outputs: Optional[Outputs], **keywords: Any) -> Outputs:
+    """``outputs``, or an :class:`Outputs` of the keywords that were given (not both)."""
     given = {key: val for key, val in keywords.items() if val is not None}
-    if record is None:
-        return Recording(**given) if given else NO_OUTPUTS
-    if not isinstance(record, Recording):
-        raise TypeError(f"record: must be a Recording(probes=..., snapshot_times=..., ...), got "
-                        f"{type(record).__name__}")
+    if outputs is None:
+        return Outputs(**given) if given else NO_OUTPUTS
+    if not isinstance(outputs, Outputs):
+        raise TypeError(f"outputs: must be an Outputs(probes=..., snapshot_times=..., ...), got "
+                        f"{type(outputs).__name__}")
     if given:
-        raise ValueError(f"record: give the outputs either as record=Recording(...) or as the keywords "
+        raise ValueError(f"outputs: give the outputs either as outputs=Outputs(...) or as the keywords "
                          f"{', '.join(f'{key}=' for key in given)}, not both")
-    return record
+    return outputs
 
 
 def _probe_histories(system: System, lat: Lattice, probes: list[Probe], arrays: dict) -> dict[str, ProbeHistory]:

@@ -30,7 +30,7 @@ import numpy as np
 from .._version import __version__
 from .._validate import fits_in_memory
 from ..direct.problem import Problem, TimeGrid
-from ..direct.recording import Recording
+from ..direct.recording import Outputs
 from ..direct.result import Probe, SimulationResult
 from ..rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd,
                                NonReflectingEnd, SpringEnd, VelocityEnd)
@@ -135,7 +135,7 @@ class Model:
     def problem(self) -> Problem:
         """The run as a :class:`~rodimpact.direct.problem.Problem`: the system, :attr:`time` and the outputs the
         file declares (probes, snapshots, energy and history strides)."""
-        outputs = Recording(probes=self.probes, snapshot_times=list(self.output.snapshot_times) or None,
+        outputs = Outputs(probes=self.probes, snapshot_times=list(self.output.snapshot_times) or None,
                             snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
                             record_every=self.output.record_every)
         return Problem(self.system, self.time, outputs)

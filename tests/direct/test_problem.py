@@ -18,7 +18,7 @@ def test_the_problem_and_the_keyword_form_give_the_same_run_bit_for_bit():
     probe = ri.Probe("g", 1, 0.2)
     kw = dict(duration=400e-6, right="nonreflecting")
     a = ri.simulate(rods(), [5.0, 0.0], probes=[probe], **kw)
-    p = Problem.of(rods(), [5.0, 0.0], outputs=ri.Recording(probes=[probe]), **kw)
+    p = Problem.of(rods(), [5.0, 0.0], outputs=ri.Outputs(probes=[probe]), **kw)
     b = ri.simulate(p)
     np.testing.assert_array_equal(a.contact_force, b.contact_force)
     np.testing.assert_array_equal(a.probe("g").force, b.probe("g").force)
@@ -42,8 +42,8 @@ def test_a_duration_becomes_whole_steps_covering_it():
     (lambda: TimeGrid.of(None, steps=3), "dt: required"),
     (lambda: Problem("bars", TimeGrid(DT, 3)), "system: must be a System"),
     (lambda: Problem(ri.System(rods(), [1.0, 0.0]), (DT, 3)), r"time: must be a TimeGrid"),
-    (lambda: Problem(ri.System(rods(), [1.0, 0.0]), TimeGrid(DT, 3), {"probes": []}), "outputs: must be a Recording"),
-    (lambda: Problem(ri.System(rods(), [1.0, 0.0]), TimeGrid(DT, 3), ri.Recording(probes=[ri.Probe("p", "x", 0.0)])),
+    (lambda: Problem(ri.System(rods(), [1.0, 0.0]), TimeGrid(DT, 3), {"probes": []}), "outputs: must be an Outputs"),
+    (lambda: Problem(ri.System(rods(), [1.0, 0.0]), TimeGrid(DT, 3), ri.Outputs(probes=[ri.Probe("p", "x", 0.0)])),
      r"probes\[0\].rod: no rod is named 'x'"),
     (lambda: Problem.of(ri.System(rods(), [1.0, 0.0]), [2.0, 0.0], steps=3), "velocities: a System already holds"),
     (lambda: Problem.of(ri.System(rods(), [1.0, 0.0]), steps=3, right="fixed"), "right: a System already holds"),
@@ -58,7 +58,7 @@ def test_bad_problems_are_refused_when_made_naming_the_part(make, match):
 
 def test_probes_named_by_rod_are_resolved_once_when_the_problem_is_made():
     bar = ri.Rod.from_impedance([51e3] * 400, dt=DT, name="bar")
-    p = Problem.of([rods()[0], bar], [5.0, 0.0], steps=50, outputs=ri.Recording(probes=[ri.Probe("g", "bar", 0.1)]))
+    p = Problem.of([rods()[0], bar], [5.0, 0.0], steps=50, outputs=ri.Outputs(probes=[ri.Probe("g", "bar", 0.1)]))
     assert p.outputs.probes == (ri.Probe("g", 1, 0.1),)
 
 

@@ -1,4 +1,4 @@
-"""``Recording``: the outputs of a run declared as one object, equivalent to the keywords of ``simulate``."""
+"""``Outputs``: the outputs of a run declared as one object, equivalent to the keywords of ``simulate``."""
 
 import numpy as np
 import pytest
@@ -17,7 +17,7 @@ def impact(**kw):
 def test_a_recording_gives_the_run_of_its_keywords():
     fields = dict(probes=[ri.Probe("g", "bar", 0.01)], snapshot_times=[5e-5], snapshot_every=50, energy_every=3,
                   record_every=2)
-    by_keywords, by_object = impact(**fields), impact(record=ri.Recording(**fields))
+    by_keywords, by_object = impact(**fields), impact(outputs=ri.Outputs(**fields))
     assert np.array_equal(by_object.junction_force, by_keywords.junction_force)
     assert np.array_equal(by_object.probe("g").strain, by_keywords.probe("g").strain)
     assert np.array_equal(by_object.snapshots.time, by_keywords.snapshots.time)
@@ -27,7 +27,7 @@ def test_a_recording_gives_the_run_of_its_keywords():
 
 
 def test_the_default_recording_samples_energy_about_256_times():
-    res = impact(record=ri.Recording())
+    res = impact(outputs=ri.Outputs())
     assert res.energy.time.size == 201 and res.snapshots is None and not res.probes  # 200 steps: every step
     rods = [ri.Rod.from_impedance(np.full(10, 40e3), dt=DT)] * 2
     long = ri.simulate(rods, velocities=[1.0, 0.0], steps=1000)
@@ -35,7 +35,7 @@ def test_the_default_recording_samples_energy_about_256_times():
 
 
 def test_recording_is_frozen_and_normalised():
-    rec = ri.Recording(probes=[ri.Probe("g", 1, 0.0)], snapshot_times=np.array([1e-5, 0.0]), record_every=np.int64(3))
+    rec = ri.Outputs(probes=[ri.Probe("g", 1, 0.0)], snapshot_times=np.array([1e-5, 0.0]), record_every=np.int64(3))
     assert rec.probes == (ri.Probe("g", 1, 0.0),) and rec.snapshot_times == (1e-5, 0.0)
     assert type(rec.record_every) is int
     with pytest.raises(AttributeError):
@@ -54,21 +54,21 @@ def test_recording_is_frozen_and_normalised():
 ])
 def test_bad_recordings_name_the_field(kw, error, match):
     with pytest.raises(error, match=match):
-        ri.Recording(**kw)
+        ri.Outputs(**kw)
     with pytest.raises(error, match=match):        # the same through the keywords of simulate
         impact(**kw)
 
 
 def test_recording_and_keywords_together_are_refused():
-    with pytest.raises(ValueError, match="record: give the outputs either as record=Recording.*energy_every="):
-        impact(record=ri.Recording(), energy_every=5)
-    with pytest.raises(TypeError, match="record: must be a Recording"):
-        impact(record={"energy_every": 5})
+    with pytest.raises(ValueError, match="outputs: give the outputs either as outputs=Outputs.*energy_every="):
+        impact(outputs=ri.Outputs(), energy_every=5)
+    with pytest.raises(TypeError, match="outputs: must be an Outputs"):
+        impact(outputs={"energy_every": 5})
 
 
 def test_snapshot_limits_are_checked_against_the_run():
     with pytest.raises(ValueError, match=r"snapshot_times: must lie in \[0, 0.0002\] s"):
-        impact(record=ri.Recording(snapshot_times=[1.0]))
+        impact(outputs=ri.Outputs(snapshot_times=[1.0]))
     with pytest.raises(ValueError, match="snapshot_every: 1 gives 200001 snapshots; use a larger stride"):
         rods = [ri.Rod.from_impedance(np.full(3, 40e3), dt=DT)]
         ri.simulate(rods, velocities=[1.0], steps=200_000, snapshot_every=1)

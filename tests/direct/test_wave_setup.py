@@ -29,7 +29,7 @@ def test_compiled_setup_equals_the_numpy_functions(seed, n_rods, right, moving_s
     system = ri.System(rods, velocities, right=end, loads=loads)
     probes = [ri.Probe(f"p{i}", int(rng.integers(0, n_rods)), 0.0) for i in range(n_probes)]
     probes = [ri.Probe(p.name, p.rod, float(rng.uniform(0, rods[p.rod].length))) for p in probes]
-    compiled = Problem(system, TimeGrid(DT, 10), ri.Recording(probes=probes)).compile()
+    compiled = Problem(system, TimeGrid(DT, 10), ri.Outputs(probes=probes)).compile()
     lat, N, v, arrays = compiled.lattice, compiled.N, compiled.v, compiled.arrays
 
     f, g, R, touch, quiet = K.wave_setup(N, v, lat.impedance, arrays["rod_start"], arrays["sp_elem"],
