@@ -80,7 +80,12 @@ def plot_sweep(ds: Any, axes: Any = None, *, metrics: Optional[Sequence[str]] = 
     keys_ = _subset("keys", keys, all_keys)
     rows, cols = len(names), len(keys_)
     legend_axes: list[Any] = []
-    if axes is None:
+    varied = [k for k in all_keys if ds.sizes[k] > 1]
+    if axes is None and (len(varied) < 2 or (len(varied) == 2 and keys is not None and len(keys_) == 1
+                                             and keys_[0] not in varied)):
+        fig, grid = new_axes(None, nrows=rows, ncols=cols, figsize=(4.2 * cols + 1.0, 2.6 * rows + 0.6))
+        flat = np.ravel(np.asarray(grid, dtype=object))
+    elif axes is None:
         # a first row of empty panels holds each column's legend, so that no legend covers a curve
         from matplotlib.figure import Figure
 
