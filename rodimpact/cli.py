@@ -191,10 +191,11 @@ def cmd_simulate(args: argparse.Namespace) -> int:
 
 # ============================================================================================ sweep
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from .io.model_sweep import format_sweep, parse_grid, save_sweep, summary, sweep_model
+    from .io.model_sweep import check_model_grid_size, format_sweep, parse_grid, save_sweep, summary, sweep_model
 
     model_path = Path(args.model)
     grid = _input_phase(lambda: parse_grid(args.grid))
+    _input_phase(lambda: check_model_grid_size([len(v) for v in grid.values()], "--grid"))
     overrides = _overrides(args)
     out = _output(args, f"{model_path.stem}-sweep")
     with _claim_out(out, args.force):
@@ -202,7 +203,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
                                               progress=_progress(args), max_element_updates=args.max_element_updates))
         data = summary(ds, model_path, overrides)
         if out is not None:
-            save_sweep(ds, data, out, overwrite=args.force)
+            save_sweep(ds, data, out, overwrite=args.force, plots=not args.no_plots)
     title = f"sweep of {model_path.name}: {data['points']} runs ({data['runner']}), {data['wall_time_s']:.2f} s"
     _report(data, format_sweep(ds, title), args, f"table written to {out / 'sweep.csv'}" if out else "")
     return EXIT_OK
@@ -395,12 +396,13 @@ def build_parser() -> argparse.ArgumentParser:
     w = sub.add_parser("sweep", help="run a model file over a grid of key values and write one table",
                        description="Run MODEL.toml at every combination of the --grid values and write one table "
                                    "of the first contact's peak force, contact time, energy transfer and striker "
-                                   "velocity (sweep.csv, sweep.nc, summary.json) to OUTDIR.")
+                                   "velocity (sweep.csv, sweep.nc, summary.json) and a plot of each quantity "
+                                   "against each grid key (sweep.png) to OUTDIR.")
     w.add_argument("model", metavar="MODEL.toml", help="model file")
     w.add_argument("--grid", action="append", required=True, metavar="KEY=V1,V2,...",
                    help="a key of the model file and the values to sweep, e.g. --grid rods.piston.velocity=4,5,6 "
                         "or --grid 'simulation.dt=0.5 us,1 us' (repeatable: all combinations are run)")
-    output_flags(w, "MODEL-NAME-sweep", plots=False)
+    output_flags(w, "MODEL-NAME-sweep")
     set_flag(w, "model file")
     w.add_argument("--workers", type=int, metavar="N", default=None, help="parallel runs (default: the CPUs)")
     limit_flag(w)

@@ -303,6 +303,24 @@ class EventTracker:
         return tuple(out)
 
 
+#: Values within this fraction of the largest magnitude of a history count as equal to its extreme when the time
+#: of a peak is reported: the lattice's sums round at about 1e-14 of the force, so a flat plateau wobbles by that
+#: much and its exact minimum lies anywhere on it; the time reported is where the plateau begins.
+PEAK_REL_TOL = 1e-9
+
+
+def first_within_rounding(values: np.ndarray, extreme: float, rel_tol: float = PEAK_REL_TOL) -> int:
+    """Index of the first entry of ``values`` within ``rel_tol`` x max |values| of ``extreme`` (its minimum or
+    maximum): where a plateau at the extreme begins, not the entry that rounding happened to make the extreme."""
+    values = np.asarray(values, dtype=float)
+    if values.size == 0:
+        raise ValueError("values: need at least one sample to find a peak")
+    tol = rel_tol * max(float(np.max(np.abs(values))), abs(float(extreme)))
+    distance = np.abs(values - extreme)
+    near = np.flatnonzero(distance <= tol)
+    return int(near[0]) if near.size else int(np.argmin(distance))
+
+
 def junction_events_from_history(force: np.ndarray, contact: np.ndarray) -> tuple[JunctionEvents, ...]:
     """:class:`JunctionEvents` of per-step histories of shape (n_junctions, n_steps)."""
     tracker = EventTracker(force.shape[0])
@@ -393,6 +411,21 @@ class SimulationResult(SimulationTables):
         if not 0 <= junction < len(events):
             raise ValueError(f"junction: must be 0..{len(events) - 1} for {len(events) + 1} rods, got {junction!r}")
         return events[junction]
+
+    def peak_time(self, junction: int = 0) -> float:
+        """Time of the most compressive force at ``junction``, s: where the force first comes within rounding
+        (:data:`PEAK_REL_TOL` of the run's largest |force|) of its peak, so a flat plateau is reported where it
+        begins. The peak itself is taken at every step; with ``record_every > 1`` its plateau is searched among
+        the recorded steps, so the time is exact to the recording stride."""
+        ev = self._events(junction)
+        step = int(ev.min_force_step)
+        recorded = self.junction_force[junction]
+        if recorded.size:
+            tol = PEAK_REL_TOL * max(ev.max_abs_force_run, abs(ev.min_force))
+            near = np.flatnonzero(np.abs(recorded - ev.min_force) <= tol)
+            if near.size:
+                step = min(step, int(near[0]) * int(self.record_every))
+        return step * self.dt
 
     def contact_times(self, junction: int = 0) -> np.ndarray:
         """Start times of each contact phase at ``junction`` (first impact and every re-contact), s."""

@@ -17,6 +17,7 @@ import itertools
 import json
 import math
 import os
+import re
 import sys
 import time as _time
 from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -73,6 +74,81 @@ DEFAULT_METRICS: dict[str, tuple[Metric, str]] = {
 KNOWN_METRICS: dict[str, tuple[Metric, str]] = {**DEFAULT_METRICS, **ROCK_METRICS}
 
 
+#: How tables and plots show each known metric: label, unit and factor from the SI value.
+METRIC_DISPLAY: dict[str, tuple[str, str, float]] = {
+    "peak_contact_force": ("peak contact force", "kN", 1e-3),
+    "contact_time": ("contact time", "ms", 1e3),
+    "energy_transfer": ("energy transfer", "%", 100.0),
+    "striker_final_velocity": ("striker final velocity", "m/s", 1.0),
+    "rock_energy": ("energy into the rock", "J", 1.0),
+    "drilling_efficiency": ("drilling efficiency", "%", 100.0),
+    "penetration_per_blow": ("penetration per blow", "mm", 1e3),
+}
+
+#: Most points one :func:`sweep` runs. Every point costs bookkeeping before its run (its index, a task, one value
+#: per metric: about :data:`BYTES_PER_POINT` bytes) and at least ~0.05 ms of simulation in a batch, ~1 ms alone:
+#: a million points is already minutes to hours. Larger grids are refused before anything runs.
+MAX_SWEEP_POINTS = 1_000_000
+#: Memory per grid point of :func:`sweep` before its run (index tuple, task, metric values), bytes.
+BYTES_PER_POINT = 1_000
+
+
+def check_grid_size(sizes: Sequence[int], name: str = "grid", limit: int = MAX_SWEEP_POINTS,
+                    bytes_per_point: float = BYTES_PER_POINT) -> int:
+    """The number of points of a grid with ``sizes`` values per key, after checking it is at most ``limit`` and
+    that their bookkeeping (``bytes_per_point`` each) fits in memory; the ``ValueError`` names ``name`` (``grid``
+    in Python, ``--grid`` on the command line), the grid's size and the limit."""
+    n = math.prod(int(k) for k in sizes)          # Python integers: no overflow for any grid
+    shape = " x ".join(f"{int(k):,}" for k in sizes)
+    if n > limit:
+        raise ValueError(f"{name}: {shape} values make {n:,} points, more than the {limit:,} one sweep runs; "
+                         "give fewer values per key, or split the sweep into several")
+    from .._validate import fits_in_memory
+
+    fits_in_memory(name, n * float(bytes_per_point), f"a sweep of {n:,} points ({shape})",
+                   "give fewer values per key, or split the sweep into several")
+    return n
+
+
+_NUMBER_FIRST = re.compile(r"\s*[+-]?(?:\d|\.\d)")
+
+
+def grid_coordinate(name: str, values: Sequence[Any]) -> tuple[np.ndarray, str]:
+    """The coordinate of grid parameter ``name`` and its unit: numbers stay numbers; when every value is a number
+    or a quantity string (``"6 m/s"``, ``"1.2 m"``: a number first, then a unit) of one dimension, the strings
+    become their SI values and the unit is that dimension's SI unit (``""`` when no value names a unit, e.g. plain
+    numbers, which model files take as SI). Other values (``"fixed"``, ``"true"``) stay text."""
+    if not any(isinstance(v, str) for v in values):
+        return np.asarray(values), ""
+    if not all(not isinstance(v, str) or _NUMBER_FIRST.match(v) for v in values):
+        return np.asarray(values), ""
+    from .._quantities import DIMENSIONS, ModelError, pint_quantity, si_magnitude
+
+    si: list[float] = []
+    units: set[str] = set()
+    for v in values:
+        if not isinstance(v, str):
+            si.append(float(v))
+            continue
+        try:
+            q = pint_quantity(v, f"grid[{name!r}]")
+        except ModelError:
+            return np.asarray(values), ""
+        dim = next((d for d in DIMENSIONS.values()
+                    if (q.dimensionless if d.name == "dimensionless" else q.check(d.pint))), None)
+        if dim is None:                     # a dimension no model key has: leave the text as it is
+            return np.asarray(values), ""
+        if str(q.units) != "dimensionless":             # "6 m/s", "30 %"; not a bare "3"
+            units.add("1" if dim.name == "dimensionless" else dim.si)
+        si.append(si_magnitude(q, dim.pint, v, f"grid[{name!r}]", f"a {dim.name}"))
+    if len(units) > 1:                      # mixed dimensions: the run names the bad value
+        return np.asarray(values), ""
+    if len(set(si)) != len(si):
+        raise ValueError(f"grid[{name!r}]: the values {list(values)!r} repeat once in SI units ({si!r}); give "
+                         "each value once")
+    return np.asarray(si, dtype=float), (units.pop() if units else "")
+
+
 def drilling_metrics() -> dict[str, Metric]:
     """``metrics=`` for :func:`sweep` of a drilling system: :data:`DEFAULT_METRICS` and :data:`ROCK_METRICS`."""
     return {name: f for name, (f, _) in KNOWN_METRICS.items()}
@@ -91,9 +167,10 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
         arguments of :func:`~rodimpact.simulate` as a dict, or an object with a ``simulate()`` method (a
         :class:`~rodimpact.io.model.Model`).
     grid:
-        Parameter name -> 1-d sequence of values (numbers or strings); all combinations are run. Names are the
-        keyword arguments of ``build``: identifiers, or any text without ``/`` (e.g. model-file key paths such as
-        ``"rods[0].velocity"``) when ``build`` takes ``**point``.
+        Parameter name -> 1-d sequence of values (numbers or strings); all combinations are run, at most
+        :data:`MAX_SWEEP_POINTS` (a larger grid is refused before anything runs). Names are the keyword arguments
+        of ``build``: identifiers, or any text without ``/`` (e.g. model-file key paths such as
+        ``"rods[0].velocity"``) when ``build`` takes ``**point``. ``build`` gets the values as given.
     metrics:
         Name -> function of the :class:`~rodimpact.SimulationResult` returning one real number. Default
         :data:`DEFAULT_METRICS`: the peak (most compressive) contact force and the total contact time at
@@ -124,7 +201,10 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
     Returns
     -------
     xarray.Dataset
-        One variable per metric with the grid parameters as dimensions and coordinates (in grid order).
+        One variable per metric with the grid parameters as dimensions and coordinates (in grid order). A
+        parameter whose values are numbers or quantity strings (``"6 m/s"``) has numbers as coordinate, in SI units
+        with a ``units`` attribute when a value named one (and ``values_as_given``, JSON); other text stays text
+        (:func:`grid_coordinate`). :func:`rodimpact.plotting.plot_sweep` draws every metric against every key.
     """
     import xarray as xr
 
@@ -138,6 +218,14 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
     if errors not in ("raise", "nan"):
         raise ValueError(f"errors: must be 'raise' or 'nan', got {errors!r}")
     shape = tuple(len(v) for v in values)
+    check_grid_size(shape, "grid", bytes_per_point=BYTES_PER_POINT + 8 * len(chosen))
+    coords = {}
+    for n, v in zip(names, values):
+        coordinate, unit = grid_coordinate(n, v)
+        attrs = {"units": unit} if unit else {}
+        if coordinate.dtype.kind != np.asarray(v).dtype.kind:
+            attrs["values_as_given"] = json.dumps([str(x) for x in v])
+        coords[n] = (n, coordinate, attrs)
     points = list(itertools.product(*(range(n) for n in shape)))
     if workers is None:
         workers = os.cpu_count() or 1
@@ -167,7 +255,6 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
         finally:
             if bar is not None:
                 bar.close()
-    coords = {n: (n, np.asarray(v)) for n, v in zip(names, values)}
     data = {name: (names, out[name], {"units": units[name]} if units[name] else {}) for name in chosen}
     return xr.Dataset(data, coords=coords, attrs={
         "title": "rodimpact parameter sweep", "rodimpact_version": __version__, "points": len(points),

@@ -18,6 +18,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence
 
+from ..direct.sweep import METRIC_DISPLAY
 from ..rods.conditions import BitRockEnd
 from . import _toml
 from .model import Model, load_model
@@ -25,16 +26,8 @@ from .overrides import parse_assignment, parse_value
 from .preflight import check_run, run_size
 from .quantities import ModelError
 
-#: How the table shows each summary quantity: label, unit and factor from the SI value.
-COLUMNS: dict[str, tuple[str, str, float]] = {
-    "peak_contact_force": ("peak contact force", "kN", 1e-3),
-    "contact_time": ("contact time", "ms", 1e3),
-    "energy_transfer": ("energy transfer", "%", 100.0),
-    "striker_final_velocity": ("striker final velocity", "m/s", 1.0),
-    "rock_energy": ("energy into the rock", "J", 1.0),
-    "drilling_efficiency": ("drilling efficiency", "%", 100.0),
-    "penetration_per_blow": ("penetration per blow", "mm", 1e3),
-}
+#: How the table shows each summary quantity: label, unit and factor from the SI value (as the sweep plots do).
+COLUMNS: dict[str, tuple[str, str, float]] = METRIC_DISPLAY
 
 
 def split_values(text: str) -> list[str]:
@@ -104,6 +97,7 @@ def sweep_model(path: str | Path, grid: Mapping[str, Sequence[Any]], overrides: 
 
     overrides = dict(overrides or {})
     keys, labels = _grid(grid, overrides)
+    check_model_grid_size([len(labels[k]) for k in keys], "grid")
     points = {index: _point_model(path, {**overrides, **{k: grid[k][i] for k, i in zip(keys, index)}},
                                   max_element_updates)
               for index in itertools.product(*(range(len(labels[k])) for k in keys))}
@@ -117,7 +111,74 @@ def sweep_model(path: str | Path, grid: Mapping[str, Sequence[Any]], overrides: 
     # penetration per blow (with the default quantities)
     system = next(iter(points.values())).model.system
     drilling = any(isinstance(end, BitRockEnd) for end in (system.left, system.right))
-    return sweep(build, labels, drilling_metrics() if drilling else None, workers=workers, progress=progress)
+    ds = sweep(build, labels, drilling_metrics() if drilling else None, workers=workers, progress=progress)
+    for key in keys:            # plain numbers are SI in a model file: their unit is the key's
+        if ds[key].dtype.kind in "fiu" and not ds[key].attrs.get("units"):
+            unit = key_unit(key)
+            if unit:
+                ds[key].attrs["units"] = unit
+    return ds
+
+
+def key_unit(key: str) -> str:
+    """The SI unit of the quantity at model-file key path ``key`` (``"m/s"`` for ``rods.piston.velocity``,
+    ``"1"`` for a pure number), from the schema; ``""`` when the key holds no quantity or is not known."""
+    from .overrides import parse_key
+    from .quantities import DIMENSIONS
+    from .schema import MODEL
+
+    try:
+        steps = parse_key(key)
+    except ModelError:
+        return ""
+    tables = [MODEL]
+    i = 0
+    while i < len(steps):
+        step = steps[i]
+        if not isinstance(step, str):
+            return ""
+        fields = []
+        for table in tables:
+            try:
+                fields.append(table.field(step))
+            except KeyError:
+                pass
+        if not fields:
+            return ""
+        i += 1
+        if i == len(steps):
+            dims = {f.dimension for f in fields if f.kind == "quantity" and f.dimension}
+            if len(dims) != 1:
+                return ""
+            si = DIMENSIONS[dims.pop()].si
+            return "1" if si == "-" else si
+        if any(f.kind in ("tables", "mapping") for f in fields):
+            i += 1                          # the entry: an index or a name
+        tables = []
+        for f in fields:
+            if f.table is not None:
+                tables.append(f.table)
+            elif f.variants is not None:
+                tables.extend(f.variants.options.values())
+    return ""
+
+
+#: Most points of one model-file sweep: every point is loaded and checked before the first run (about 10 ms and
+#: :data:`MODEL_BYTES_PER_POINT` bytes each), so 100,000 points already take a quarter of an hour to prepare.
+MAX_MODEL_SWEEP_POINTS = 100_000
+#: Memory held per point of a model-file sweep before it runs (the loaded model), bytes; a generous estimate.
+MODEL_BYTES_PER_POINT = 50_000
+
+
+def check_model_grid_size(sizes: Sequence[int], name: str = "--grid") -> int:
+    """The number of points of a model-file sweep with ``sizes`` values per key, after checking it is at most
+    :data:`MAX_MODEL_SWEEP_POINTS` and fits in memory; the :class:`ModelError` names ``name`` and the limit."""
+    from ..direct.sweep import check_grid_size
+
+    try:
+        return check_grid_size(sizes, name, MAX_MODEL_SWEEP_POINTS, MODEL_BYTES_PER_POINT)
+    except ValueError as exc:
+        raise ModelError(str(exc)) from None
 
 
 def _grid(grid: Mapping[str, Sequence[Any]], overrides: Mapping[str, Any]) -> tuple[list[str], dict[str, list]]:
@@ -178,12 +239,23 @@ def table_rows(ds: Any) -> list[dict[str, Any]]:
 def format_sweep(ds: Any, title: str = "") -> str:
     """The table of a sweep as aligned text (kN, ms, %, m/s); ``n/a`` where a quantity does not exist."""
     keys, names = _axes(ds)
-    header = keys + [f"{COLUMNS[n][0]} [{COLUMNS[n][1]}]" if n in COLUMNS else n for n in names]
-    body = [[str(row[k]) for k in keys] + [_shown(n, row[n]) for n in names] for row in table_rows(ds)]
+    header = [_key_header(ds, k) for k in keys] + [f"{COLUMNS[n][0]} [{COLUMNS[n][1]}]" if n in COLUMNS else n
+                                                   for n in names]
+    body = [[_key_shown(row[k]) for k in keys] + [_shown(n, row[n]) for n in names] for row in table_rows(ds)]
     widths = [max(len(r[c]) for r in [header] + body) for c in range(len(header))]
     lines = [title] if title else []
     lines += ["  ".join(cell.ljust(w) for cell, w in zip(r, widths)).rstrip() for r in [header] + body]
     return "\n".join(lines)
+
+
+def _key_header(ds: Any, key: str) -> str:
+    """A grid key as a column header, with the unit of its values when they were given with one."""
+    unit = ds[key].attrs.get("units", "")
+    return f"{key} [{unit}]" if unit else key
+
+
+def _key_shown(value: Any) -> str:
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
 
 
 def _axes(ds: Any) -> tuple[list[str], list[str]]:
@@ -202,28 +274,49 @@ def summary(ds: Any, model: str | Path, overrides: Mapping[str, Any]) -> dict[st
     """The sweep as JSON-ready data: the model, overrides, grid, how it ran and the table rows (SI units)."""
     return {"model": str(model), "overrides": dict(overrides),
             "grid": {k: ds[k].values.tolist() for k in _axes(ds)[0]},
+            "grid_units": {k: ds[k].attrs.get("units", "") for k in _axes(ds)[0]},
             "units": {n: ds[n].attrs.get("units", "") for n in ds.data_vars},
             "points": int(ds.attrs["points"]), "runner": ds.attrs["runner"], "wall_time_s": ds.attrs["wall_time_s"],
             "rows": table_rows(ds)}
 
 
-def save_sweep(ds: Any, data: Mapping[str, Any], outdir: str | Path, *, overwrite: bool = False) -> dict[str, Any]:
+def save_sweep(ds: Any, data: Mapping[str, Any], outdir: str | Path, *, overwrite: bool = False,
+               plots: bool = True, dpi: int = 120) -> dict[str, Any]:
     """Write ``sweep.csv`` (one row per point: the key paths, then the quantities with their units in the header),
-    ``sweep.nc`` (the dataset) and ``summary.json`` (``data`` plus the list of files) into ``outdir``, atomically
-    and with the output-folder safety of :func:`rodimpact.io.results.check_output_folder`. Returns the summary."""
+    ``sweep.nc`` (the dataset), ``sweep.png`` (every quantity against every grid key,
+    :func:`rodimpact.plotting.plot_sweep`; not with ``plots=False``) and ``summary.json`` (``data`` plus the list
+    of files) into ``outdir``, atomically and with the output-folder safety of
+    :func:`rodimpact.io.results.check_output_folder`. Returns the summary."""
     from .results import AtomicFolder, _engine, _to_json
 
-    out = {**data, "files": ["sweep.csv", "sweep.nc", "summary.json"]}
+    files = ["sweep.csv", "sweep.nc"]
+    notes: list[str] = []
+    figure = None
+    if plots:
+        try:
+            from ..plotting import plot_sweep
+
+            figure = plot_sweep(ds)
+            files.append(PLOT_FILE)
+        except (ValueError, ImportError) as exc:        # the table is the result: never lose it for a plot
+            notes.append(f"plot {PLOT_FILE} skipped: {exc}")
+    out = {**data, "files": files + ["summary.json"], **({"notes": notes} if notes else {})}
     with AtomicFolder(outdir, overwrite) as tmp:
         _write_table(tmp / "sweep.csv", ds, data["rows"])
         ds.to_netcdf(tmp / "sweep.nc", engine=_engine())
+        if figure is not None:
+            figure.savefig(tmp / PLOT_FILE, dpi=dpi)
         (tmp / "summary.json").write_text(_to_json(out), encoding="utf-8")
     return out
 
 
+#: The plot file of a sweep folder.
+PLOT_FILE = "sweep.png"
+
+
 def _write_table(path: Path, ds: Any, rows: Sequence[Mapping[str, Any]]) -> None:
     keys, names = _axes(ds)
-    header = keys + [f"{n} [{ds[n].attrs.get('units') or '-'}]" for n in names]
+    header = [_key_header(ds, k) for k in keys] + [f"{n} [{ds[n].attrs.get('units') or '-'}]" for n in names]
     with open(path, "w", encoding="utf-8", newline="") as fh:
         writer = csv.writer(fh, lineterminator="\n")
         writer.writerow(header)

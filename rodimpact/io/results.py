@@ -51,7 +51,7 @@ from .._permissions import normal_mode
 from .._validate import caller_stacklevel
 from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, json_default, result_dataset
 from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
-                             SimulationResult)
+                             SimulationResult, first_within_rounding)
 from ..lattice.discretize import RodDiscretization
 from ..lattice.lattice import Lattice
 from ._files import write_text_atomic  # noqa: F401  (public here: the CLI writes single files with it)
@@ -409,11 +409,13 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
     """Key numbers of a run, JSON-ready (SI units, keys say the unit).
 
     Per junction (taken at every step, whatever the recording stride): the peak compressive contact force and its
-    time, the first contact phase (start, duration), every separation and re-contact time, the total time in
-    contact (phases that carry no force beyond rounding are not counted, see :func:`contact_phases`). Per probe:
-    the requested position (``position_m``, from the rod's left end), the lattice node actually read
-    (``node_position_m`` in the same coordinate, ``node_index`` into the ``node`` dimension of ``result.nc``) and
-    the extreme forces among the recorded samples. ``lattice_report``: how each rod was represented on the lattice
+    time (where the force first comes within rounding of the peak, so a plateau is reported where it begins:
+    :meth:`~rodimpact.SimulationResult.peak_time`), the first contact phase (start, duration), every separation
+    and re-contact time, the total time in contact (phases that carry no force beyond rounding are not counted,
+    see :func:`contact_phases`). Per probe: the requested position (``position_m``, from the rod's left end), the
+    lattice node actually read (``node_position_m`` in the same coordinate, ``node_index`` into the ``node``
+    dimension of ``result.nc``) and the extreme forces among the recorded samples, with the first time each is
+    reached (to rounding). ``lattice_report``: how each rod was represented on the lattice
     (:meth:`~rodimpact.Lattice.report`, also ``result.diagnostics["lattice_report"]``). Per rod: initial and final
     energy and rigid-body (centre-of-mass) velocity -- the rebound velocity once the rods have separated. Energy
     transfer: the fraction of rod 0's initial energy it gave away. Energy balance error: max |E - E0 - W| / max E.
@@ -435,7 +437,7 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
         junctions.append({
             "index": j, "between": [_rod_label(result, j), _rod_label(result, j + 1)],
             "peak_compressive_force_N": ev.min_force if ev.min_force < 0 else 0.0,
-            "peak_time_s": float(ev.min_force_step * dt) if ev.min_force < 0 else None,
+            "peak_time_s": result.peak_time(j) if ev.min_force < 0 else None,
             "first_contact_s": float(first[0] * dt) if first else None,
             "contact_duration_s": float((first[1] - first[0]) * dt) if first else None,
             "total_contact_time_s": float(sum(b - a for a, b in phases) * dt),
@@ -467,7 +469,9 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
                        for o in result.bit_rock]
     probes = []
     for name, p in result.probes.items():
-        kmin, kmax = int(np.argmin(p.force)), int(np.argmax(p.force))
+        # a flat extreme is reported where it begins, not where rounding put its last digit
+        kmin = first_within_rounding(p.force, float(np.min(p.force)))
+        kmax = first_within_rounding(p.force, float(np.max(p.force)))
         local, _ = result.lattice.nearest_node(p.probe.rod, p.probe.position)     # the node the run read
         probes.append({"name": name, "rod": p.probe.rod, "position_m": p.probe.position,
                        "node_position_m": p.node_position,

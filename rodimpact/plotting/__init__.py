@@ -2,10 +2,10 @@
 
 The rule, as in matplotlib and pandas: a function that draws on **one** Axes takes it as ``ax`` (``None``: a new
 figure) and returns that Axes (:func:`plot_forces`, :func:`plot_strain`, :func:`plot_energy`,
-:func:`plot_energy_comparison`, :func:`plot_xt`, and in :mod:`rodimpact.plotting.synthesis` ``plot_impedance``,
-``plot_force``, ``plot_existence``, ``plot_shape``); its figure is ``ax.figure``. A function that draws on
+:func:`plot_energy_comparison`, :func:`plot_xt`, and the synthesis plots :func:`plot_impedance`,
+:func:`plot_force`, :func:`plot_existence`, :func:`plot_shape`); its figure is ``ax.figure``. A function that draws on
 **several** Axes takes them as ``axes`` and returns the Figure (:func:`plot_profile`, :func:`plot_snapshots`,
-``plot_synthesis``). New figures are :class:`matplotlib.figure.Figure` objects not registered with pyplot: save
+:func:`plot_synthesis`, :func:`plot_sweep`). New figures are :class:`matplotlib.figure.Figure` objects not registered with pyplot: save
 them with ``ax.figure.savefig(...)``. In a notebook, draw on Axes from ``plt.subplots()`` so that pyplot shows
 the figure as usual.
 
@@ -25,10 +25,24 @@ from .fields import plot_snapshots, plot_xt
 from .histories import plot_energy, plot_energy_comparison, plot_forces, plot_strain
 from .profile import plot_profile
 from .design import plot_convergence, plot_design_force, plot_design_profile, plot_incident_wave
+from .synthesis import plot_existence, plot_force, plot_impedance, plot_shape, plot_synthesis
+from .sweep import plot_sweep
 
 __all__ = ["plot_forces", "plot_strain", "plot_energy", "plot_energy_comparison", "plot_profile", "plot_snapshots",
            "plot_xt", "animate_force", "pillow_available", "save_plots", "PLOT_FILES",
-           "plot_design_force", "plot_design_profile", "plot_convergence", "plot_incident_wave"]
+           "plot_impedance", "plot_force", "plot_existence", "plot_shape", "plot_synthesis", "plot_sweep",
+           "plot_design_force", "plot_design_profile", "plot_convergence", "plot_incident_wave",
+           "plot_phase_speed"]
+
+
+def __getattr__(name: str) -> Any:
+    """``plot_phase_speed`` (thesis Fig. 2.2) lives in :mod:`rodimpact.reference`, which imports scipy: it is
+    loaded only when asked for, so that ``import rodimpact.plotting`` stays as fast as before."""
+    if name == "plot_phase_speed":
+        from ..reference.phase_speed import plot_phase_speed
+
+        return plot_phase_speed
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 #: File written by :func:`save_plots` for each plot name.
 PLOT_FILES = {"forces": "forces.png", "strain": "strain.png", "profile": "profile.png", "snapshots": "snapshots.png", "xt": "xt.png",

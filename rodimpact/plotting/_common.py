@@ -103,6 +103,16 @@ def junction_positions(result: Any) -> np.ndarray:
     return np.array([lat.node_x[lat.node_index(r, 0)] for r in range(1, lat.n_rods)])
 
 
+def format_length(x: float) -> str:
+    """A length (m) as a reader writes it: in mm below 1 m (``"822 mm"``, ``"3.2 mm"``), in m from 1 m on
+    (``"19.9 m"``, ``"2.5 m"``), with up to four significant digits and no exponent for lengths of rods."""
+    x = float(x)
+    if abs(x) < 1.0:
+        return f"{x * 1e3:.4g} mm"
+    text = f"{x:.4g}"
+    return f"{x:.0f} m" if "e" in text else f"{text} m"
+
+
 def time_scale(t_max: float) -> tuple[float, str]:
     """A factor and unit label for time axes (ms below 1 s, else s)."""
     return (1e3, "ms") if t_max < 1.0 else (1.0, "s")

@@ -8,7 +8,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .._validate import positive
-from ._common import check_result, new_axes, rod_label, time_scale
+from ._common import check_result, format_length, new_axes, rod_label, time_scale
 
 
 def plot_forces(result: Any, ax: Any = None, *, probes: Optional[Sequence[str]] = None, contact: bool = True,
@@ -16,7 +16,8 @@ def plot_forces(result: Any, ax: Any = None, *, probes: Optional[Sequence[str]] 
     """Contact force(s) and probe forces (kN) against time; returns the Axes.
 
     Node values are constant during each step, so the curves are drawn as steps from the step start times.
-    Forces are positive in tension (impacts are negative). ``probes``: names to show (default all); ``ends``:
+    Forces are positive in tension (impacts are negative); a probe's legend gives the position of the lattice node
+    it reads, from its rod's left end. ``probes``: names to show (default all); ``ends``:
     also the outer-end forces where they are not zero (default: only for a single rod, which has no contact).
     """
     check_result(result)
@@ -60,8 +61,10 @@ def _probe_names(result: Any, probes: Optional[Sequence[str]]) -> list[str]:
 
 
 def _probe_label(result: Any, name: str) -> str:
+    """The legend entry of a probe: its name, rod and the position of the lattice node it reads (which may differ
+    from the requested position by up to half an element), in mm below 1 m, else in m."""
     p = result.probe(name)
-    return f"{name} ({rod_label(result, p.probe.rod)}, x = {p.probe.position * 1e3:.4g} mm)"
+    return f"{name} ({rod_label(result, p.probe.rod)}, x = {format_length(p.node_position)})"
 
 
 def plot_strain(result: Any, ax: Any = None, *, probes: Optional[Sequence[str]] = None):

@@ -43,7 +43,7 @@ def plot_impedance(result: Any, ax: Optional[Any] = None, x: str = "s", log: Opt
     if m:
         ax.stairs(z / 1e3, edges, baseline=None, label="synthesized $Z_q$")
     if result.failure is not None:
-        ax.axvline(edges[-1], color="C3", ls="--", label=f"no solution from q = {result.failure.element}")
+        ax.axvline(edges[-1], color="C3", ls="--", label=f"no striker from element {result.failure.element} on")
     if log is None:
         log = m > 0 and z.max() / z.min() > 100
     if log:
@@ -51,6 +51,7 @@ def plot_impedance(result: Any, ax: Optional[Any] = None, x: str = "s", log: Opt
     ax.set_xlabel(label)
     ax.set_ylabel("impedance Z [kN s/m]")
     ax.legend(loc="best")
+    ax.set_title(f"Impedance of the synthesized striker ({m} element{'s' if m != 1 else ''})")
     return ax
 
 
@@ -69,29 +70,47 @@ def plot_force(result: Any, verification: Optional[Any] = None, ax: Optional[Any
     n = result.window_values.size
     edges = 2.0 * dt * np.arange(n + 1) * 1e3
     tr = result.transformation
+    # the target is piecewise constant on windows of 2 dt: drawn as steps, wide and light so that the achieved
+    # force stays visible on top of it
+    target_style = dict(baseline=None, lw=3.0, alpha=0.45, color="C0")
     if tr is None:
-        ax.stairs(result.window_values / 1e3, edges, baseline=None, label="target impact force $X_j$")
+        ax.stairs(result.window_values / 1e3, edges, label="target impact force (per window of 2 dt)",
+                  **target_style)
     else:
-        ax.stairs(tr.target / 1e3, edges, baseline=None, label=f"target {tr.quantity} at {tr.location.used:.4g} m")
-        ax.stairs(result.window_values / 1e3, edges, baseline=None, ls=":", label="required impact force $X_j$")
+        ax.stairs(tr.target / 1e3, edges, label=f"target {tr.quantity} at {tr.location.used:.4g} m",
+                  **target_style)
+        ax.stairs(result.window_values / 1e3, edges, baseline=None, ls=":", color="C2",
+                  label="impact force it requires")
     if result.failure is not None:
-        ax.axvline(2.0 * dt * result.n_feasible * 1e3, color="C3", ls="--", label="end of existence")
+        ax.axvline(2.0 * dt * result.n_feasible * 1e3, color="C3", ls="--",
+                   label="no striker produces the target beyond")
     if verification is not None:
         t0 = 0.0 if tr is None else tr.dead_time
-        ax.plot((verification.time - t0) * 1e3, verification.achieved / 1e3, ".", ms=3,
-                label="achieved (direct solver)")
+        t = (verification.time - t0) * 1e3
+        # node values are constant during a step: steps, as in plot_forces (dots came in pairs per window)
+        if t.size:
+            gaps = np.diff(t)
+            step = float(np.min(gaps[gaps > 0])) if np.any(gaps > 0) else dt * 1e3
+            ax.stairs(verification.achieved / 1e3, np.append(t, t[-1] + step), baseline=None, color="C1", lw=1.2,
+                      label="achieved (direct solver)")
     ax.set_xlabel("time [ms]" if tr is None else "time after arrival [ms]")
-    ax.set_ylabel("force [kN]")
+    ax.set_ylabel("force [kN] (tension > 0)")
     ax.legend(loc="best")
+    what = "Impact force" if tr is None else f"{tr.quantity.capitalize()} at {tr.location.used:.4g} m"
+    ax.set_title(f"{what}: target" + (" and achieved" if verification is not None else ""))
     return ax
 
 
 def plot_existence(result: Any, ax: Optional[Any] = None):
-    """Force difference |Delta N_q| and force reserve |K_q N_0| (kN) per element q: element q exists while
-    |Delta N_q| < |K_q N_0| (thesis eq. 4.20). When the target is infeasible the curves run up to and include
-    the failing element m + 1 (its values from ``result.failure``), which is shaded and marked with crosses; the
-    title says how many elements exist. Markers are drawn on short strikers (a one-element curve is a point).
-    Returns the Axes."""
+    """Whether the striker can be built, element by element from the impact face, in plain words.
+
+    For each element the plot compares the force change the target asks of it (|Delta N_q|, thesis eq. 4.7)
+    with the largest force change still possible there (the force reserve |K_q N_0|, eq. 4.8): the element
+    exists while the first stays below the second (eq. 4.20). When the target cannot be produced to the end, the
+    curves run up to and include the first impossible element m + 1 (its values from ``result.failure``), which
+    is shaded and marked with crosses; the title says in words how many elements exist and for how long the
+    target force can be produced. Markers are drawn on short strikers (a one-element curve is a point). Returns
+    the Axes."""
     _check_synthesis(result)
     _, ax = new_axes(ax)
     q = result.element
@@ -103,21 +122,29 @@ def plot_existence(result: Any, ax: Optional[Any] = None):
         reserve = np.append(reserve, f.force_reserve)
         difference = np.append(difference, abs(f.force_difference))
     marker = "o" if q.size <= 60 else None
-    ax.plot(q, reserve / 1e3, marker=marker, ms=3, label=r"force reserve $|K_q N_0|$")
-    ax.plot(q, difference / 1e3, marker=marker, ms=3, label=r"force difference $|\Delta N_q|$")
-    title = f"{result.n_feasible} of {result.n_requested} elements exist"
-    if f is not None:
+    ax.plot(q, reserve / 1e3, marker=marker, ms=3, label="largest force change still possible")
+    ax.plot(q, difference / 1e3, marker=marker, ms=3, label="force change the target asks for")
+    n, m = result.n_requested, result.n_feasible
+    if f is None:
+        title = (f"The striker exists: all {n} elements can be built\n"
+                 "(the target never asks for more force change than is possible)")
+    else:
+        why = ("the target asks for more force change than is possible" if f.reason == "existence" else
+               "the impact force would have to pull, which a contact cannot do" if f.reason == "tension" else
+               f.reason)
+        title = (f"The striker exists for {m} of {n} elements only: target reached for "
+                 f"{2.0 * result.dt * m * 1e3:.4g} ms\n(element {f.element}: {why})")
         ax.axvspan(f.element - 0.5, f.element + 0.5, color="C3", alpha=0.15, lw=0)
         ax.plot([f.element, f.element], [f.force_reserve / 1e3, abs(f.force_difference) / 1e3], "x", color="C3",
-                ms=8, mew=2, label=f"q = {f.element}: no solution ({f.reason})")
-        title += f"; none from q = {f.element} ({f.reason})"
+                ms=8, mew=2, label=f"element {f.element}: impossible")
     from matplotlib.ticker import MaxNLocator
 
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.set_xlabel("element q [-]")
-    ax.set_ylabel("force [kN]")
-    ax.set_ylim(bottom=0.0)
-    ax.legend(loc="best")
+    ax.set_xlabel("striker element, counted from the impact face [-]")
+    ax.set_ylabel("force change [kN]")
+    ax.set_ylim(bottom=0.0, top=max(float(np.max(reserve)) if reserve.size else 0.0,
+                                    float(np.max(difference)) if difference.size else 0.0) / 1e3 * 1.25 or None)
+    ax.legend(loc="best")           # matplotlib places it where it covers the fewest points
     ax.set_title(title, fontsize="small")
     return ax
 
@@ -161,7 +188,7 @@ def plot_shape(shape: Any, ax: Optional[Any] = None, *, radial_scale: Optional[f
     ax.set_aspect(radial_scale, adjustable="datalim")
     ax.set_xlabel("distance from impact face [mm]")
     ax.set_ylabel("radius [mm]" + (f" (radial scale x{radial_scale:g})" if radial_scale != 1.0 else ""))
-    ax.set_title(f"length {shape.length * 1e3:.4g} mm, mass {shape.mass:.4g} kg, diameter ratio "
+    ax.set_title(f"Striker shape: length {shape.length * 1e3:.4g} mm, mass {shape.mass:.4g} kg, diameter ratio "
                  f"{shape.diameter_ratio:.3g}", fontsize="small")
     return ax
 

@@ -66,17 +66,19 @@ def test_sweep_writes_one_table_of_the_runs_simulate_would_do(model, capsys, mon
                           model, capsys, monkeypatch)
     assert code == 0, err
     folder = model / "results" / "m-sweep"
-    assert _files(folder) == [".rodimpact-output", "summary.json", "sweep.csv", "sweep.nc"]
+    assert _files(folder) == [".rodimpact-output", "summary.json", "sweep.csv", "sweep.nc", "sweep.png"]
     with open(folder / "sweep.csv", encoding="utf-8") as fh:
         rows = list(csv.DictReader(fh))
-    assert [(r["rods.striker.velocity"], r["rods[1].segments[0].length"]) for r in rows] == [
-        ("4 m/s", "0.5 m"), ("4 m/s", "0.8 m"), ("6", "0.5 m"), ("6", "0.8 m")]
+    # the grid values in SI units, the unit in the header (as for the quantities)
+    assert [(r["rods.striker.velocity [m/s]"], r["rods[1].segments[0].length [m]"]) for r in rows] == [
+        ("4.0", "0.5"), ("4.0", "0.8"), ("6.0", "0.5"), ("6.0", "0.8")]
     alone = load_model(model / "m.toml", {"rods.striker.velocity": 6, "rods[1].segments[0].length": "0.8 m",
                                           "simulation.dt": "0.48305 us"}).simulate()
     assert float(rows[3]["peak_contact_force [N]"]) == alone.junction_events[0].min_force
     assert float(rows[3]["striker_final_velocity [m/s]"]) == pytest.approx(alone.rigid_body_velocity[0], abs=1e-12)
     assert "peak contact force [kN]" in out and "table written to" in out
-    assert any(line.split()[:3] == ["6", "0.8", "m"] for line in out.splitlines())
+    assert any(line.split()[:2] == ["6", "0.8"] for line in out.splitlines())
+    assert "rods.striker.velocity [m/s]" in out
     summary = json.loads((folder / "summary.json").read_text())
     assert summary["overrides"] == {"simulation.dt": "0.48305 us"} and summary["points"] == 4 and len(summary["rows"]) == 4
 
@@ -213,3 +215,51 @@ def test_a_drilling_sweep_reports_the_rock(model, capsys, monkeypatch):
     code, out, err = main(["sweep", "m.toml", "--grid", "rods[0].velocity=4,5", "--no-output"], model, capsys,
                           monkeypatch)
     assert code == 0 and "energy into the rock" not in out, err
+
+
+# ---- issue 20, item 13 -------------------------------------------------------------------------------------------
+def test_sweep_nc_holds_numbers_in_si_units_with_their_units(model, capsys, monkeypatch):
+    """sweep.nc stored the grid values as text ("6 m/s"); now numbers in SI units with a units attribute (a plain
+    number is SI in a model file: its unit is the key's), text values such as end names stay text."""
+    import xarray as xr
+
+    code, out, err = main(["sweep", "m.toml", "--grid", "rods.striker.velocity=4 m/s,6000 mm/s",
+                           "--grid", "rods[1].segments[0].length=0.5,800 mm", "--grid", "ends.right=free,fixed",
+                           "-o", "study"], model, capsys, monkeypatch)
+    assert code == 0, err
+    with xr.open_dataset(model / "study" / "sweep.nc") as ds:
+        v, length, end = ds["rods.striker.velocity"], ds["rods[1].segments[0].length"], ds["ends.right"]
+        assert v.dtype.kind == "f" and v.values.tolist() == [4.0, 6.0] and v.attrs["units"] == "m/s"
+        assert length.dtype.kind == "f" and length.values.tolist() == [0.5, 0.8] and length.attrs["units"] == "m"
+        assert end.values.tolist() == ["free", "fixed"]
+        # selecting by number works, and the point is the run at 6 m/s on a 0.8 m bar
+        peak = float(ds["peak_contact_force"].sel({"rods.striker.velocity": 6.0, "rods[1].segments[0].length": 0.8,
+                                                   "ends.right": "fixed"}))
+    alone = load_model(model / "m.toml", {"rods.striker.velocity": "6 m/s", "rods[1].segments[0].length": "0.8 m",
+                                          "ends.right": "fixed", "probes": []}).simulate()
+    assert peak == alone.junction_events[0].min_force
+    summary = json.loads((model / "study" / "summary.json").read_text())
+    assert summary["grid_units"] == {"rods.striker.velocity": "m/s", "rods[1].segments[0].length": "m",
+                                     "ends.right": ""}
+    assert "sweep.png" in summary["files"] and (model / "study" / "sweep.png").stat().st_size > 0
+
+
+def test_no_plots_writes_no_sweep_png(model, capsys, monkeypatch):
+    code, out, err = main(["sweep", "m.toml", "--grid", "rods.striker.velocity=3,4", "-o", "study", "--no-plots"],
+                          model, capsys, monkeypatch)
+    assert code == 0, err
+    assert not (model / "study" / "sweep.png").exists() and (model / "study" / "sweep.csv").is_file()
+
+
+def test_a_grid_too_large_is_refused_before_anything_runs(model, capsys, monkeypatch):
+    """A 1e4 x 1e4 grid ran for over a minute, then died with MemoryError; now refused up front, exit status 2."""
+    from rodimpact.io.model_sweep import MAX_MODEL_SWEEP_POINTS
+
+    values = ",".join(str(3 + i / 1e4) for i in range(10_000))
+    lengths = ",".join(str(0.2 + i / 1e5) for i in range(10_000))
+    code, out, err = main(["sweep", "m.toml", "--grid", f"rods.striker.velocity={values}",
+                           "--grid", f"rods[1].segments[0].length={lengths}"], model, capsys, monkeypatch)
+    assert code == 2 and "Traceback" not in err, err
+    assert "--grid: 10,000 x 10,000 values make 100,000,000 points" in err
+    assert f"more than the {MAX_MODEL_SWEEP_POINTS:,} one sweep runs" in err
+    assert _files(model) == ["m.toml"]

@@ -76,3 +76,39 @@ def test_inverse_docs_name_no_developer_machine_path_or_internal_document():
     assert "architecture.md" not in text and "architecture document" not in text
     assert "J. Burgert, *On direct and inverse problems related to\nlongitudinal impact of non-uniform elastic rods*" \
         in text
+
+
+# ---- issue 20, item 10: the time of a flat peak is where the plateau begins --------------------------------------
+@pytest.fixture(scope="module")
+def plateau():
+    """A 0.3 m striker on a 1 m bar of the same diameter (non-reflecting far end): the contact force is the flat
+    -Z v / 2 from the first step for 2 x 0.3 m / c; the front reaches the gauge SG at 0.5 m (a node) after 100
+    elements of 5 mm and holds the same plateau there."""
+    rods = [ri.Rod([ri.Cylinder(0.3, 0.03)]), ri.Rod([ri.Cylinder(1.0, 0.03)])]
+    return ri.simulate(rods, [6.0, 0.0], steps=300, dt=DT, right="nonreflecting", probes=[ri.Probe("SG", 1, 0.5)])
+
+
+def test_plateau_peak_is_reported_where_the_plateau_begins(plateau):
+    z = ri.STEEL.density * C * np.pi / 4 * 0.03**2
+    s = summarize(plateau)
+    (j,) = s["junctions"]
+    assert j["peak_compressive_force_N"] == pytest.approx(-z * 6.0 / 2, rel=1e-9)
+    assert j["peak_time_s"] == 0.0                    # the contact starts on the plateau
+    assert plateau.peak_time(0) == 0.0
+    assert "kN at 0 ms" in format_summary(s)
+    (sg,) = s["probes"]
+    assert sg["time_of_min_s"] == pytest.approx(100 * DT, abs=1e-3 * DT)
+
+
+def test_plateau_peak_time_with_a_recording_stride(plateau):
+    rods = [ri.Rod([ri.Cylinder(0.3, 0.03)]), ri.Rod([ri.Cylinder(1.0, 0.03)])]
+    res = ri.simulate(rods, [6.0, 0.0], steps=300, dt=DT, right="nonreflecting", record_every=7)
+    assert summarize(res)["junctions"][0]["peak_time_s"] == 0.0
+
+
+def test_a_peak_that_is_not_flat_keeps_its_own_time():
+    from rodimpact.direct.result import first_within_rounding
+
+    assert first_within_rounding(np.array([0.0, -1.0, -2.0, -3.0, -2.5]), -3.0) == 3
+    assert first_within_rounding(np.array([0.0, -5.0 + 1e-12, -5.0, -5.0 + 2e-12, -1.0]), -5.0) == 1
+    assert first_within_rounding(np.array([0.0, 4.0, 4.0 - 1e-3, 4.0]), 4.0) == 1

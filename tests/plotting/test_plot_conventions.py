@@ -139,18 +139,19 @@ def test_existence_plot_of_an_infeasible_target_shows_the_elements_up_to_the_fai
                                rtol=1e-12)
     assert reserve.get_marker() == "o"                      # a short curve is visible as points
     assert abs(f.force_difference) >= f.force_reserve       # the failure: |dN| reaches the reserve
-    crosses = [ln for ln in ax.get_lines() if ln.get_label().startswith("q = 2: no solution")]
+    crosses = [ln for ln in ax.get_lines() if ln.get_label() == "element 2: impossible"]
     assert len(crosses) == 1 and list(crosses[0].get_xdata()) == [2, 2]
     shaded = [p for p in ax.patches if p.get_facecolor()[3] > 0]
     assert shaded, "the failing element is shaded"
-    assert "1 of 3 elements exist; none from q = 2 (existence)" == ax.get_title()
+    assert ax.get_title().startswith("The striker exists for 1 of 3 elements only: target reached for 0.002 ms\n"
+                                     "(element 2: the target asks for more force change than is possible)")
     assert ax.get_ylim()[1] >= abs(f.force_difference) / 1e3
 
 
 def test_existence_plot_of_a_feasible_target_has_no_failure_mark(feasible):
     ax = plot_existence(feasible)
     assert len(ax.get_lines()) == 2 and list(ax.get_lines()[0].get_xdata()) == [1, 2, 3]
-    assert ax.get_title() == "3 of 3 elements exist"
+    assert ax.get_title().startswith("The striker exists: all 3 elements can be built")
 
 
 def test_strain_plot_is_the_probe_strain_in_microstrain(result):
