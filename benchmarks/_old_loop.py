@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from rodimpact import __version__
-from rodimpact.direct._kernels import boundaries
+from rodimpact.direct.boundary import boundaries
 from rodimpact.direct.result import EnergyHistory, EventTracker, FieldSnapshots, SimulationResult
 from rodimpact.direct.problem import initial_state, kernel_arrays, wave_arrays
 from rodimpact.direct.simulate import _probe_histories

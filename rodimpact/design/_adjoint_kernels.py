@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..direct._kernels import BITROCK, FIXED, FORCE, FREE, NONREFLECTING, SPRING, boundaries, end_solve
+from ..direct.boundary import BITROCK, FIXED, FORCE, FREE, NONREFLECTING, SPRING, boundaries, end_solve
 
 SEED_FACE, SEED_END_FORCE, SEED_END_VELOCITY, SEED_PROBE_FORCE, SEED_PROBE_VELOCITY = range(5)
 

@@ -44,7 +44,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import _rod_energy, boundaries, node_updates, reflecting_blocks
+from ._kernels import _rod_energy, node_updates, reflecting_blocks
+from .boundary import boundaries
 
 _OPTS = dict(cache=True, error_model="numpy", nogil=True)
 

@@ -28,7 +28,7 @@ from ..rods.material import STEEL
 from ..rods.rod import Rod
 from ..rods.system import System
 from . import _batch_kernels as BK
-from . import _kernels as K
+from . import boundary as B
 from ._momentum import mean_velocities
 from .result import BitRockOutcome, JunctionEvents, bit_rock_outcomes
 from .recording import step_stride
@@ -371,7 +371,7 @@ def _quiet_from(n_s: int, N: np.ndarray, v: np.ndarray, arrays: dict, end_value:
     """:func:`~rodimpact.direct.simulate.quiet_front` of the struck part (from element ``n_s``) with the whole
     run's end values and loads known: a right end with prescribed values that are all zero is passive too,
     and only loads that act at some step count."""
-    passive = passive_right(arrays) or (int(arrays["end_code"][1]) in (K.FORCE, K.VELOCITY)
+    passive = passive_right(arrays) or (int(arrays["end_code"][1]) in (B.FORCE, B.VELOCITY)
                                         and not end_value[1].any())
     forced = arrays["sp_elem"][sp_force.any(axis=1)] if sp_force.size else arrays["sp_elem"][:0]
     return quiet_front(N, v, n_s, passive, forced)

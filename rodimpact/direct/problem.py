@@ -24,7 +24,7 @@ from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, Fre
 from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
-from . import _kernels as K
+from . import boundary as B
 from .recording import Outputs, check_probes
 from .result import Probe
 
@@ -272,26 +272,26 @@ def _end_setup(cond: EndCondition, side: int, N: np.ndarray, v: np.ndarray, z: n
     values: Optional[Callable[[int, int], np.ndarray]] = None
     par = (0.0, 0.0)
     if isinstance(cond, FreeEnd):
-        code = K.FREE
+        code = B.FREE
     elif isinstance(cond, FixedEnd):
-        code = K.FIXED
+        code = B.FIXED
     elif isinstance(cond, ForceEnd):
-        code = K.FORCE
+        code = B.FORCE
         values = lambda first, n: cond.force.step_values(n, dt, first)  # noqa: E731
     elif isinstance(cond, VelocityEnd):
-        code = K.VELOCITY
+        code = B.VELOCITY
         values = lambda first, n: sign * cond.velocity.step_values(n, dt, first)  # noqa: E731
     elif isinstance(cond, NonReflectingEnd):
-        code = K.NONREFLECTING
+        code = B.NONREFLECTING
         zx = z[e] if cond.impedance is None else cond.impedance
         # incoming characteristic of the continuation, in its initial state (= that of the end element):
         # left: N - Zx V = const, right: N + Zx V = const; written as N = invariant - Zx w
         par = (zx, N[e] + sign * zx * v[e])
     elif isinstance(cond, SpringEnd):
-        code = K.SPRING
+        code = B.SPRING
         par = (cond.stiffness, cond.damping)
     elif isinstance(cond, BitRockEnd):
-        code = K.BITROCK
+        code = B.BITROCK
         par = (cond.loading_stiffness, cond.unloading_stiffness)
     else:  # pragma: no cover - System validates
         raise TypeError(f"unknown end condition {cond!r}")

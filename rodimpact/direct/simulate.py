@@ -15,6 +15,7 @@ from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
 from . import _kernels as K
+from . import boundary as B
 from . import guards
 from .problem import NO_OUTPUTS, Problem, TimeGrid, wave_arrays
 from .recording import Recorder, Outputs
@@ -210,7 +211,7 @@ def passive_right(arrays: dict) -> bool:
     """The right end cannot start a wave by itself: fixed, free, a spring or bit-rock law, or a non-reflecting
     end whose continuation is at rest (prescribed forces and velocities may act at any step)."""
     code, par = int(arrays["end_code"][1]), arrays["end_par"][1]
-    return code in (K.FREE, K.FIXED, K.SPRING, K.BITROCK) or (code == K.NONREFLECTING and par[1] == 0.0)
+    return code in (B.FREE, B.FIXED, B.SPRING, B.BITROCK) or (code == B.NONREFLECTING and par[1] == 0.0)
 
 
 def _outputs(outputs: Optional[Outputs], **keywords: Any) -> Outputs:

@@ -35,7 +35,7 @@ from typing import Optional
 import numpy as np
 from numba import njit
 
-from ..direct import _kernels as DK
+from ..direct import boundary as BL
 from ..lattice import tolerance
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import BitRockEnd, Bonded, FixedEnd, FreeEnd, NonReflectingEnd, SpringEnd
@@ -89,7 +89,7 @@ def _sweep(z, refl, blocks, node, steps, end_code, end_p0, end_p1, dt, drive):
             ge = G[e + i]
             n_e = fe + ge
             v_e = (ge - fe) / z[e]
-            w, nn, delta_max = DK.end_solve(end_code, n_e - z[e] * v_e, z[e], 0.0, end_p0, end_p1, delta, delta_max,
+            w, nn, delta_max = BL.end_solve(end_code, n_e - z[e] * v_e, z[e], 0.0, end_p0, end_p1, delta, delta_max,
                                             dt)
             delta += w * dt
             if node == n_el:
@@ -131,15 +131,15 @@ def _far_end(system: System, z_last: float) -> Optional[tuple[int, float, float]
     """Kernel code and parameters of a passive far end at rest (None for the others)."""
     right = system.right
     if isinstance(right, FreeEnd):
-        return DK.FREE, 0.0, 0.0
+        return BL.FREE, 0.0, 0.0
     if isinstance(right, FixedEnd):
-        return DK.FIXED, 0.0, 0.0
+        return BL.FIXED, 0.0, 0.0
     if isinstance(right, NonReflectingEnd):      # continuation at rest: incoming invariant 0
-        return DK.NONREFLECTING, z_last if right.impedance is None else right.impedance, 0.0
+        return BL.NONREFLECTING, z_last if right.impedance is None else right.impedance, 0.0
     if isinstance(right, SpringEnd):
-        return DK.SPRING, right.stiffness, right.damping
+        return BL.SPRING, right.stiffness, right.damping
     if isinstance(right, BitRockEnd):
-        return DK.BITROCK, right.loading_stiffness, right.unloading_stiffness
+        return BL.BITROCK, right.loading_stiffness, right.unloading_stiffness
     return None
 
 
