@@ -81,12 +81,12 @@ def _report(summary: dict, text: str, args: argparse.Namespace, extra: str = "",
             warned: Sequence[str] = ()) -> None:
     """Print the summary (``text``, or JSON with --json; nothing with --quiet) and the warnings it lists,
     ``warned`` (on stderr, once each: :class:`WarningLines`)."""
-    from .io.results import _to_json
+    from .io.results import summary_json
 
     for w in warned:
         args.warning_lines.show(w)
     if args.json:
-        print(_to_json(summary), end="")
+        print(summary_json(summary), end="")
     elif not args.quiet:
         print(text)
         if extra:

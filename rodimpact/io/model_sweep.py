@@ -287,7 +287,7 @@ def save_sweep(ds: Any, data: Mapping[str, Any], outdir: str | Path, *, overwrit
     :func:`rodimpact.plotting.plot_sweep`; not with ``plots=False``) and ``summary.json`` (``data`` plus the list
     of files) into ``outdir``, atomically and with the output-folder safety of
     :func:`rodimpact.io.results.check_output_folder`. Returns the summary."""
-    from .results import AtomicFolder, _engine, _to_json
+    from .results import AtomicFolder, _engine, summary_json
 
     files = ["sweep.csv", "sweep.nc"]
     notes: list[str] = []
@@ -306,7 +306,7 @@ def save_sweep(ds: Any, data: Mapping[str, Any], outdir: str | Path, *, overwrit
         ds.to_netcdf(tmp / "sweep.nc", engine=_engine())
         if figure is not None:
             figure.savefig(tmp / PLOT_FILE, dpi=dpi)
-        (tmp / "summary.json").write_text(_to_json(out), encoding="utf-8")
+        (tmp / "summary.json").write_text(summary_json(out), encoding="utf-8")
     return out
 
 

@@ -616,7 +616,9 @@ def _read_engine(path: Path) -> str:
     raise RuntimeError(f"{path}: a NetCDF4 file; reading it needs h5py (pip install h5py) or netCDF4")
 
 
-def _to_json(obj: Any) -> str:
+def summary_json(obj: Any) -> str:
+    """A summary as JSON text (indented, one trailing newline): numpy values as plain numbers, non-finite
+    numbers as ``null`` (JSON has no NaN or infinity)."""
     def clean(o: Any) -> Any:
         if isinstance(o, float) and not math.isfinite(o):
             return None
@@ -676,7 +678,7 @@ def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, ove
             summary["title"] = model.title
         summary["files"] = files + ["summary.json"]
         summary["notes"] = notes
-        (tmp / "summary.json").write_text(_to_json(summary), encoding="utf-8")
+        (tmp / "summary.json").write_text(summary_json(summary), encoding="utf-8")
     return Path(outdir)
 
 

@@ -11,7 +11,6 @@ Keys are listed in ``docs/cli.md`` (generated from :data:`SPEC` by :func:`spec_r
 
 from __future__ import annotations
 
-import json
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -391,7 +390,7 @@ def finish_folder(tmp: Path, files: list[str], verification: Any, plots: bool, d
     """The common end of a synthesis or design output folder ``tmp``: ``verification/`` (the direct simulation
     of the striker, with its ``model.toml``, and its force and profile plots when ``plots``), ``plots/`` (the
     files ``draw()`` writes there), and ``summary.json`` (``summary`` with the list of ``files``)."""
-    from .results import _to_json
+    from .results import summary_json
     from .results import save as save_result
 
     files = list(files)
@@ -402,7 +401,7 @@ def finish_folder(tmp: Path, files: list[str], verification: Any, plots: bool, d
     if plots:
         files += [f"plots/{p}" for p in draw()]
     summary["files"] = files + ["summary.json"]
-    (tmp / "summary.json").write_text(_to_json(summary), encoding="utf-8")
+    (tmp / "summary.json").write_text(summary_json(summary), encoding="utf-8")
     return summary
 
 
@@ -430,11 +429,6 @@ def write_plots(folder: Path, jobs: list) -> list[str]:
         fig.savefig(folder / name, dpi=120)
         written.append(name)
     return written
-
-
-def summary_json(summary: dict[str, Any]) -> str:
-    """The summary as JSON text."""
-    return json.dumps(summary, indent=2, default=str)
 
 
 # ============================================================================================ template
