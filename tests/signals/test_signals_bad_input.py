@@ -331,3 +331,21 @@ def test_rig_helpers_check_their_arguments():
     with pytest.raises(ValueError, match="position: must lie on the rod"):
         setup.gauge_travel_time(5.0)
     assert setup.gauge_travel_time(0.9) == pytest.approx(0.9 / ri.STEEL.wave_speed)
+
+
+@pytest.mark.parametrize("corner", [1e300, 1e80, 1e-300, 1e-80])
+def test_bessel_analog_refuses_a_corner_whose_gain_is_not_a_normal_float(corner):
+    # (2 pi corner)^4 overflows above ~1e76 Hz and is subnormal below ~1e-78 Hz: a ValueError naming corner
+    # and the valid range, not an OverflowError from inside scipy or a gain of 0
+    with pytest.raises(ValueError, match=r"corner: must lie between .* Hz and .* Hz for order 4"):
+        S.bessel_analog(4, corner)
+
+
+def test_bessel_analog_still_designs_extreme_but_representable_corners():
+    for corner in (1e-60, 1e60):
+        z, p, k = S.bessel_analog(4, corner)
+        # the -3 dB point (norm "mag") stays at the corner and the gain is finite and nonzero
+        w = 2 * np.pi * corner
+        h = k / np.prod(1j * w - p)
+        assert np.isfinite(k) and k > 0
+        assert abs(abs(h) - 2**-0.5) < 1e-9
