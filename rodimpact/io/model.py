@@ -224,7 +224,20 @@ def loads_model(text: str, base_dir: str | Path | None = None, name: str = "mode
 
 
 def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
-    """Build a :class:`Model` from parsed TOML data (validated against :data:`rodimpact.io.schema.MODEL`)."""
+    """Build a :class:`Model` from parsed TOML data (validated against :data:`rodimpact.io.schema.MODEL`).
+
+    Every error of the data is a :class:`ModelError` (docs/security.md promises it): the checks below raise it
+    with the key path; a ``ValueError``/``TypeError`` of the library that a check missed is turned into one here,
+    message unchanged, rather than escaping as a plain exception."""
+    try:
+        return _model_from_dict(raw, base_dir)
+    except ModelError:
+        raise
+    except (ValueError, TypeError) as exc:
+        raise ModelError(str(exc)) from exc
+
+
+def _model_from_dict(raw: dict, base_dir: Path) -> Model:
     d = validate_table(MODEL, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
@@ -480,9 +493,12 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
             count = _run_count(run, rp, c * dt)
             total += count
             # each element becomes a lattice element (about 128 bytes of state and history, as lattice.py counts)
-            fits_in_memory(f"{rp}.{'count' if run['count'] is not None else 'length'}", _BYTES_PER_ELEMENT * total,
-                           f"{total:,} elements" + (f" (runs[0..{i}])" if i else ""),
-                           "use fewer elements (a larger dt or element_length, shorter runs)")
+            try:
+                fits_in_memory(f"{rp}.{'count' if run['count'] is not None else 'length'}", _BYTES_PER_ELEMENT * total,
+                               f"{total:,} elements" + (f" (runs[0..{i}])" if i else ""),
+                               "use fewer elements (a larger dt or element_length, shorter runs)")
+            except ValueError as exc:       # its message already names the key path
+                raise ModelError(str(exc)) from None
             if run["impedance"] is not None:
                 if run["impedance_start"] is not None or run["impedance_end"] is not None:
                     raise ModelError(f"{rp}: give impedance, or impedance_start and impedance_end, not both")
