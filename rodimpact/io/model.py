@@ -190,17 +190,34 @@ def parse_toml(text: str, name: str) -> dict:
 
 def _check_nesting(raw: dict) -> None:
     """Raise a :class:`ModelError` naming the key path where ``raw`` nests deeper than :data:`MAX_NESTING`
-    (iteratively, so that the check itself cannot overflow the stack)."""
-    stack: list[tuple[Any, str, int]] = [(raw, "", 0)]
+    (iteratively, so that the check itself cannot overflow the stack). Only tables and arrays are visited, and
+    the key path is spelled out only for the error (a file of 10^6 numbers costs no strings)."""
+    # entries: (container, parent entry, key in the parent, depth)
+    stack: list[tuple[Any, Any, Any, int]] = [(raw, None, None, 0)]
     while stack:
-        value, path, depth = stack.pop()
-        if depth > MAX_NESTING:
-            raise ModelError(f"{path}: arrays or tables nested too deeply (at most {MAX_NESTING} levels)")
-        if isinstance(value, dict):
-            stack.extend((v, f"{path}.{_toml.key(str(k))}" if path else _toml.key(str(k)), depth + 1)
-                         for k, v in value.items())
-        elif isinstance(value, list):
-            stack.extend((v, f"{path}[{i}]", depth + 1) for i, v in enumerate(value))
+        entry = stack.pop()
+        value, _, _, depth = entry
+        items = value.items() if isinstance(value, dict) else enumerate(value)
+        if depth + 1 > MAX_NESTING and value:          # its entries lie deeper than allowed
+            k, v = list(items)[-1]                       # the entry the former depth-first walk named
+            raise ModelError(f"{_entry_path((v, entry, k, depth + 1))}: arrays or tables nested too deeply "
+                             f"(at most {MAX_NESTING} levels)")
+        for k, v in items:
+            if isinstance(v, (dict, list)):
+                stack.append((v, entry, k, depth + 1))
+
+
+def _entry_path(entry: tuple[Any, Any, Any, int]) -> str:
+    """The key path of an entry of :func:`_check_nesting`'s stack (``rods[0].segments[1].x``)."""
+    keys = []
+    while entry[1] is not None:
+        keys.append(entry[2])
+        entry = entry[1]
+    path = ""
+    for k in reversed(keys):
+        path = f"{path}[{k}]" if isinstance(k, int) else (f"{path}.{_toml.key(str(k))}" if path
+                                                          else _toml.key(str(k)))
+    return path
 
 
 def load_model(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -> Model:
@@ -218,7 +235,9 @@ def loads_model(text: str, base_dir: str | Path | None = None, name: str = "mode
                 overrides: Optional[Mapping[str, Any]] = None) -> Model:
     """Read a model from TOML text (``base_dir``: folder for relative file names, default the current one;
     ``overrides`` as in :func:`load_model`)."""
-    raw, applied = apply_overrides(parse_toml(text, name), overrides or {})
+    raw = parse_toml(text, name)
+    # apply_overrides works on a deep copy: skipped without overrides (the copy of a 30 MB file costs seconds)
+    raw, applied = apply_overrides(raw, overrides) if overrides else (raw, {})
     with naming_overrides(applied):
         return model_from_dict(raw, base_dir=Path(base_dir) if base_dir is not None else Path("."))
 
@@ -237,7 +256,24 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
         raise ModelError(str(exc)) from exc
 
 
+def _duplicate_rod_names(raw: dict) -> None:
+    """Refuse a rod name used twice, from the parsed file before anything is validated or built, so that a
+    duplicate at ``rods[1]`` of a file with 10,000 rods is reported at once (the names' types are checked by
+    the schema later; only strings are compared here)."""
+    rods = raw.get("rods")
+    if not isinstance(rods, list):
+        return
+    names: dict[str, int] = {}
+    for i, r in enumerate(rods):
+        name = r.get("name") if isinstance(r, dict) else None
+        if isinstance(name, str):
+            if name in names:
+                raise ModelError(f"rods[{i}].name: {name!r} is already the name of rods[{names[name]}]")
+            names[name] = i
+
+
 def _model_from_dict(raw: dict, base_dir: Path) -> Model:
+    _duplicate_rod_names(raw)
     d = validate_table(MODEL, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
@@ -487,18 +523,26 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
         z = np.array(e["impedance"], dtype=float)
     elif e["file"] is None:
         parts = []
-        total = 0
-        for i, run in enumerate(e["runs"]):
-            rp = f"{path}.runs[{i}]"
-            count = _run_count(run, rp, c * dt)
-            total += count
-            # each element becomes a lattice element (about 128 bytes of state and history, as lattice.py counts)
+        counts = [_run_count(run, f"{path}.runs[{i}]", c * dt) for i, run in enumerate(e["runs"])]
+        totals = np.cumsum(np.array(counts, dtype=float))
+        # each element becomes a lattice element (about 128 bytes of state and history, as lattice.py counts);
+        # the memory is asked for once (it costs ~0.1 ms), and the message names the first run that does not fit
+        if totals.size and not _fits(_BYTES_PER_ELEMENT * totals[-1]):
+            lo, hi = 0, totals.size - 1          # bisection: the first run whose running total does not fit
+            while lo < hi:
+                mid = (lo + hi) // 2
+                lo, hi = (mid + 1, hi) if _fits(_BYTES_PER_ELEMENT * totals[mid]) else (lo, mid)
+            i = lo
+            rp, run = f"{path}.runs[{i}]", e["runs"][i]
             try:
-                fits_in_memory(f"{rp}.{'count' if run['count'] is not None else 'length'}", _BYTES_PER_ELEMENT * total,
-                               f"{total:,} elements" + (f" (runs[0..{i}])" if i else ""),
+                fits_in_memory(f"{rp}.{'count' if run['count'] is not None else 'length'}",
+                               _BYTES_PER_ELEMENT * totals[i], f"{int(totals[i]):,} elements"
+                               + (f" (runs[0..{i}])" if i else ""),
                                "use fewer elements (a larger dt or element_length, shorter runs)")
             except ValueError as exc:       # its message already names the key path
                 raise ModelError(str(exc)) from None
+        for i, (run, count) in enumerate(zip(e["runs"], counts)):
+            rp = f"{path}.runs[{i}]"
             if run["impedance"] is not None:
                 if run["impedance_start"] is not None or run["impedance_end"] is not None:
                     raise ModelError(f"{rp}: give impedance, or impedance_start and impedance_end, not both")
@@ -514,6 +558,15 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
 
 
 _BYTES_PER_ELEMENT = 128.0
+
+
+def _fits(n_bytes: float) -> bool:
+    """Whether :func:`fits_in_memory` would accept an allocation of ``n_bytes``."""
+    try:
+        fits_in_memory("", n_bytes, "")
+    except ValueError:
+        return False
+    return True
 #: Largest relative difference between a given dt and the spacing of a profile file's theta column.
 _SAME_DT = 1e-9
 
