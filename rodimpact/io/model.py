@@ -280,7 +280,7 @@ def _model_from_dict(raw: dict, base_dir: Path) -> Model:
     rods, velocities, initial = [], [], []
     sim = d["simulation"]
     for i, r in enumerate(d["rods"]):
-        rod, st = _rod(r, f"rods[{i}]", materials, params, sim["dt"], base_dir)
+        rod, st = _rod(r, f"rods[{i}]", materials, params, sim["dt"], base_dir, raw["rods"][i])
         rods.append(rod)
         velocities.append(r["velocity"])
         initial.append(st)
@@ -342,7 +342,7 @@ def _model_from_dict(raw: dict, base_dir: Path) -> Model:
     output = _wrap("model", lambda: OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"],
                                                out["snapshot_count"], tuple(out["plots"]), out["csv"], out["fields"],
                                                out["record_every"]))
-    with KeyPath("model"):
+    with KeyPath("model", lambda key: _rod_written_with_units(raw, key)):
         system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
                                                initial if any(s is not None for s in initial) else None))
     return Model(system, sim["duration"], sim["steps"], sim["dt"], tuple(probes), output, sim["backend"],
@@ -398,8 +398,38 @@ def _material(name: Optional[str], known: dict[str, Material], path: str) -> Opt
     return known[key]
 
 
+#: a number followed by a unit name: "3.204 mm", "0.1 m", "1.26e-3 m^2"
+_NUMBER_WITH_UNIT = re.compile(r"\s*[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*[A-Za-zµμ].*", re.DOTALL)
+
+
+def _with_unit(value: Any) -> bool:
+    """Whether a raw quantity (or every entry of a list of them) is written as a number with its unit
+    (``"3.204 mm"``), so that its unit cannot have slipped; bare numbers, numbers in quotes and expressions of
+    parameters are not."""
+    if isinstance(value, list):
+        return bool(value) and all(_with_unit(v) for v in value)
+    return isinstance(value, str) and _NUMBER_WITH_UNIT.fullmatch(value) is not None
+
+
+_GEOMETRY_KEYS = ("length", "diameter", "outer_diameter", "inner_diameter", "diameter_start", "diameter_end",
+                  "area", "area_start", "area_end", "x")
+
+
+def _rod_written_with_units(raw: dict, key: str) -> bool:
+    """For a plausibility warning about ``rods[i]`` (a striker's mass): whether the file gives every length,
+    diameter and area of that rod's segments with a unit."""
+    m = re.fullmatch(r"rods\[(\d+)\]", key)
+    if m is None:
+        return False
+    segments = raw["rods"][int(m.group(1))].get("segments")
+    if not isinstance(segments, list) or not segments:
+        return False
+    return all(isinstance(s, dict) and all(_with_unit(s[k]) for k in _GEOMETRY_KEYS if k in s)
+               and any(k in s for k in _GEOMETRY_KEYS) for s in segments)
+
+
 def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, float], sim_dt: Optional[float],
-         base_dir: Path) -> tuple[Rod, Optional[InitialState]]:
+         base_dir: Path, raw_rod: Optional[dict] = None) -> tuple[Rod, Optional[InitialState]]:
     has_seg, has_el = r["segments"] is not None, r["elements"] is not None
     if has_seg == has_el:
         raise ModelError(f"{path}: give either [[{path.split('[')[0]}.segments]] (geometry) or "
@@ -408,9 +438,20 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
         if not r["segments"]:
             raise ModelError(f"{path}.segments: needs at least one segment")
         mat = _material(r["material"], materials, f"{path}.material") or STEEL
-        segs = [piece for j, s in enumerate(r["segments"])
-                for piece in _segment(s, f"{path}.segments[{j}]", materials, params, base_dir)]
-        with KeyPath(path):
+        segs, origin = [], []          # origin[k]: the file's segment of the rod's segment k (tables split)
+        for j, s in enumerate(r["segments"]):
+            pieces = _segment(s, f"{path}.segments[{j}]", materials, params, base_dir)
+            segs.extend(pieces)
+            origin.extend([j] * len(pieces))
+
+        def written_with_unit(key: str) -> bool:
+            m = re.fullmatch(rf"{re.escape(path)}\.segments\[(\d+)\]\.(\w+)", key)
+            if m is None or raw_rod is None or not isinstance(raw_rod.get("segments"), list):
+                return False
+            seg = raw_rod["segments"][origin[int(m.group(1))]]
+            return isinstance(seg, dict) and m.group(2) in seg and _with_unit(seg[m.group(2)])
+
+        with KeyPath(path, written_with_unit):
             rod = _wrap(path, lambda: Rod(segs, mat, r["name"]))
     else:
         if r["material"] is not None:
