@@ -13,7 +13,9 @@ ordinary parts:
   times as long as wide; a 1.4 m cylinder pile's cushion is thicker than 0.15 m), but a bar of 20 mm and less
   than 20 m written as ``diameter = 20`` is;
 * a striker (a rod that moves at t = 0) heavier than :data:`MAX_STRIKER_MASS` = 1000 t, five times the heaviest
-  pile-hammer ram in service (about 200 t): every dimension written in mm multiplies the mass by 1e9.
+  pile-hammer ram in service (about 200 t): every dimension written in mm multiplies the mass by 1e9;
+* a rod moving faster than a tenth of its bar wave speed (:data:`MAX_SPEED_RATIO`; 518 m/s for steel): an impact
+  strain v/(2c) above 5 %, far beyond any elastic rod (a velocity of 3e8 m/s is 58,000 times the steel wave speed).
 
 Short, thick parts (a 3.204 mm x 6 mm SHPB specimen, a cushion) and heavy rams are not warned about: 1D theory
 needs length >> diameter for the waves, but that is a modelling choice the user makes, not a unit mistake. From
@@ -45,6 +47,10 @@ DISC_DIAMETER = 1.0
 DISC_RATIO = 10.0
 #: Heaviest plausible striker (kg): five times the heaviest pile-hammer ram in service (about 200 t).
 MAX_STRIKER_MASS = 1.0e6
+#: Fastest plausible rod, as a fraction of its bar wave speed c: an elastic impact of equal rods strains them by
+#: v / (2c), so 0.1 c means 5 % strain, five times the elastic limit of the strongest rod materials (steel and
+#: titanium stay elastic below about 1 %); Taylor and gas-gun tests stay below (steel: 518 m/s).
+MAX_SPEED_RATIO = 0.1
 
 
 class PlausibilityWarning(UserWarning):
@@ -104,9 +110,24 @@ def check_rod(rod: "Rod") -> bool:
     return warned
 
 
+def _slowest_wave_speed(rod: "Rod") -> float:
+    """The smallest bar wave speed of a rod's materials, m/s."""
+    if rod.native is not None:
+        return float(rod.native.wave_speed)
+    return min(rod.segment_material(i).wave_speed for i in range(len(rod.segments)))
+
+
 def check_strikers(rods, velocities) -> None:
-    """Warn about a moving geometry-based rod (a striker) heavier than :data:`MAX_STRIKER_MASS`, unless its
+    """Warn about a rod moving faster than :data:`MAX_SPEED_RATIO` times its bar wave speed (impedance-level rods
+    included), and about a moving geometry-based rod (a striker) heavier than :data:`MAX_STRIKER_MASS` unless its
     geometry was already warned about."""
+    for i, (rod, v) in enumerate(zip(rods, velocities)):
+        c = _slowest_wave_speed(rod)
+        if abs(v) > MAX_SPEED_RATIO * c:
+            warn(f"rods[{i}].velocity", f"= {v:.6g} m/s is {abs(v) / c:.3g} times the bar wave speed of the rod "
+                 f"({c:.6g} m/s): the impact would strain it by about v/(2c) = {abs(v) / (2 * c):.3g}, far beyond "
+                 f"the elastic limit of any rod material (about 0.01), where this linear elastic model does not "
+                 f"hold; check the value and its unit (bare numbers are m/s)")
     for i, (rod, v) in enumerate(zip(rods, velocities)):
         if v != 0.0 and rod.native is None and not getattr(rod, "_implausible", False) and rod.mass > MAX_STRIKER_MASS:
             warn(f"rods[{i}]", f"is a striker (initial velocity {v:.6g} m/s) of {rod.mass:.6g} kg, heavier than "

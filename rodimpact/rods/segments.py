@@ -18,7 +18,7 @@ from typing import Callable, Optional
 import numpy as np
 
 from .._validate import finite, finite_array, positive
-from .material import Material
+from .material import Material, as_material
 
 ArrayLike = np.ndarray | float
 
@@ -39,9 +39,8 @@ class Segment:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "length", positive(f"{type(self).__name__}.length", self.length, "m"))
-        if self.material is not None and not isinstance(self.material, Material):
-            raise TypeError(f"{type(self).__name__}.material: must be a Material or None, "
-                            f"got {type(self.material).__name__}")
+        if self.material is not None:          # a Material or a preset name ("steel"), as Rod accepts
+            object.__setattr__(self, "material", as_material(self.material, f"{type(self).__name__}.material"))
         s = np.linspace(0.0, self.length, 65)
         try:
             with np.errstate(all="ignore"):

@@ -349,3 +349,40 @@ def test_bessel_analog_still_designs_extreme_but_representable_corners():
         h = k / np.prod(1j * w - p)
         assert np.isfinite(k) and k > 0
         assert abs(abs(h) - 2**-0.5) < 1e-9
+
+
+_BAR = dict(youngs_modulus=200e9, density=7850.0, area=2e-4, gauge_factor=2.0, excitation_voltage=10.0)
+
+
+@pytest.mark.parametrize("key, value", [("gauge_factor", "5"), ("gauge_factor", True), ("area", "2e-4"),
+                                        ("excitation_voltage", None), ("density", [7850.0]), ("gain", "200")])
+def test_gauged_bar_refuses_wrong_types_instead_of_coercing(key, value):
+    # issue 20 item 12: a gauge factor "5" was read as 5.0 by float()
+    with pytest.raises(TypeError, match=rf"^{key}: must be a real number"):
+        S.GaugedBar(**{**_BAR, key: value})
+
+
+def test_gauged_bar_polarity_and_bridge_arms_are_numbers_not_coerced():
+    with pytest.raises(TypeError, match="polarity must be"):
+        S.GaugedBar(**_BAR, polarity=True)
+    for arms in (("1", 0, 0, 0), (True, 0, 0, 0), 5, "1000"):
+        with pytest.raises(TypeError, match="arms: must be four strain factors"):
+            S.Bridge(arms)
+
+
+@pytest.mark.parametrize("call", [
+    lambda: S.strain_to_force(["1e-3", "2e-3"], 200e9, 2e-4),
+    lambda: S.strain_to_force([True, False], 200e9, 2e-4),
+    lambda: S.bridge_to_strain(np.array(["0.001"]), 10.0, 2.0),
+    lambda: S.Bridge.quarter().strain(["0.001"], 2.0),
+    lambda: S.Bridge.quarter().strain([0.001], "2"),
+])
+def test_gauge_functions_refuse_strings_and_bools(call):
+    with pytest.raises(TypeError):
+        call()
+
+
+def test_gauged_bar_still_takes_numbers_and_quantities_with_units():
+    bar = S.GaugedBar(**{**_BAR, "youngs_modulus": "200 GPa", "excitation_voltage": "10 V", "gauge_factor": 2})
+    assert bar.youngs_modulus == 200e9 and bar.excitation_voltage == 10.0 and bar.gauge_factor == 2.0
+    assert S.GaugedBar(**{**_BAR, "gauge_factor": np.float32(2.0)}).gauge_factor == 2.0
