@@ -386,3 +386,10 @@ def test_gauged_bar_still_takes_numbers_and_quantities_with_units():
     bar = S.GaugedBar(**{**_BAR, "youngs_modulus": "200 GPa", "excitation_voltage": "10 V", "gauge_factor": 2})
     assert bar.youngs_modulus == 200e9 and bar.excitation_voltage == 10.0 and bar.gauge_factor == 2.0
     assert S.GaugedBar(**{**_BAR, "gauge_factor": np.float32(2.0)}).gauge_factor == 2.0
+
+
+@pytest.mark.parametrize("time, samples", [(["0", "1e-6"], [1.0, 2.0]), ([0.0, 1e-6], ["1", "2"]),
+                                           ([0.0, 1e-6], [True, False])])
+def test_recording_refuses_strings_and_bools_instead_of_converting(time, samples):
+    with pytest.raises(TypeError, match="must be an array of real numbers"):
+        S.Recording(time, {"a": samples})
