@@ -93,6 +93,8 @@ def check_rod(rod: "Rod") -> bool:
     warned = False
     for i, seg in enumerate(rod.segments):
         key, d, is_diameter = _widest(seg)
+        if key in getattr(seg, "_with_units", ()):      # written with its unit ("20 m"): no slip to suggest
+            continue
         disc = d > DISC_DIAMETER and DISC_RATIO * rod.length < d
         if not (d > MAX_DIAMETER or disc):
             continue

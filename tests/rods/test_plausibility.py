@@ -140,3 +140,11 @@ duration = "0.1 ms"
     assert caught == []
     _, caught = _caught(lambda: ri.loads_model(text.replace('length = "100 m"', "length = 100")))
     assert [str(w.message).split(" is a striker")[0] for w in caught] == ["rods[0]"]
+
+
+def test_python_values_given_with_their_unit_are_not_warned_about():
+    # Python accepts unit strings too: "20 m" was meant, so "did you mean 20 mm?" would change what was written
+    _, caught = _caught(lambda: ri.Rod([ri.Cylinder(0.3, "20 m")]))
+    assert caught == []
+    _, caught = _caught(lambda: ri.Rod([ri.Cylinder("0.3 m", 20)]))          # the bare one is still named
+    assert [str(w.message).split(":")[0] for w in caught] == ["Rod.segments[0].diameter = 20 m"]
