@@ -83,6 +83,9 @@ MODEL_FILES = {
                        f'runs = [{", ".join(f"{{ impedance = {chr(34)}{51 + i % 7} kN s/m{chr(34)}, count = 2 }}" for i in range(n))}]\n'),
 }
 MODEL_SIZES = {"rods": 10_000, "table": 75_000, "numbers": 300_000, "runs": 75_000}
+#: CPU seconds at n and 4n measured by this script on the code before issue 20 item 17 (commit 9bd718e), same
+#: machine, for the "before" column; re-measure with ``git stash; python benchmarks/bench_readers.py --models``
+BEFORE = {"rods": (1.85, 7.74), "table": (15.38, 66.91), "numbers": (1.05, 4.46), "runs": (6.06, 28.33)}
 
 
 def cpu_time(fn) -> float:
@@ -118,8 +121,9 @@ def bench_models() -> list[str]:
                 t = min(cpu_time(lambda: load_model(path)) for _ in range(2))
                 row.append((n, size, t))
             (n1, s1, t1), (n4, s4, t4) = row
+            b1, b4 = BEFORE[key]
             lines.append(f"| {what} | {n1:,}: {s1:.2f} MB, {t1:.2f} s | {n4:,}: {s4:.2f} MB, {t4:.2f} s | "
-                         f"{t4 / t1:.2f} |")
+                         f"{t4 / t1:.2f} | {b1:.2f} s, {b4:.2f} s |")
             print(lines[-1], flush=True)
     return lines
 
@@ -156,19 +160,20 @@ def main() -> None:
 
 MODEL_SECTION = """## Model files: validation time (`python benchmarks/bench_readers.py --models`)
 
-CPU time of `load_model` (best of two) on {machine}, Python {python}, for files of n and 4n entries; the last
-column is the ratio of the two times (4 for work linear in the file's size). Before issue 20 (item 17) pint
+CPU time of `load_model` (best of two) on {machine}, Python {python}, for files of n and 4n entries; "ratio" is
+the ratio of the two times (4 for work linear in the file's size; the few tenths above 4 are Python's garbage
+collector, which walks the growing heap of parsed values). Before issue 20 (item 17) pint
 converted every unit string (~0.1 ms each), psutil was asked for the memory after every impedance run, the
 parsed file was deep-copied for overrides that were not given, and a duplicate rod name was reported only
-after every rod had been validated and built (10,000 rods: 2.0 s here, 10.9 s on the reviewer's loaded machine;
-a table of 40,000 unit-string points took 8.3 s, 40,000 runs 2.7 s). Now each unit is converted once (the
-value is the number times pint's factor for that unit, equal bit for bit), the memory is asked for once, and
+after every rod had been validated and built (10.9 s for 10,000 rods on the reviewer's loaded machine). The
+work was linear already (ratios near 4 before too) but with a large constant: a table of 300,000 unit-string
+points took 67 s. Now each unit is converted once (the value is the number times pint's factor for that unit, equal bit for bit), the memory is asked for once, and
 duplicate rod names are checked on the parsed file first. What remains is Python's TOML parser (`tomllib`,
 roughly 1-2 s per 10 MB of arrays) and the per-value checks. `tests/io/test_model_scaling.py` counts the
 operations (pint conversions, memory queries, tables validated) at n and 4n instead of timing them.
 
-| file | n | 4n | ratio |
-|---|---|---|---|
+| file | n | 4n | ratio | before (9bd718e): n, 4n |
+|---|---|---|---|---|
 {rows}
 """
 
