@@ -161,8 +161,9 @@ def main() -> None:
 MODEL_SECTION = """## Model files: validation time (`python benchmarks/bench_readers.py --models`)
 
 CPU time of `load_model` (best of two) on {machine}, Python {python}, for files of n and 4n entries; "ratio" is
-the ratio of the two times (4 for work linear in the file's size; the few tenths above 4 are Python's garbage
-collector, which walks the growing heap of parsed values). Before issue 20 (item 17) pint
+the ratio of the two times (4 for work linear in the file's size; repeated runs on this shared 2-core machine vary
+by up to 0.3 s, so ratios of 4.0-4.5 are within the noise; with the garbage collector off they were no closer
+to 4). Before issue 20 (item 17) pint
 converted every unit string (~0.1 ms each), psutil was asked for the memory after every impedance run, the
 parsed file was deep-copied for overrides that were not given, and a duplicate rod name was reported only
 after every rod had been validated and built (10.9 s for 10,000 rods on the reviewer's loaded machine). The
