@@ -29,6 +29,7 @@ can re-issue them under their key path (``rods[0].segments[0].diameter``).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from typing import TYPE_CHECKING, Callable, Optional
@@ -112,6 +113,14 @@ def check_rod(rod: "Rod") -> bool:
     return warned
 
 
+def _all_with_units(segment) -> bool:
+    """Whether every dimension of a segment (its dataclass fields but the material) was given with a unit."""
+    names = [f.name for f in dataclasses.fields(segment) if f.name != "material"] \
+        if dataclasses.is_dataclass(segment) else []
+    given = getattr(segment, "_with_units", frozenset())
+    return bool(names) and all(n in given for n in names)
+
+
 def _slowest_wave_speed(rod: "Rod") -> float:
     """The smallest bar wave speed of a rod's materials, m/s."""
     if rod.native is not None:
@@ -131,7 +140,8 @@ def check_strikers(rods, velocities) -> None:
                  f"the elastic limit of any rod material (about 0.01), where this linear elastic model does not "
                  f"hold; check the value and its unit (bare numbers are m/s)")
     for i, (rod, v) in enumerate(zip(rods, velocities)):
-        if v != 0.0 and rod.native is None and not getattr(rod, "_implausible", False) and rod.mass > MAX_STRIKER_MASS:
+        if v != 0.0 and rod.native is None and not getattr(rod, "_implausible", False) and rod.mass > MAX_STRIKER_MASS \
+                and not all(_all_with_units(seg) for seg in rod.segments):
             warn(f"rods[{i}]", f"is a striker (initial velocity {v:.6g} m/s) of {rod.mass:.6g} kg, heavier than "
                  f"{MAX_STRIKER_MASS / 1000:g} t (five times the heaviest pile-hammer ram): check the units of its "
                  f"dimensions (bare numbers are SI: m, not mm)")

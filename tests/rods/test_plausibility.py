@@ -148,3 +148,11 @@ def test_python_values_given_with_their_unit_are_not_warned_about():
     assert caught == []
     _, caught = _caught(lambda: ri.Rod([ri.Cylinder("0.3 m", 20)]))          # the bare one is still named
     assert [str(w.message).split(":")[0] for w in caught] == ["Rod.segments[0].diameter = 20 m"]
+
+
+def test_python_striker_given_with_units_is_not_warned_about_its_mass():
+    bar = ri.Rod([ri.Cylinder(1.0, 0.02)])
+    _, caught = _caught(lambda: ri.System([ri.Rod([ri.Cylinder("100 m", "10 m")]), bar], [5.0, 0.0]))
+    assert caught == []
+    _, caught = _caught(lambda: ri.System([ri.Rod([ri.Cylinder(100.0, "10 m")]), bar], [5.0, 0.0]))
+    assert [str(w.message).split(" is a striker")[0] for w in caught] == ["rods[0]"]
