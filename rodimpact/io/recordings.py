@@ -392,10 +392,12 @@ def read_lanl_raw(path: PathLike) -> Recording:
             data[r, c - 2] = _number(path, line_no, table[r + 3][c], f"column {c + 1} ({labels[c - 2]})")
     time = starts[0] + steps[0] * np.arange(n)
     metadata: dict[str, Any] = {}
-    for fields in table:
+    for i, fields in enumerate(table):
         key = fields[0].strip()
         if key and key not in metadata:
             value = _value(fields[1])
+            if isinstance(value, str) and _non_finite_number(value):
+                raise _fail(path, i + 1, f"{key!r}: value {_clip(value)!r} is not a finite number")
             if value != "":
                 metadata[key] = value
     metadata["channel_labels"] = dict(zip(_LANL_CHANNELS, labels))

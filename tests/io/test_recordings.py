@@ -305,3 +305,15 @@ def test_hoppybar_sheet_non_finite_numbers_are_refused(tmp_path, value):
     with pytest.raises(RecordingError, match=rf"bad_Input\.dat, line {k + 1}: \"Incident Bar Young's Modulus \(GPa\)\": "
                                              rf"value '{value}' is not a finite number"):
         read_hoppybar_input(path)
+
+
+def test_lanl_metadata_non_finite_numbers_are_refused(tmp_path):
+    lines = LANL.read_bytes().decode("cp1252").split("\n")
+    k = next(i for i, ln in enumerate(lines) if ln.startswith("Transmitted Bar Gain"))
+    fields = lines[k].split("\t")
+    lines[k] = "\t".join([fields[0], "1e400"] + fields[2:])
+    path = tmp_path / "shot.raw"
+    path.write_bytes("\n".join(lines).encode("cp1252"))
+    with pytest.raises(RecordingError, match=rf"shot\.raw, line {k + 1}: 'Transmitted Bar Gain': value '1e400' is "
+                                             r"not a finite number"):
+        read_lanl_raw(path)
