@@ -70,6 +70,13 @@ def free_disk(folder: Path) -> Optional[float]:
         return None
 
 
+def _parts(parts: dict[str, float]) -> str:
+    """The parts of a total as "name size, ...": those of 1 MiB or more, or all of them when none is that large
+    (so that the message never shows an empty list)."""
+    big = {k: v for k, v in parts.items() if v >= 2**20}
+    return ", ".join(f"{k} {_gib(v)}" for k, v in (big or parts).items())
+
+
 def _gib(n: float) -> str:
     return f"{n / 2**30:.3g} GiB" if n >= 2**28 else f"{n / 2**20:.3g} MiB"
 
@@ -130,7 +137,7 @@ def _check_memory(parts: dict[str, float], hints: dict[str, str], names: dict[st
     if avail is None or total <= 0.9 * avail:
         return
     biggest = max(parts, key=parts.get)
-    shown = ", ".join(f"{k} {_gib(v)}" for k, v in parts.items() if v >= 2**20)
+    shown = _parts(parts)
     raise ValueError(f"{names[biggest]}: the run would need about {_gib(total)} of memory ({shown}), more than "
                      f"the {_gib(avail)} available now; {hints[biggest]}")
 
@@ -154,7 +161,7 @@ def check_output(folder: Path, parts: dict[str, float], memory: dict[str, float]
     total = sum(parts.values())
     free = free_disk(folder)
     if free is not None and total > 0.95 * free:
-        shown = ", ".join(f"{k} {_gib(v)}" for k, v in parts.items() if v >= 2**20)
+        shown = _parts(parts)
         raise ValueError(f"output: the results would take about {_gib(total)} on disk ({shown}), more than the "
                          f"{_gib(free)} free at {folder}; record fewer steps (output.record_every), fewer snapshots "
                          f"(output.snapshot_every/snapshot_count, or output.fields = false), output.csv = false, "

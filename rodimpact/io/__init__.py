@@ -12,6 +12,8 @@ from typing import Any
 _NAMES = {
     # measurement-file readers
     "hoppybar_bar": "recordings",
+    "hoppybar_gains": "recordings",
+    "RecordingError": "recordings",
     "read_csv_recording": "recordings",
     "read_hoppybar_input": "recordings",
     "read_lanl_raw": "recordings",

@@ -193,17 +193,34 @@ def parse_toml(text: str, name: str) -> dict:
 
 def _check_nesting(raw: dict) -> None:
     """Raise a :class:`ModelError` naming the key path where ``raw`` nests deeper than :data:`MAX_NESTING`
-    (iteratively, so that the check itself cannot overflow the stack)."""
-    stack: list[tuple[Any, str, int]] = [(raw, "", 0)]
+    (iteratively, so that the check itself cannot overflow the stack). Only tables and arrays are visited, and
+    the key path is spelled out only for the error (a file of 10^6 numbers costs no strings)."""
+    # entries: (container, parent entry, key in the parent, depth)
+    stack: list[tuple[Any, Any, Any, int]] = [(raw, None, None, 0)]
     while stack:
-        value, path, depth = stack.pop()
-        if depth > MAX_NESTING:
-            raise ModelError(f"{path}: arrays or tables nested too deeply (at most {MAX_NESTING} levels)")
-        if isinstance(value, dict):
-            stack.extend((v, f"{path}.{_toml.key(str(k))}" if path else _toml.key(str(k)), depth + 1)
-                         for k, v in value.items())
-        elif isinstance(value, list):
-            stack.extend((v, f"{path}[{i}]", depth + 1) for i, v in enumerate(value))
+        entry = stack.pop()
+        value, _, _, depth = entry
+        items = value.items() if isinstance(value, dict) else enumerate(value)
+        if depth + 1 > MAX_NESTING and value:          # its entries lie deeper than allowed
+            k, v = list(items)[-1]                       # the entry the former depth-first walk named
+            raise ModelError(f"{_entry_path((v, entry, k, depth + 1))}: arrays or tables nested too deeply "
+                             f"(at most {MAX_NESTING} levels)")
+        for k, v in items:
+            if isinstance(v, (dict, list)):
+                stack.append((v, entry, k, depth + 1))
+
+
+def _entry_path(entry: tuple[Any, Any, Any, int]) -> str:
+    """The key path of an entry of :func:`_check_nesting`'s stack (``rods[0].segments[1].x``)."""
+    keys = []
+    while entry[1] is not None:
+        keys.append(entry[2])
+        entry = entry[1]
+    path = ""
+    for k in reversed(keys):
+        path = f"{path}[{k}]" if isinstance(k, int) else (f"{path}.{_toml.key(str(k))}" if path
+                                                          else _toml.key(str(k)))
+    return path
 
 
 def load_model(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -> Model:
@@ -221,20 +238,52 @@ def loads_model(text: str, base_dir: str | Path | None = None, name: str = "mode
                 overrides: Optional[Mapping[str, Any]] = None) -> Model:
     """Read a model from TOML text (``base_dir``: folder for relative file names, default the current one;
     ``overrides`` as in :func:`load_model`)."""
-    raw, applied = apply_overrides(parse_toml(text, name), overrides or {})
+    raw = parse_toml(text, name)
+    # apply_overrides works on a deep copy: skipped without overrides (the copy of a 30 MB file costs seconds)
+    raw, applied = apply_overrides(raw, overrides) if overrides else (raw, {})
     with naming_overrides(applied):
         return model_from_dict(raw, base_dir=Path(base_dir) if base_dir is not None else Path("."))
 
 
 def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
-    """Build a :class:`Model` from parsed TOML data (validated against :data:`rodimpact.io.schema.MODEL`)."""
+    """Build a :class:`Model` from parsed TOML data (validated against :data:`rodimpact.io.schema.MODEL`).
+
+    Every error of the data is a :class:`ModelError` (docs/security.md promises it): the checks below raise it
+    with the key path; a ``ValueError``/``TypeError`` of the library that a check missed is turned into one here,
+    message unchanged, rather than escaping as a plain exception."""
+    try:
+        return _model_from_dict(raw, base_dir)
+    except ModelError:
+        raise
+    except (ValueError, TypeError) as exc:
+        raise ModelError(str(exc)) from exc
+
+
+def _duplicate_rod_names(raw: dict) -> None:
+    """Refuse a rod name used twice, from the parsed file before anything is validated or built, so that a
+    duplicate at ``rods[1]`` of a file with 10,000 rods is reported at once (the names' types are checked by
+    the schema later; only strings are compared here)."""
+    rods = raw.get("rods")
+    if not isinstance(rods, list):
+        return
+    names: dict[str, int] = {}
+    for i, r in enumerate(rods):
+        name = r.get("name") if isinstance(r, dict) else None
+        if isinstance(name, str):
+            if name in names:
+                raise ModelError(f"rods[{i}].name: {name!r} is already the name of rods[{names[name]}]")
+            names[name] = i
+
+
+def _model_from_dict(raw: dict, base_dir: Path) -> Model:
+    _duplicate_rod_names(raw)
     d = validate_table(MODEL, raw, "")
     params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
     materials = _materials(d["materials"] or {})
     rods, velocities, initial = [], [], []
     sim = d["simulation"]
     for i, r in enumerate(d["rods"]):
-        rod, st = _rod(r, f"rods[{i}]", materials, params, sim["dt"], base_dir)
+        rod, st = _rod(r, f"rods[{i}]", materials, params, sim["dt"], base_dir, raw["rods"][i])
         rods.append(rod)
         velocities.append(r["velocity"])
         initial.append(st)
@@ -296,7 +345,7 @@ def model_from_dict(raw: dict, base_dir: Path = Path(".")) -> Model:
     output = _wrap("model", lambda: OutputSpec(tuple(out["snapshot_times"] or ()), out["snapshot_every"],
                                                out["snapshot_count"], tuple(out["plots"]), out["csv"], out["fields"],
                                                out["record_every"]))
-    with KeyPath("model"):
+    with KeyPath("model", lambda key: _rod_written_with_units(raw, key)):
         system = _wrap("model", lambda: System(rods, velocities, junctions, left, right, loads,
                                                initial if any(s is not None for s in initial) else None))
     return Model(system, sim["duration"], sim["steps"], sim["dt"], tuple(probes), output, sim["backend"],
@@ -352,8 +401,38 @@ def _material(name: Optional[str], known: dict[str, Material], path: str) -> Opt
     return known[key]
 
 
+#: a number followed by a unit name: "3.204 mm", "0.1 m", "1.26e-3 m^2"
+_NUMBER_WITH_UNIT = re.compile(r"\s*[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*[A-Za-zµμ].*", re.DOTALL)
+
+
+def _with_unit(value: Any) -> bool:
+    """Whether a raw quantity (or every entry of a list of them) is written as a number with its unit
+    (``"3.204 mm"``), so that its unit cannot have slipped; bare numbers, numbers in quotes and expressions of
+    parameters are not."""
+    if isinstance(value, list):
+        return bool(value) and all(_with_unit(v) for v in value)
+    return isinstance(value, str) and _NUMBER_WITH_UNIT.fullmatch(value) is not None
+
+
+_GEOMETRY_KEYS = ("length", "diameter", "outer_diameter", "inner_diameter", "diameter_start", "diameter_end",
+                  "area", "area_start", "area_end", "x")
+
+
+def _rod_written_with_units(raw: dict, key: str) -> bool:
+    """For a plausibility warning about ``rods[i]`` (a striker's mass): whether the file gives every length,
+    diameter and area of that rod's segments with a unit."""
+    m = re.fullmatch(r"rods\[(\d+)\]", key)
+    if m is None:
+        return False
+    segments = raw["rods"][int(m.group(1))].get("segments")
+    if not isinstance(segments, list) or not segments:
+        return False
+    return all(isinstance(s, dict) and all(_with_unit(s[k]) for k in _GEOMETRY_KEYS if k in s)
+               and any(k in s for k in _GEOMETRY_KEYS) for s in segments)
+
+
 def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, float], sim_dt: Optional[float],
-         base_dir: Path) -> tuple[Rod, Optional[InitialState]]:
+         base_dir: Path, raw_rod: Optional[dict] = None) -> tuple[Rod, Optional[InitialState]]:
     has_seg, has_el = r["segments"] is not None, r["elements"] is not None
     if has_seg == has_el:
         raise ModelError(f"{path}: give either [[{path.split('[')[0]}.segments]] (geometry) or "
@@ -362,9 +441,20 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
         if not r["segments"]:
             raise ModelError(f"{path}.segments: needs at least one segment")
         mat = _material(r["material"], materials, f"{path}.material") or STEEL
-        segs = [piece for j, s in enumerate(r["segments"])
-                for piece in _segment(s, f"{path}.segments[{j}]", materials, params, base_dir)]
-        with KeyPath(path):
+        segs, origin = [], []          # origin[k]: the file's segment of the rod's segment k (tables split)
+        for j, s in enumerate(r["segments"]):
+            pieces = _segment(s, f"{path}.segments[{j}]", materials, params, base_dir)
+            segs.extend(pieces)
+            origin.extend([j] * len(pieces))
+
+        def written_with_unit(key: str) -> bool:
+            m = re.fullmatch(rf"{re.escape(path)}\.segments\[(\d+)\]\.(\w+)", key)
+            if m is None or raw_rod is None or not isinstance(raw_rod.get("segments"), list):
+                return False
+            seg = raw_rod["segments"][origin[int(m.group(1))]]
+            return isinstance(seg, dict) and m.group(2) in seg and _with_unit(seg[m.group(2)])
+
+        with KeyPath(path, written_with_unit):
             rod = _wrap(path, lambda: Rod(segs, mat, r["name"]))
     else:
         if r["material"] is not None:
@@ -477,15 +567,26 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
         z = np.array(e["impedance"], dtype=float)
     elif e["file"] is None:
         parts = []
-        total = 0
-        for i, run in enumerate(e["runs"]):
+        counts = [_run_count(run, f"{path}.runs[{i}]", c * dt) for i, run in enumerate(e["runs"])]
+        totals = np.cumsum(np.array(counts, dtype=float))
+        # each element becomes a lattice element (about 128 bytes of state and history, as lattice.py counts);
+        # the memory is asked for once (it costs ~0.1 ms), and the message names the first run that does not fit
+        if totals.size and not _fits(_BYTES_PER_ELEMENT * totals[-1]):
+            lo, hi = 0, totals.size - 1          # bisection: the first run whose running total does not fit
+            while lo < hi:
+                mid = (lo + hi) // 2
+                lo, hi = (mid + 1, hi) if _fits(_BYTES_PER_ELEMENT * totals[mid]) else (lo, mid)
+            i = lo
+            rp, run = f"{path}.runs[{i}]", e["runs"][i]
+            try:
+                fits_in_memory(f"{rp}.{'count' if run['count'] is not None else 'length'}",
+                               _BYTES_PER_ELEMENT * totals[i], f"{int(totals[i]):,} elements"
+                               + (f" (runs[0..{i}])" if i else ""),
+                               "use fewer elements (a larger dt or element_length, shorter runs)")
+            except ValueError as exc:       # its message already names the key path
+                raise ModelError(str(exc)) from None
+        for i, (run, count) in enumerate(zip(e["runs"], counts)):
             rp = f"{path}.runs[{i}]"
-            count = _run_count(run, rp, c * dt)
-            total += count
-            # each element becomes a lattice element (about 128 bytes of state and history, as lattice.py counts)
-            fits_in_memory(f"{rp}.{'count' if run['count'] is not None else 'length'}", _BYTES_PER_ELEMENT * total,
-                           f"{total:,} elements" + (f" (runs[0..{i}])" if i else ""),
-                           "use fewer elements (a larger dt or element_length, shorter runs)")
             if run["impedance"] is not None:
                 if run["impedance_start"] is not None or run["impedance_end"] is not None:
                     raise ModelError(f"{rp}: give impedance, or impedance_start and impedance_end, not both")
@@ -501,6 +602,15 @@ def _elements(e: dict, path: str, name: Optional[str], sim_dt: Optional[float], 
 
 
 _BYTES_PER_ELEMENT = 128.0
+
+
+def _fits(n_bytes: float) -> bool:
+    """Whether :func:`fits_in_memory` would accept an allocation of ``n_bytes``."""
+    try:
+        fits_in_memory("", n_bytes, "")
+    except ValueError:
+        return False
+    return True
 #: Largest relative difference between a given dt and the spacing of a profile file's theta column.
 _SAME_DT = 1e-9
 

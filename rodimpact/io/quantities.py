@@ -10,7 +10,9 @@ number in m), got "5 kg" (a mass)``.
 from __future__ import annotations
 
 import math
-from typing import Any
+import re
+from functools import lru_cache
+from typing import Any, Optional
 
 from .._quantities import (DIMENSIONS, MAX_EXPONENT, MAX_QUANTITY_LENGTH, Dimension, ModelError,  # noqa: F401
                            _check_text, _clip, _dimension_name, _registry, pint_quantity, si_magnitude)
@@ -39,7 +41,44 @@ def parse_quantity(value: Any, dimension: str, path: str) -> float:
     return x
 
 
+#: "<number> <unit>": a plain decimal number, whitespace, then a unit made of names, ``*``, ``/``, spaces and
+#: integer powers (no numbers of its own, so that pint's evaluation order cannot differ from number * factor)
+_NUMBER_UNIT = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s+"
+                          r"((?:[A-Za-zµμΩ_]+(?:\s*(?:\*\*|\^)\s*-?\d+)?)"
+                          r"(?:\s*[*/ ]\s*[A-Za-zµμΩ_]+(?:\s*(?:\*\*|\^)\s*-?\d+)?)*)\s*")
+
+
+@lru_cache(maxsize=1024)
+def _unit_factor(unit: str, dimension: str) -> Optional[float]:
+    """The factor that converts a number in ``unit`` to the SI unit of ``dimension`` (pint's own conversion of
+    ``1 unit``), or ``None`` where the fast path must not be used (unknown unit, wrong dimension, offset
+    units such as degC): the full parse then gives the error message or the value."""
+    dim = DIMENSIONS[dimension]
+    try:
+        q = _registry().Quantity("1 " + unit)
+        ureg = _registry()
+        if not isinstance(q, ureg.Quantity) or not q._is_multiplicative:
+            return None
+        ok = q.dimensionless if dim.name == "dimensionless" else q.check(dim.pint)
+        if not ok:
+            return None
+        factor = float(q.to("dimensionless" if dim.name == "dimensionless" else dim.pint).magnitude)
+    except Exception:        # anything unusual: the full parse decides
+        return None
+    return factor if math.isfinite(factor) and factor > 0.0 else None
+
+
 def _parse_string(text: str, dim: Dimension, path: str) -> float:
+    # Fast path (model files repeat a few units over arrays of 10^5 values; pint's conversion costs ~0.1 ms a
+    # value): number * the cached factor of its unit, the same product pint's conversion computes (equal bit for
+    # bit, tests/io/test_model_scaling.py). Anything else, and every error, takes pint's full parse below.
+    m = _NUMBER_UNIT.fullmatch(text) if len(text) <= MAX_QUANTITY_LENGTH else None
+    if m is not None:
+        factor = _unit_factor(m.group(2), dim.name)
+        if factor is not None:
+            x = float(m.group(1)) * factor
+            if math.isfinite(x):
+                return x
     q = pint_quantity(text, path, _expected(dim))
     ok = q.dimensionless if dim.name == "dimensionless" else q.check(dim.pint)
     if not ok:

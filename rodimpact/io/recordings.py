@@ -2,7 +2,7 @@
 input sheets and TDMS (via npTDMS). Every reader returns a :class:`rodimpact.signals.Recording`
 with time in s.
 
-Malformed files raise ``ValueError`` with the file name and the (1-based) line number:
+Malformed files raise :class:`RecordingError` (a ``ValueError``) with the file name and the (1-based) line number:
 missing columns, text where a number belongs, time that does not increase.
 
 Formats
@@ -45,7 +45,9 @@ from ..signals.recording import Recording
 from ._files import read_bytes_limited
 
 __all__ = [
+    "RecordingError",
     "hoppybar_bar",
+    "hoppybar_gains",
     "read_csv_recording",
     "read_hoppybar_input",
     "read_lanl_raw",
@@ -73,9 +75,27 @@ def _recording(path: PathLike, *args: Any) -> Recording:
         raise _fail(path, None, str(exc)) from None
 
 
-def _fail(path: PathLike, line: int | None, message: str) -> ValueError:
+class RecordingError(ValueError):
+    """A malformed recording or input sheet; the message starts with the file's name and, where it applies, the
+    (1-based) line: ``shot.csv, line 12: ...``. ``path`` and ``line`` hold them."""
+
+    def __init__(self, message: str, path: str = "", line: int | None = None) -> None:
+        super().__init__(message)
+        self.path, self.line = path, line
+
+
+def _fail(path: PathLike, line: int | None, message: str) -> RecordingError:
     where = f"{os.fspath(path)}" + (f", line {line}" if line is not None else "")
-    return ValueError(f"{where}: {message}")
+    return RecordingError(f"{where}: {message}", os.fspath(path), line)
+
+
+def _csv_error(path: PathLike, line: int, exc: csv.Error) -> RecordingError:
+    """A :class:`RecordingError` for a line the csv module refuses (e.g. a field longer than its limit)."""
+    text = str(exc)
+    if "field larger than field limit" in text:
+        text = (f"a field longer than {csv.field_size_limit():,} characters (the csv module's limit); no "
+                f"recording has such fields: the file is damaged or not of this format")
+    return _fail(path, line, f"cannot be read as CSV: {text}")
 
 
 def _read_lines(path: PathLike, complete: bool = False) -> list[str]:
@@ -146,17 +166,20 @@ def _sniff_delimiter(line: str) -> str | None:
     return None  # whitespace
 
 
-def _split(line: str, delimiter: str | None) -> list[str]:
+def _split(line: str, delimiter: str | None, path: PathLike = "", line_no: int = 0) -> list[str]:
     if delimiter is None:
         return line.split()
-    return next(csv.reader([line], delimiter=delimiter))
+    try:
+        return next(csv.reader([line], delimiter=delimiter))
+    except csv.Error as exc:
+        raise _csv_error(path, line_no, exc) from None
 
 
 def _row_values(path: PathLike, line_no: int, line: str, delimiter: str | None, col_names: list[str]) -> list[float]:
     """The numbers of one data line; ``ValueError`` naming the file, the line and the column if a column is
     missing or extra, or a field is no finite number."""
     n_cols = len(col_names)
-    fields = _split(line, delimiter)
+    fields = _split(line, delimiter, path, line_no)
     if len(fields) < n_cols:
         raise _fail(path, line_no, f"missing columns: expected {n_cols} ({', '.join(col_names)}), found {len(fields)}")
     if len(fields) > n_cols:
@@ -273,7 +296,7 @@ def read_csv_recording(
     if delimiter == "auto":
         delimiter = _sniff_delimiter(texts[0])
     first_no, first = numbers[0], texts[0]
-    first_fields = [f.strip() for f in _split(first, delimiter)]
+    first_fields = [f.strip() for f in _split(first, delimiter, path, first_no)]
 
     def numeric(text: str) -> bool:
         try:
@@ -369,10 +392,12 @@ def read_lanl_raw(path: PathLike) -> Recording:
             data[r, c - 2] = _number(path, line_no, table[r + 3][c], f"column {c + 1} ({labels[c - 2]})")
     time = starts[0] + steps[0] * np.arange(n)
     metadata: dict[str, Any] = {}
-    for fields in table:
+    for i, fields in enumerate(table):
         key = fields[0].strip()
         if key and key not in metadata:
             value = _value(fields[1])
+            if isinstance(value, str) and _non_finite_number(value):
+                raise _fail(path, i + 1, f"{key!r}: value {_clip(value)!r} is not a finite number")
             if value != "":
                 metadata[key] = value
     metadata["channel_labels"] = dict(zip(_LANL_CHANNELS, labels))
@@ -400,7 +425,15 @@ def _tektronix_file(path: PathLike) -> tuple[np.ndarray, np.ndarray, dict[str, A
     n = len(lines)
     time = np.empty(n)
     values = np.empty(n)
-    for i, fields in enumerate(csv.reader(io.StringIO("\n".join(lines)))):
+    reader = csv.reader(io.StringIO("\n".join(lines)))
+    for i in range(n):
+        try:
+            fields = next(reader)
+        except StopIteration:       # quoted fields spanning lines: fewer records than lines
+            raise _fail(path, reader.line_num, "a quoted field runs over several lines; a Tektronix CSV file "
+                                               "has one sample a line") from None
+        except csv.Error as exc:
+            raise _csv_error(path, reader.line_num or i + 1, exc) from None
         line_no = i + 1
         if len(fields) < 5:
             raise _fail(path, line_no, f"missing columns: expected 5 comma-separated columns, found {len(fields)}")
@@ -483,9 +516,24 @@ def read_hoppybar_input(path: PathLike) -> dict[str, Any]:
     Tab-separated lines ``name<TAB>value[<TAB>unit<TAB>note]``; numbers become floats, lines
     without a value (section titles, blank lines) are skipped. Keep the units written in the
     names, e.g. ``"Incident Bar Young's Modulus (GPa)"``; :func:`hoppybar_bar` converts them.
+
+    A value that reads as a number but is not finite (``nan``, ``inf``, ``1e400``) is a
+    :class:`RecordingError` naming the file and line, as is a last line with fewer tab-separated
+    columns than the sheet's other lines (the sheets write every column on every line, so this
+    is a file cut off in the middle of that line: its value may be cut too).
     """
+    lines = _read_lines(path)
+    while lines and not lines[-1].strip():
+        lines.pop()
+    counts = [line.count("\t") + 1 for line in lines]
+    if len(lines) > 1:
+        usual = max(set(counts[:-1]), key=counts[:-1].count)       # the sheet's column count
+        if counts[-1] < usual:
+            raise _fail(path, len(lines), f"has {counts[-1]} of the {usual} tab-separated columns of the sheet's "
+                                          f"other lines: the file is truncated (cut off in this line); copy it "
+                                          f"again from the original")
     metadata: dict[str, Any] = {}
-    for i, line in enumerate(_read_lines(path)):
+    for i, line in enumerate(lines):
         fields = line.split("\t")
         key = fields[0].strip()
         if not key:
@@ -493,12 +541,22 @@ def read_hoppybar_input(path: PathLike) -> dict[str, Any]:
         value = _value(fields[1]) if len(fields) > 1 else ""
         if value == "":
             continue
+        if isinstance(value, str) and _non_finite_number(value):
+            raise _fail(path, i + 1, f"{key!r}: value {_clip(value)!r} is not a finite number")
         if key in metadata:
             raise _fail(path, i + 1, f"duplicate entry {key!r}")
         metadata[key] = value
     if not metadata:
         raise _fail(path, None, "no name/value entries found")
     return metadata
+
+
+def _non_finite_number(text: str) -> bool:
+    """Whether ``text`` reads as a number that is not finite (``nan``, ``-inf``, ``1e400``)."""
+    try:
+        return not math.isfinite(float(text))
+    except ValueError:
+        return False
 
 
 def _canonical(key: str) -> str:
@@ -539,12 +597,42 @@ def _convert(value: float, unit: str, dimension: str, key: str) -> float:
     return value * factor
 
 
+#: the two gains of a sheet, per bar: the shot's amplifier gain and the gain of the bar's calibration
+_GAIN_KEYS = {"incident": ("Incident/Reflected Bar Gain", "Incident Bar Calibrated Gain"),
+              "transmitted": ("Transmitted Bar Gain", "Transmitted Bar Calibrated Gain")}
+
+
+def hoppybar_gains(metadata: dict[str, Any], bar: str = "incident") -> dict[str, float]:
+    """Both amplifier gains a HopPyBar/LANL sheet gives for ``bar``: ``{"shot": ..., "calibrated": ...}``.
+
+    ``shot`` (``Incident/Reflected Bar Gain``, ``Transmitted Bar Gain``, in the shot's section of the sheet) is
+    the gain the recorded voltages were amplified with; :func:`hoppybar_bar` uses it, as HopPyBar does.
+    ``calibrated`` (``Incident Bar Calibrated Gain``, ``Transmitted Bar Calibrated Gain``, in the bar's
+    section) is the gain of the bar's calibration shot, from which the calibrated gauge factor was found; the
+    gauge factor is a property of the gauge, so that gain does not apply to other shots. The LANL copper shot
+    of ``tests/data/hoppybar`` recorded its transmitted bar at 200 while the bar was calibrated at 500.
+    A sheet without one of the entries gives ``None`` for it.
+    """
+    if bar not in _GAIN_KEYS:
+        raise ValueError(f"bar must be 'incident' or 'transmitted', got {bar!r}")
+    out: dict[str, Any] = {}
+    for which, name in zip(("shot", "calibrated"), _GAIN_KEYS[bar]):
+        try:
+            out[which] = _entry(metadata, name)[0]
+        except ValueError as exc:
+            if "has no entry" not in str(exc):
+                raise
+            out[which] = None
+    return out
+
+
 def hoppybar_bar(
     metadata: dict[str, Any],
     bar: str = "incident",
     *,
     bridge: Bridge | str,
     polarity: int = 1,
+    gain: str | float = "shot",
 ) -> GaugedBar:
     """The gauged incident or transmitted bar described by a HopPyBar/LANL metadata sheet.
 
@@ -553,6 +641,11 @@ def hoppybar_bar(
     excitation voltage and the shot's amplifier gain (``Incident/Reflected Bar Gain`` or
     ``Transmitted Bar Gain``). The sheets do not record the bridge circuit, so ``bridge``
     must be given; ``polarity=-1`` if compression was recorded as positive voltage.
+
+    Gain: the sheets carry two per bar (:func:`hoppybar_gains`). ``gain="shot"`` (default) takes the gain
+    of this shot's recording, as HopPyBar does: the voltages were amplified by it. ``gain="calibrated"``
+    takes the gain of the bar's calibration shot instead (right only if the shot was recorded at that
+    gain); a number sets the gain directly.
 
     Density: the LANL sheets label the density column ``(kg/m^3)`` but hold g/cm^3 values
     (4.416 for Ti-6Al-4V). The unit is therefore checked against the sheet's own ``Rod Sound
@@ -587,7 +680,10 @@ def hoppybar_bar(
     exc_val, exc_unit, exc_key = _entry(metadata, f"{prefix} Excitation Voltage")
     if exc_unit not in ("V", ""):
         raise ValueError(f"metadata entry {exc_key!r}: unit {exc_unit!r} not understood (expected V)")
-    gain, _, _ = _entry(metadata, "Incident/Reflected Bar Gain" if bar == "incident" else "Transmitted Bar Gain")
+    if isinstance(gain, str):
+        if gain not in ("shot", "calibrated"):
+            raise ValueError(f"gain: must be 'shot', 'calibrated' or a number, got {gain!r}")
+        gain, _, _ = _entry(metadata, _GAIN_KEYS[bar][0 if gain == "shot" else 1])
     nu, _, _ = _entry(metadata, f"{prefix} Poisson Ratio")
     return GaugedBar(
         youngs_modulus=youngs,

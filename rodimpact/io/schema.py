@@ -10,6 +10,7 @@ tables appear in the file: ``rods[1].segments[2].diameter: must be > 0, got -5 m
 from __future__ import annotations
 
 import difflib
+import functools
 import math
 import sys
 from dataclasses import dataclass
@@ -378,8 +379,12 @@ def _p(path: str, key: str | int) -> str:
     """The key path of ``key`` inside ``path`` (keys that are not bare TOML keys are quoted, long ones clipped)."""
     if isinstance(key, int):
         return f"{path}[{key}]"
-    key = _toml.key(key if len(key) <= 60 else key[:57] + "...")
+    key = _key(key if len(key) <= 60 else key[:57] + "...")
     return f"{path}.{key}" if path else key
+
+
+#: TOML key spelling, cached: a schema has few field names, and a large file asks for them 10^6 times
+_key = functools.lru_cache(maxsize=4096)(_toml.key)
 
 
 def _unknown(table: Table, data: dict, path: str, extra: tuple[str, ...] = ()) -> None:

@@ -8,6 +8,8 @@ below are described in these terms so the same law applies at either end.
 
 from __future__ import annotations
 
+import difflib
+
 from dataclasses import dataclass
 from typing import Any, Optional
 
@@ -148,9 +150,17 @@ def as_end_condition(value: Any, where: str) -> EndCondition:
         return value
     if isinstance(value, str) and value.strip().lower() in END_NAMES:
         return END_NAMES[value.strip().lower()]()
-    raise ValueError(f"{where}: must be an end condition object (FreeEnd, FixedEnd, ForceEnd, VelocityEnd, "
-                     f"NonReflectingEnd, SpringEnd, BitRockEnd) or one of the names {sorted(END_NAMES)}, "
-                     f"got {value!r}")
+    text = (f"{where}: must be an end condition object (FreeEnd, FixedEnd, ForceEnd, VelocityEnd, "
+            f"NonReflectingEnd, SpringEnd, BitRockEnd) or one of the names {sorted(END_NAMES)}, got {value!r}")
+    if not isinstance(value, str):
+        raise TypeError(text + f" (of type {type(value).__name__})")
+    raise ValueError(text + _did_you_mean(value, END_NAMES))
+
+
+def _did_you_mean(value: str, names) -> str:
+    """`` (did you mean 'free'?)`` for the closest of ``names``, or nothing."""
+    near = difflib.get_close_matches(value.strip().lower(), list(names), n=1, cutoff=0.6)
+    return f" (did you mean {near[0]!r}?)" if near else ''
 
 
 class Junction:
@@ -187,4 +197,7 @@ def as_junction(value: Any, where: str) -> Junction:
         return value
     if isinstance(value, str) and value.strip().lower() in ("contact", "bonded"):
         return Contact() if value.strip().lower() == "contact" else Bonded()
-    raise ValueError(f"{where}: must be Contact(gap=...), Bonded() or one of 'contact', 'bonded', got {value!r}")
+    text = f"{where}: must be Contact(gap=...), Bonded() or one of 'contact', 'bonded', got {value!r}"
+    if not isinstance(value, str):
+        raise TypeError(text + f" (of type {type(value).__name__})")
+    raise ValueError(text + _did_you_mean(value, ("contact", "bonded")))

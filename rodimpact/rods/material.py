@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import difflib
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from .._validate import positive
 
@@ -47,12 +49,30 @@ class Material:
         return Material(self.youngs_modulus * youngs_factor, self.density * density_factor, name or self.name)
 
     @classmethod
-    def preset(cls, name: str) -> "Material":
-        """A named material from :data:`MATERIALS` (case-insensitive)."""
-        key = name.strip().lower()
+    def preset(cls, name: str, where: str = "material") -> "Material":
+        """A named material from :data:`MATERIALS` (case-insensitive; ``aluminum`` spellings too); an unknown
+        name is a ``ValueError`` naming ``where`` with the closest preset."""
+        if not isinstance(name, str):
+            raise TypeError(f"{where}: a preset name must be a string, got {type(name).__name__} {name!r}")
+        key = name.strip().lower().replace("aluminum", "aluminium")
         if key not in MATERIALS:
-            raise ValueError(f"material: unknown preset {name!r}; valid presets are {sorted(MATERIALS)}")
+            near = difflib.get_close_matches(key, list(MATERIALS), n=1, cutoff=0.6)
+            hint = f"did you mean {near[0]!r}? " if near else ""
+            raise ValueError(f"{where}: unknown material preset {name!r}; {hint}valid presets are "
+                             f"{', '.join(repr(k) for k in sorted(MATERIALS))}, or give Material(youngs_modulus, "
+                             f"density)")
         return MATERIALS[key]
+
+
+def as_material(value: Any, where: str) -> Material:
+    """A :class:`Material`, or a preset name (``"steel"``, as model files accept) turned into one; an unknown name
+    is a ``ValueError`` with did-you-mean, any other type a ``TypeError``, both naming ``where``."""
+    if isinstance(value, Material):
+        return value
+    if isinstance(value, str):
+        return Material.preset(value, where)
+    raise TypeError(f"{where}: must be a Material or a preset name ({', '.join(repr(k) for k in sorted(MATERIALS))}), "
+                    f"got {type(value).__name__}")
 
 
 #: Steel as used throughout the thesis (Tabs. 3.2, 3.3, 5.2): E = 210 GPa, rho = 7840 kg/m^3.

@@ -10,7 +10,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from .._validate import positive, positive_array
-from .material import STEEL, Material
+from .material import STEEL, Material, as_material
 from .plausibility import check_rod
 from .segments import Cylinder, Segment
 
@@ -106,8 +106,7 @@ class Rod:
 
     def __post_init__(self) -> None:
         if isinstance(self.segments, _CylinderRuns):        # from from_impedance(), validated there
-            if not isinstance(self.material, Material):
-                raise TypeError(f"Rod.material: must be a Material, got {type(self.material).__name__}")
+            object.__setattr__(self, "material", as_material(self.material, "Rod.material"))
             object.__setattr__(self, "_ends", np.concatenate([[0.0], np.cumsum(self.segments.lengths)]))
             return
         if isinstance(self.segments, (str, bytes)) or not isinstance(self.segments, (Segment, Iterable)):
@@ -119,8 +118,7 @@ class Rod:
         for i, s in enumerate(segs):
             if not isinstance(s, Segment):
                 raise TypeError(f"Rod.segments[{i}]: must be a Segment (Cylinder, Cone, ...), got {type(s).__name__}")
-        if not isinstance(self.material, Material):
-            raise TypeError(f"Rod.material: must be a Material, got {type(self.material).__name__}")
+        object.__setattr__(self, "material", as_material(self.material, "Rod.material"))
         object.__setattr__(self, "segments", segs)
         ends = np.concatenate([[0.0], np.cumsum([s.length for s in segs])])
         object.__setattr__(self, "_ends", ends)

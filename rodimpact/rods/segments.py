@@ -17,8 +17,9 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from .._units import is_quantity
 from .._validate import finite, finite_array, positive
-from .material import Material
+from .material import Material, as_material
 
 ArrayLike = np.ndarray | float
 
@@ -37,11 +38,26 @@ class Segment:
     length: float
     material: Optional[Material] = field(default=None, kw_only=True)
 
+    def __init_subclass__(cls, **kwargs) -> None:
+        # before a subclass's __post_init__ converts its fields to SI floats, note the fields given with a unit
+        # ("20 mm" or a pint Quantity) in ``_with_units``: the plausibility check never suggests changing those
+        super().__init_subclass__(**kwargs)
+        own = cls.__dict__.get("__post_init__")
+        if own is None:
+            return
+
+        def __post_init__(self, _own=own) -> None:
+            if "_with_units" not in self.__dict__:
+                object.__setattr__(self, "_with_units", frozenset(
+                    k for k, v in self.__dict__.items() if isinstance(v, str) or is_quantity(v)))
+            _own(self)
+
+        cls.__post_init__ = __post_init__
+
     def __post_init__(self) -> None:
         object.__setattr__(self, "length", positive(f"{type(self).__name__}.length", self.length, "m"))
-        if self.material is not None and not isinstance(self.material, Material):
-            raise TypeError(f"{type(self).__name__}.material: must be a Material or None, "
-                            f"got {type(self.material).__name__}")
+        if self.material is not None:          # a Material or a preset name ("steel"), as Rod accepts
+            object.__setattr__(self, "material", as_material(self.material, f"{type(self).__name__}.material"))
         s = np.linspace(0.0, self.length, 65)
         try:
             with np.errstate(all="ignore"):

@@ -120,6 +120,12 @@ def bessel_analog(order: int, corner: float, norm: str = "mag") -> tuple[np.ndar
     """Analog Bessel low-pass as zeros, poles (rad/s) and gain; ``corner`` in Hz; ``order`` 1 to :data:`MAX_ORDER`."""
     order = _check_order(order, "order")
     corner = _check_positive(corner, "corner")
+    # the zpk gain is (2 pi corner)^order (times a constant of order one): it must be a normal float
+    low, high = (np.finfo(float).tiny * 1e3) ** (1.0 / order), (np.finfo(float).max * 1e-3) ** (1.0 / order)
+    if not low <= 2 * np.pi * corner <= high:
+        raise ValueError(f"corner: must lie between {low / (2 * np.pi):.3g} Hz and {high / (2 * np.pi):.3g} Hz for "
+                         f"order {order} (the analog gain (2 pi corner)^order must be a finite, normal float), "
+                         f"got {corner!r} Hz")
     z, p, k = signal.bessel(order, 2 * np.pi * corner, btype="low", analog=True, output="zpk", norm=_check_norm(norm))
     return z, p, float(k)
 

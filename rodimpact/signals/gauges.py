@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import finite
+from .._validate import finite, positive
 from .dispersion import PochhammerChree
 
 __all__ = [
@@ -52,24 +52,38 @@ __all__ = [
 _NAMED_BRIDGES = ("quarter", "half-axial", "half-bending", "half-poisson", "full-bending", "full-poisson")
 
 
+#: SI units of the quantities checked by :func:`_positive` (a string with a unit, "210 GPa", is converted)
+_UNITS = {"youngs_modulus": "Pa", "density": "kg/m^3", "area": "m^2", "excitation_voltage": "V", "gauge_length": "m",
+          "wave_speed": "m/s"}
+
+
 def _positive(value: float, what: str) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{what} must be a number, got {value!r}") from exc
-    if not np.isfinite(value) or value <= 0:
-        raise ValueError(f"{what} must be a positive finite number, got {value!r}")
-    return value
+    """``value`` as a float after checking it is a real number (not a string, a bool or None: a gauge factor
+    ``"5"`` is refused, not read as 5), finite and > 0; quantities with a unit in :data:`_UNITS` also accept a
+    unit string or pint Quantity (``"210 GPa"``)."""
+    return positive(what, value, _UNITS.get(what, ""))
 
 
 def _as_float_array(values: Any, what: str) -> np.ndarray:
+    """``values`` as a float array after checking that it holds real numbers (strings, bools and objects such as
+    None are refused, not coerced) and only finite ones."""
     try:
-        array = np.asarray(values, dtype=float)
+        array = np.asarray(values)
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{what} must be numeric, got {type(values).__name__}") from exc
+    if array.dtype.kind not in "iuf":
+        text = repr(values)
+        raise TypeError(f"{what} must be real numbers, got {type(values).__name__} "
+                        f"{text if len(text) <= 60 else text[:57] + '...'} (dtype {array.dtype})")
+    array = array.astype(float)
     if not np.all(np.isfinite(array)):
         raise ValueError(f"{what} contains non-finite values")
     return array
+
+
+def _real(value: Any) -> bool:
+    """A real number that is not a bool (Python or numpy)."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
 
 
 @dataclass(frozen=True)
@@ -85,9 +99,12 @@ class Bridge:
 
     def __post_init__(self) -> None:
         try:
-            arms = tuple(float(k) for k in self.arms)
-        except (TypeError, ValueError):
-            raise TypeError(f"arms: must be four strain factors (numbers), got {self.arms!r}") from None
+            items = [] if isinstance(self.arms, (str, bytes)) else list(self.arms)
+        except TypeError:
+            items = []
+        if not items or not all(_real(k) for k in items):      # "1" or True are refused, not coerced
+            raise TypeError(f"arms: must be four strain factors (numbers), got {self.arms!r}")
+        arms = tuple(float(k) for k in items)
         if len(arms) != 4 or not all(np.isfinite(arms)):
             raise ValueError(f"arms: must be four finite strain factors, got {self.arms!r}")
         if arms[0] - arms[1] + arms[2] - arms[3] == 0.0:
@@ -334,6 +351,9 @@ class GaugedBar:
     def __post_init__(self) -> None:
         for what in ("youngs_modulus", "density", "area", "gauge_factor", "excitation_voltage"):
             object.__setattr__(self, what, _positive(getattr(self, what), what))
+        if not _real(self.polarity):
+            raise TypeError(f"polarity must be +1 or -1 (an integer), got {type(self.polarity).__name__} "
+                            f"{self.polarity!r}")
         if self.polarity not in (1, -1):
             raise ValueError(f"polarity must be +1 or -1, got {self.polarity!r}")
         if self.poisson_ratio is not None:

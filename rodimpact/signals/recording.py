@@ -21,9 +21,12 @@ __all__ = ["Recording"]
 
 def _frozen_array(values: Any, what: str) -> np.ndarray:
     try:
+        kind = np.asarray(values).dtype.kind
         array = np.array(values, dtype=float)
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{what} must be an array of numbers") from exc
+    if kind not in "iuf":               # strings ("1e-6") and bools are refused, not converted
+        raise TypeError(f"{what} must be an array of real numbers, got {np.asarray(values).dtype} values")
     if array.ndim != 1:
         raise ValueError(f"{what} must be one-dimensional, got shape {array.shape}")
     bad = np.flatnonzero(~np.isfinite(array))

@@ -5,6 +5,7 @@ API, never output of the loader itself.
 """
 
 import math
+import re
 import textwrap
 
 import numpy as np
@@ -334,3 +335,33 @@ def test_expressions_are_evaluated_without_python_eval():
 def test_load_model_reports_missing_file(tmp_path):
     with pytest.raises(ModelError, match="no such model file"):
         load_model(tmp_path / "none.toml")
+
+
+@pytest.mark.parametrize("run, key", [('{ impedance = "51.0 kN s/m", length = "0.2 m" }', "runs[0].length"),
+                                      ('{ impedance = "51.0 kN s/m", count = 100_000_000_000 }', "runs[0].count")])
+def test_a_tiny_element_length_is_a_model_error_naming_the_run(run, key):
+    # 0.2 m of 1e-12 m elements needs 2e11 elements: the memory check raised a plain ValueError through
+    # load_model, though docs/security.md promises that every model-file error is a ModelError (issue 20, item 16)
+    text = f"""
+        [[rods]]
+        velocity = 9
+        [rods.elements]
+        element_length = "1e-12 m"
+        runs = [{run}]
+        [simulation]
+        steps = 5
+        """
+    with pytest.raises(ModelError, match=rf"^rods\[0\]\.elements\.{re.escape(key)}: .* elements would need .* memory"):
+        load(text)
+
+
+def test_a_library_value_error_the_loader_missed_becomes_a_model_error(monkeypatch):
+    # the safety net of model_from_dict: any ValueError of the library becomes a ModelError, message unchanged
+    import rodimpact.io.model as model_module
+
+    def refuse(*args, **kwargs):
+        raise ValueError("materials: refused for the test")
+
+    monkeypatch.setattr(model_module, "_materials", refuse)     # called outside any key-path wrapper
+    with pytest.raises(ModelError, match="refused for the test"):
+        load(MINIMAL)

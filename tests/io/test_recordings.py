@@ -7,6 +7,8 @@ import numpy as np
 import pytest
 
 from rodimpact.io import (
+    RecordingError,
+    hoppybar_gains,
     hoppybar_bar,
     read_csv_recording,
     read_hoppybar_input,
@@ -236,3 +238,82 @@ def test_tdms_time_channel_and_errors(tmp_path):
     bad.write_bytes(b"not a tdms file at all")
     with pytest.raises(ValueError, match="bad.tdms"):
         read_tdms(bad)
+
+
+# -- issue 20, items 15 and 18 ---------------------------------------------------------------------
+def test_lanl_sheet_exposes_both_gains_and_the_bar_uses_the_shot_gain():
+    # the LANL copper shot: "Transmitted Bar Gain 200" (this shot) and "Transmitted Bar Calibrated Gain 500"
+    meta = read_lanl_raw(LANL).metadata
+    assert meta["Transmitted Bar Gain"] == 200.0 and meta["Transmitted Bar Calibrated Gain"] == 500.0
+    assert hoppybar_gains(meta, "transmitted") == {"shot": 200.0, "calibrated": 500.0}
+    assert hoppybar_gains(meta, "incident") == {"shot": 200.0, "calibrated": 200.0}
+    assert hoppybar_bar(meta, "transmitted", bridge="quarter").gain == 200.0          # as HopPyBar
+    assert hoppybar_bar(meta, "transmitted", bridge="quarter", gain="calibrated").gain == 500.0
+    assert hoppybar_bar(meta, "transmitted", bridge="quarter", gain=250.0).gain == 250.0
+    with pytest.raises(ValueError, match="gain: must be 'shot', 'calibrated' or a number"):
+        hoppybar_bar(meta, "transmitted", bridge="quarter", gain="calibration")
+    assert hoppybar_gains({"Transmitted Bar Gain": 100.0}, "transmitted") == {"shot": 100.0, "calibrated": None}
+
+
+def test_tektronix_field_beyond_the_csv_limit_is_a_recording_error_with_file_and_line(tmp_path):
+    # a field over 131,072 characters raised _csv.Error from inside the reader
+    lines = (MINI / "180303_171828_Ch1.csv").read_text().splitlines()
+    lines[4] = lines[4] + "," + "7" * 200_000
+    path = tmp_path / "shot_Ch1.csv"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(RecordingError, match=r"shot_Ch1\.csv, line 5: cannot be read as CSV: a field longer than "
+                                             r"131,072 characters") as info:
+        read_tektronix_csv(path)
+    assert info.value.line == 5 and info.value.path == str(path)
+
+
+def test_csv_recording_field_beyond_the_csv_limit_names_file_and_line(tmp_path):
+    path = tmp_path / "shot.csv"
+    path.write_text('time [s],force [N]\n0,1\n1e-6,"' + "1" * 200_000 + '\n2e-6,3\n')
+    with pytest.raises(RecordingError, match=r"shot\.csv, line 3: "):
+        read_csv_recording(path)
+
+
+def _sheet_lines() -> list[str]:
+    return (MINI / "PMMA_13_Input.dat").read_bytes().decode("cp1252").split("\r\n")
+
+
+@pytest.mark.parametrize("cut", ["Incident Bar Density (g/cm^3)\t2.8", "Incident Bar Density (g/cm^3)\t2.81\tg/c",
+                                 "Incident Bar Den"])
+def test_hoppybar_sheet_cut_off_in_a_line_is_refused(tmp_path, cut):
+    lines = _sheet_lines()
+    k = next(i for i, ln in enumerate(lines) if ln.startswith("Incident Bar Density"))
+    path = tmp_path / "cut_Input.dat"
+    path.write_bytes("\r\n".join(lines[:k] + [cut]).encode("cp1252"))
+    with pytest.raises(RecordingError, match=rf"cut_Input\.dat, line {k + 1}: has \d of the 4 tab-separated columns "
+                                             r".* truncated"):
+        read_hoppybar_input(path)
+
+
+def test_hoppybar_sheet_cut_at_a_line_end_still_reads():
+    # the shipped sheet ends without a line end after a full line: not truncated
+    assert read_hoppybar_input(MINI / "PMMA_13_Input.dat")["d_bar_t_equiv (goes to B53)"] == 2.380880043
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-Infinity", "1e400", "NaN"])
+def test_hoppybar_sheet_non_finite_numbers_are_refused(tmp_path, value):
+    lines = _sheet_lines()
+    k = next(i for i, ln in enumerate(lines) if ln.startswith("Incident Bar Young's Modulus"))
+    lines[k] = f"Incident Bar Young's Modulus (GPa)\t{value}\tGPa\t"
+    path = tmp_path / "bad_Input.dat"
+    path.write_bytes("\r\n".join(lines).encode("cp1252"))
+    with pytest.raises(RecordingError, match=rf"bad_Input\.dat, line {k + 1}: \"Incident Bar Young's Modulus \(GPa\)\": "
+                                             rf"value '{value}' is not a finite number"):
+        read_hoppybar_input(path)
+
+
+def test_lanl_metadata_non_finite_numbers_are_refused(tmp_path):
+    lines = LANL.read_bytes().decode("cp1252").split("\n")
+    k = next(i for i, ln in enumerate(lines) if ln.startswith("Transmitted Bar Gain"))
+    fields = lines[k].split("\t")
+    lines[k] = "\t".join([fields[0], "1e400"] + fields[2:])
+    path = tmp_path / "shot.raw"
+    path.write_bytes("\n".join(lines).encode("cp1252"))
+    with pytest.raises(RecordingError, match=rf"shot\.raw, line {k + 1}: 'Transmitted Bar Gain': value '1e400' is "
+                                             r"not a finite number"):
+        read_lanl_raw(path)

@@ -332,3 +332,65 @@ def test_rig_helpers_check_their_arguments():
     with pytest.raises(ValueError, match="position: must lie on the rod"):
         setup.gauge_travel_time(5.0)
     assert setup.gauge_travel_time(0.9) == pytest.approx(0.9 / ri.STEEL.wave_speed)
+
+
+@pytest.mark.parametrize("corner", [1e300, 1e80, 1e-300, 1e-80])
+def test_bessel_analog_refuses_a_corner_whose_gain_is_not_a_normal_float(corner):
+    # (2 pi corner)^4 overflows above ~1e76 Hz and is subnormal below ~1e-78 Hz: a ValueError naming corner
+    # and the valid range, not an OverflowError from inside scipy or a gain of 0
+    with pytest.raises(ValueError, match=r"corner: must lie between .* Hz and .* Hz for order 4"):
+        S.bessel_analog(4, corner)
+
+
+def test_bessel_analog_still_designs_extreme_but_representable_corners():
+    for corner in (1e-60, 1e60):
+        z, p, k = S.bessel_analog(4, corner)
+        # the -3 dB point (norm "mag") stays at the corner and the gain is finite and nonzero
+        w = 2 * np.pi * corner
+        h = k / np.prod(1j * w - p)
+        assert np.isfinite(k) and k > 0
+        assert abs(abs(h) - 2**-0.5) < 1e-9
+
+
+_BAR = dict(youngs_modulus=200e9, density=7850.0, area=2e-4, gauge_factor=2.0, excitation_voltage=10.0)
+
+
+@pytest.mark.parametrize("key, value", [("gauge_factor", "5"), ("gauge_factor", True), ("area", "2e-4"),
+                                        ("excitation_voltage", None), ("density", [7850.0]), ("gain", "200")])
+def test_gauged_bar_refuses_wrong_types_instead_of_coercing(key, value):
+    # issue 20 item 12: a gauge factor "5" was read as 5.0 by float()
+    with pytest.raises(TypeError, match=rf"^{key}: must be a real number"):
+        S.GaugedBar(**{**_BAR, key: value})
+
+
+def test_gauged_bar_polarity_and_bridge_arms_are_numbers_not_coerced():
+    with pytest.raises(TypeError, match="polarity must be"):
+        S.GaugedBar(**_BAR, polarity=True)
+    for arms in (("1", 0, 0, 0), (True, 0, 0, 0), 5, "1000"):
+        with pytest.raises(TypeError, match="arms: must be four strain factors"):
+            S.Bridge(arms)
+
+
+@pytest.mark.parametrize("call", [
+    lambda: S.strain_to_force(["1e-3", "2e-3"], 200e9, 2e-4),
+    lambda: S.strain_to_force([True, False], 200e9, 2e-4),
+    lambda: S.bridge_to_strain(np.array(["0.001"]), 10.0, 2.0),
+    lambda: S.Bridge.quarter().strain(["0.001"], 2.0),
+    lambda: S.Bridge.quarter().strain([0.001], "2"),
+])
+def test_gauge_functions_refuse_strings_and_bools(call):
+    with pytest.raises(TypeError):
+        call()
+
+
+def test_gauged_bar_still_takes_numbers_and_quantities_with_units():
+    bar = S.GaugedBar(**{**_BAR, "youngs_modulus": "200 GPa", "excitation_voltage": "10 V", "gauge_factor": 2})
+    assert bar.youngs_modulus == 200e9 and bar.excitation_voltage == 10.0 and bar.gauge_factor == 2.0
+    assert S.GaugedBar(**{**_BAR, "gauge_factor": np.float32(2.0)}).gauge_factor == 2.0
+
+
+@pytest.mark.parametrize("time, samples", [(["0", "1e-6"], [1.0, 2.0]), ([0.0, 1e-6], ["1", "2"]),
+                                           ([0.0, 1e-6], [True, False])])
+def test_recording_refuses_strings_and_bools_instead_of_converting(time, samples):
+    with pytest.raises(TypeError, match="must be an array of real numbers"):
+        S.Recording(time, {"a": samples})
