@@ -5,6 +5,12 @@ A key is a path into the file as the error messages write it: table keys joined 
 that name (``rods.piston.velocity``, ``probes.SG1.position``; quote names that are not bare TOML keys:
 ``rods."bar 2".velocity``). Missing tables are created (``output.record_every`` without an ``[output]`` table).
 
+Keys that exclude each other (:data:`REPLACES`: ``simulation.duration`` and ``steps``, a rod's ``dt`` and
+``element_length``, ...): setting one removes the others the file gives, so that ``--set simulation.duration=2ms``
+runs a file that gives ``steps`` for 2 ms; the override is then listed as ``simulation.duration = "2 ms"
+(replacing the file's simulation.steps = 4000)``. Keys set by two overrides are both kept (the validation then
+says they exclude each other).
+
 Values are TOML values (``5``, ``1.5e-6``, ``true``, ``"50 mm"``, ``[1, 2]``, ``{ type = "spring", ... }``); text
 that is not a TOML value is taken as a string, so that ``5 m/s`` and ``steel`` need no quotes.
 
@@ -29,6 +35,26 @@ _STEP = re.compile(r'(?:(?P<bare>[A-Za-z0-9_-]+)|"(?P<quoted>[^"\\]*)")(?P<index
 
 Step = Union[str, int]
 Spec = TypeVar("Spec")
+
+#: Keys that exclude each other in one table: the table's place (its key path without array entries; ``ROD``: a
+#: rod of a model file's ``[[rods]]`` or of a spec's ``[[struck]]``) -> key set -> the keys it replaces.
+REPLACES: dict[tuple[str, ...], dict[str, tuple[str, ...]]] = {
+    ("simulation",): {"duration": ("steps",), "steps": ("duration",)},
+    ("ROD",): {"segments": ("elements",), "elements": ("segments", "material")},
+    ("ROD", "elements"): {"dt": ("element_length",), "element_length": ("dt",), "impedance": ("runs", "file"),
+                          "runs": ("impedance", "file"), "file": ("impedance", "runs")},
+    ("ROD", "elements", "runs"): {"count": ("length",), "length": ("count",),
+                                  "impedance": ("impedance_start", "impedance_end"),
+                                  "impedance_start": ("impedance",), "impedance_end": ("impedance",)},
+    ("ROD", "segments"): {"file": ("x", "diameter", "area"), "x": ("file",), "diameter": ("area",),
+                          "area": ("diameter",)},
+    ("striker",): {"diameter_min": ("impedance_min", "impedance_max"),
+                   "diameter_max": ("impedance_min", "impedance_max"),
+                   "impedance_min": ("diameter_min", "diameter_max"),
+                   "impedance_max": ("diameter_min", "diameter_max"),
+                   "mass": ("mass_min", "mass_max"), "mass_min": ("mass",), "mass_max": ("mass",)},
+}
+_ROD_LISTS = ("rods", "struck")
 
 
 def parse_value(text: str) -> Any:
@@ -72,9 +98,12 @@ def apply_overrides(raw: dict, overrides: Mapping[str, Any]) -> tuple[dict, dict
     were set (written as error messages write them) -> ``"KEY = VALUE"`` as given."""
     out = copy.deepcopy(raw)
     applied: dict[str, str] = {}
+    kept: list[tuple[dict, str]] = []          # (table, key) set by an override: never replaced by another
     for key, value in overrides.items():
-        path = _set(out, key, value)
+        path, replaced = _set(out, key, value, kept)
         given = f"{key} = {_shown(value)}"
+        if replaced:
+            given += " (replacing the file's " + ", ".join(replaced) + ")"
         if path in applied:
             raise ModelError(f"{path}: set twice, by {applied[path]} and by {given}")
         applied[path] = given
@@ -89,11 +118,14 @@ def _shown(value: Any) -> str:
         return str(value)
 
 
-def _set(raw: dict, key: str, value: Any) -> str:
-    """Set ``key`` in ``raw`` to ``value``; returns the key path with array entries as indices."""
+def _set(raw: dict, key: str, value: Any, kept: list[tuple[dict, str]]) -> tuple[str, list[str]]:
+    """Set ``key`` in ``raw`` to ``value``, removing the keys it replaces (:data:`REPLACES`) unless they are in
+    ``kept``; returns the key path with array entries as indices, and the removed keys as ``PATH = VALUE``."""
     steps = parse_key(key)
     node: Any = raw
     path = ""
+    names: list[str] = []                       # the table keys passed, without array entries
+    replaced: list[str] = []
     for i, step in enumerate(steps):
         last = i == len(steps) - 1
         if isinstance(node, list):
@@ -106,16 +138,32 @@ def _set(raw: dict, key: str, value: Any) -> str:
                 node[index] = value
             node = node[index]
         elif isinstance(node, dict) and isinstance(step, str):
+            if last or step not in node:
+                replaced += _replace(node, step, names, path, kept)
             path = f"{path}.{_toml.key(step)}" if path else _toml.key(step)
             if last:
                 node[step] = value
+                kept.append((node, step))
             elif step not in node:
                 node[step] = [] if isinstance(steps[i + 1], int) else {}
             node = node[step]
+            names.append(step)
         else:
             what = "a table, not an array" if isinstance(node, dict) else f"{node!r}, not a table or an array"
             raise ModelError(f"{key}: {path or 'the file'} is {what}; {step!r} cannot be looked up in it")
-    return path
+    return path, replaced
+
+
+def _replace(table: dict, key: str, names: list[str], path: str, kept: list[tuple[dict, str]]) -> list[str]:
+    """Remove from ``table`` (at ``path``, reached through the table keys ``names``) the keys that ``key``
+    replaces and that no override set; returns them as ``PATH = VALUE``."""
+    place = tuple("ROD" if j == 0 and n in _ROD_LISTS else n for j, n in enumerate(names))
+    removed = []
+    for other in REPLACES.get(place, {}).get(key, ()):
+        if other in table and not any(t is table and k == other for t, k in kept):
+            shown = _shown(table.pop(other))
+            removed.append(f"{path}.{_toml.key(other)} = " + (shown if len(shown) <= 60 else shown[:57] + "..."))
+    return removed
 
 
 def _named_entry(entries: list, name: str, key: str, path: str) -> int:

@@ -40,6 +40,7 @@ import os
 import re
 import shutil
 import tempfile
+import time as _time
 import warnings
 from pathlib import Path
 from typing import Any, Optional, Sequence
@@ -74,6 +75,27 @@ _MARKER_NOTE = (f"This folder was written by rodimpact (version {__version__}); 
 
 
 # ============================================================================================ output folders
+#: Test-only (not for users; no effect unless set): ``POINT:FILE`` stops a writer at ``POINT`` of the write
+#: window of an output folder (``entered``, ``csv``, ``finishing``, ``aside``; see :func:`_test_pause`), so that
+#: tests/robustness/test_output_races.py can kill it exactly there.
+_TEST_PAUSE = "_RODIMPACT_TEST_PAUSE"
+
+
+def _test_pause(point: str) -> None:
+    """With ``_RODIMPACT_TEST_PAUSE=POINT:FILE`` and ``point == POINT``: create FILE (the sign that the writer is
+    inside the window) and wait there until killed. Does nothing otherwise."""
+    value = os.environ.get(_TEST_PAUSE)
+    if not value:
+        return
+    where, _, flag = value.partition(":")
+    if where != point or not flag:
+        return
+    with open(flag, "x"):
+        pass
+    while True:
+        _time.sleep(0.5)
+
+
 def _contains_cwd(folder: Path) -> bool:
     """True if ``folder`` is the current working folder or one of its parents."""
     try:
@@ -328,6 +350,7 @@ class AtomicFolder:
         try:
             self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.claim.target.name}.tmp-", dir=self.claim.target.parent))
             _write_marker(self.tmp)
+            _test_pause("entered")
         except BaseException:
             if self.tmp is not None:
                 shutil.rmtree(self.tmp, ignore_errors=True)
@@ -358,10 +381,12 @@ class AtomicFolder:
             raise
         target = self.target.resolve()
         os.chmod(self.tmp, normal_mode(folder=True))
+        _test_pause("finishing")
         if target.exists():
             old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
             os.rmdir(old)
             os.replace(target, old)
+            _test_pause("aside")
             try:
                 os.replace(self.tmp, target)
             except BaseException:
@@ -553,6 +578,9 @@ def _write_csv(path: Path, header: list[str], columns: list[np.ndarray], chunk: 
 
     with open(path, "w", encoding="utf-8", newline="") as fh:
         csv.writer(fh, lineterminator="\n").writerow(header)
+        if _TEST_PAUSE in os.environ:
+            fh.flush()
+            _test_pause("csv")
         cols = [np.asarray(c, dtype=float) for c in columns]
         n = cols[0].size if cols else 0
         for a in range(0, n, chunk):

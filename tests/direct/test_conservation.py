@@ -1,6 +1,7 @@
 """Energy and momentum bookkeeping, linearity and time reversal (property-based where it is cheap)."""
 
 import numpy as np
+import pytest
 from hypothesis import given, strategies as st
 
 import rodimpact as ri
@@ -43,6 +44,29 @@ def test_momentum_balance_with_end_force_loads_and_friction():
     np.testing.assert_allclose(p - p[0], e.impulse, rtol=0, atol=1e-12 * scale)
     assert e.balance_error < 1e-12
     assert np.all(np.diff(e.work_friction) <= 1e-15)     # friction never gives energy back
+
+
+@pytest.mark.parametrize("backend", ["numba", "numpy"])
+def test_momentum_balance_with_the_left_end_loaded(backend):
+    """The impulse of a force on the left end (issue 20, item 22: every other momentum balance loads only the
+    right end, and a flipped sign of the left end's impulse survived). The end face's outward normal is -x, so the
+    force on the rod is -N: a push N = -1 kN on a free rod at rest gives it the momentum 1 kN * t (Newton)."""
+    bar = ri.Rod.from_impedance(np.linspace(30e3, 70e3, 60), dt=DT)
+    e = ri.simulate([bar], velocities=[0.0], steps=400, energy_every=7, left=ri.ForceEnd(-1e3),
+                    backend=backend).energy
+    assert e.time[-1] > 0.3e-3
+    np.testing.assert_allclose(e.impulse, 1e3 * e.time, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(e.momentum.sum(axis=0), 1e3 * e.time, rtol=0, atol=1e-12)
+    # both ends loaded by varying forces, a striker on the bar
+    striker = ri.Rod.from_impedance([45e3] * 40, dt=DT)
+    res = ri.simulate([striker, bar], velocities=[3.0, 0.0], steps=900, energy_every=7, backend=backend,
+                      left=ri.ForceEnd(lambda t: -4e3 * np.sin(1.3e4 * t) ** 2),
+                      right=ri.ForceEnd(lambda t: -2e3 * np.sin(2e4 * t)))
+    p = res.energy.momentum.sum(axis=0)
+    scale = 45e3 * 40 * DT * 3.0
+    assert np.ptp(res.energy.impulse) > 0.1 * scale
+    np.testing.assert_allclose(p - p[0], res.energy.impulse, rtol=0, atol=1e-12 * scale)
+    assert res.energy.balance_error < 1e-12
 
 
 @given(z1=impedances, z2=impedances, v=st.floats(0.1, 20.0), a=st.floats(-5.0, 5.0).filter(lambda x: abs(x) > 0.05))

@@ -9,6 +9,19 @@ from rodimpact.io import design_spec, synthesis_spec
 from rodimpact.io.model import ModelError, loads_model
 from rodimpact.io.overrides import apply_overrides, parse_assignment, parse_key, parse_value
 from rodimpact.io.templates import SIMULATE
+from rodimpact.rods.material import STEEL
+
+#: A two-rod impact run for a number of steps, as the model.toml written beside every result gives it.
+SMALL_STEPS = """
+[[rods]]
+velocity = "5 m/s"
+segments = [{ shape = "cylinder", length = "0.1 m", diameter = "40 mm" }]
+[[rods]]
+segments = [{ shape = "cylinder", length = "0.4 m", diameter = "40 mm" }]
+[simulation]
+steps = 150
+dt = 1.932183566158592e-06
+"""
 
 
 def test_values_are_toml_or_plain_text():
@@ -71,3 +84,86 @@ def test_specs_take_overrides_and_record_what_ran():
     assert design.kwargs["starts"] == 1 and design_spec.loads_spec(design.text).kwargs["starts"] == 1
     with pytest.raises(ModelError, match=r"design.starts: .*\(set by the override design.starts = 0\)"):
         design_spec.loads_spec(design_spec.TEMPLATE, overrides={"design.starts": 0})
+
+
+# ------------------------------------------------------------------ keys that exclude each other (issue 20, item 8)
+def test_setting_duration_replaces_the_steps_of_a_written_model(tmp_path):
+    """The model.toml that rodimpact writes beside a result (and design / synthesize in ``verification/``) gives
+    ``steps``; ``--set simulation.duration=...`` on it used to fail with "give exactly one of duration or steps"."""
+    import rodimpact as ri
+    from rodimpact.io.model import load_model, model_from_result
+
+    res = loads_model(SMALL_STEPS).simulate()
+    ri.save(res, tmp_path / "out", model=model_from_result(res))
+    written = (tmp_path / "out" / "model.toml").read_text()
+    assert "\nsteps = 150" in written and "duration" not in written          # what the file sets
+    model = load_model(tmp_path / "out" / "model.toml", overrides={"simulation.duration": 300 * res.dt})
+    assert model.duration == 300 * res.dt and model.steps is None
+    assert model.simulate().n_steps == 300                                    # 300 steps of the file's dt
+    back = load_model(tmp_path / "out" / "model.toml", overrides={"simulation.steps": 20})   # and the other way
+    assert back.steps == 20 and back.duration is None
+    raw = tomllib.loads(written)
+    out, applied = apply_overrides(raw, {"simulation.duration": "0.58 ms"})
+    assert "steps" not in out["simulation"] and raw["simulation"]["steps"] == 150        # the file is left alone
+    assert applied == {"simulation.duration": 'simulation.duration = "0.58 ms" (replacing the file\'s '
+                                              'simulation.steps = 150)'}
+
+
+def test_steps_replaces_duration_and_setting_both_is_still_an_error():
+    model = loads_model(SIMULATE, overrides={"simulation.steps": 40})
+    assert model.steps == 40 and model.duration is None
+    with pytest.raises(ModelError, match="simulation: give exactly one of duration"):      # both set: no guessing
+        loads_model(SIMULATE, overrides={"simulation.steps": 40, "simulation.duration": "1 ms"})
+    with pytest.raises(ModelError, match="simulation: give exactly one of duration"):
+        loads_model(SIMULATE, overrides={"simulation.duration": "1 ms", "simulation.steps": 40})
+
+
+ELEMENTS = '''
+[[rods]]
+name = "striker"
+velocity = "5 m/s"
+[rods.elements]
+dt = "2 us"
+runs = [{ impedance = "10 kN s/m", count = 3 }, { impedance_start = "10 kN s/m", impedance_end = "20 kN s/m", count = 2 }]
+[[rods]]
+name = "bar"
+[[rods.segments]]
+shape = "table"
+x = ["0 m", "0.2 m", "0.4 m"]
+diameter = ["20 mm", "20 mm", "20 mm"]
+[simulation]
+steps = 10
+'''
+
+
+def test_every_exclusive_pair_of_a_rod_is_replaced():
+    c = STEEL.wave_speed                                # the default wave speed of an impedance-level rod
+    m = loads_model(ELEMENTS, overrides={"rods.striker.elements.element_length": c * 1e-6})
+    assert m.system.rods[0].native.dt == pytest.approx(1e-6) and m.system.rods[0].native.impedance.size == 5
+    m = loads_model(ELEMENTS, overrides={"rods.striker.elements.impedance": ["30 kN s/m"] * 4})      # runs go
+    assert list(m.system.rods[0].native.impedance) == pytest.approx([3e4] * 4)
+    m = loads_model(ELEMENTS, overrides={"rods.striker.elements.runs[0].length": c * 2e-6 * 4})      # count goes
+    assert m.system.rods[0].native.impedance.size == 6
+    m = loads_model(ELEMENTS, overrides={"rods.striker.elements.runs[1].impedance": "40 kN s/m"})    # start, end go
+    assert list(m.system.rods[0].native.impedance) == pytest.approx([1e4] * 3 + [4e4] * 2)
+    m = loads_model(ELEMENTS, overrides={"rods.bar.segments[0].area": ["1 cm^2"] * 3})               # diameter goes
+    assert m.system.rods[1].segments[0].area(0.1) == pytest.approx(1e-4)
+    m = loads_model(ELEMENTS, overrides={"rods.striker.segments": [{"shape": "cylinder", "length": "0.1 m",
+                                                                    "diameter": "20 mm"}]})        # elements go
+    assert m.system.rods[0].length == pytest.approx(0.1)
+    m = loads_model(ELEMENTS, overrides={"rods.bar.elements.impedance": ["20 kN s/m"] * 2,
+                                         "rods.bar.elements.dt": "2 us"})                          # segments go
+    assert list(m.system.rods[1].native.impedance) == pytest.approx([2e4] * 2)
+    _, applied = apply_overrides(tomllib.loads(ELEMENTS), {"rods.bar.elements.impedance": [1, 2]})
+    assert applied["rods[1].elements.impedance"].startswith(
+        "rods.bar.elements.impedance = [1, 2] (replacing the file's rods[1].segments = [{")
+
+
+def test_a_design_striker_takes_impedance_bounds_or_a_mass_range_in_place_of_the_file_s():
+    spec = design_spec.loads_spec(design_spec.TEMPLATE, overrides={"striker.impedance_min": "2 kN s/m",
+                                                                   "striker.impedance_max": "50 kN s/m"})
+    assert spec.kwargs["impedance_bounds"] == (2e3, 5e4) and spec.kwargs["diameter_bounds"] is None
+    assert design_spec.loads_spec(spec.text).kwargs["impedance_bounds"] == (2e3, 5e4)      # as it ran
+    ranged = design_spec.loads_spec(design_spec.TEMPLATE.replace("[striker]\n", '[striker]\nmass = "1 kg"\n'),
+                                    overrides={"striker.mass_min": "1 kg", "striker.mass_max": "2 kg"})
+    assert ranged.kwargs["mass"] == (1.0, 2.0)

@@ -2,10 +2,14 @@
 
 * 50 pairs of simultaneous ``rodimpact simulate ... -o OUT`` (the CLI's ``main`` in two forked processes released
   together): in every pair exactly one run writes its own result and the other is refused; no result is replaced.
-* A run killed (SIGKILL) while writing leaves the previous result intact; the next run removes the leftover
-  temporary folder. A run killed between moving the old result aside and moving the new one in leaves the old one
-  aside; the next run puts it back (and, without --force, refuses to replace it).
+* A run killed (SIGKILL) inside the write window leaves the previous result intact (or no folder); the next run
+  removes the leftover temporary folder. A run killed between moving the old result aside and moving the new one in
+  leaves the old one aside; the next run puts it back (and, without --force, refuses to replace it).
 * SIGTERM is handled like Ctrl-C: exit 143, no temporary folder left, the previous result intact.
+
+The kills are deterministic: the real command runs in a new process with the test-only environment variable
+``_RODIMPACT_TEST_PAUSE=POINT:FILE`` (rodimpact/io/results.py), which makes it create FILE at POINT of the write
+window and wait there; the test sends the signal once FILE exists.
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ import json
 import multiprocessing
 import os
 import signal
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -26,7 +31,7 @@ from rodimpact import cli
 from rodimpact.io import results
 from rodimpact.io.model import loads_model, model_from_result
 
-from robust_inputs import small_model
+from robust_inputs import ROOT, small_model
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the tests fork processes (POSIX)")
 FORK = multiprocessing.get_context("fork") if hasattr(os, "fork") else None
@@ -76,110 +81,113 @@ def test_50_pairs_of_simultaneous_runs_into_one_folder(tmp_path):
     assert outcomes.count("claimed") >= 1          # the pairs did meet (else this would test nothing)
 
 
-def _slow_save(out: str, title: str, where: str, flag: str) -> None:
-    """Child: save a result into ``out`` (overwrite) and stop for good at ``where`` after touching ``flag``."""
-    def stop() -> None:
-        Path(flag).touch()
-        time.sleep(600)
-
-    if where == "writing":
-        real = results._write_csv
-
-        def write_csv(*a, **k):
-            real(*a, **k)
-            stop()
-        results._write_csv = write_csv
-    else:                                   # between moving the old result aside and moving the new one in
-        real_replace = os.replace
-
-        def replace(src, dst):
-            real_replace(src, dst)
-            if ".old-" in os.fspath(dst):
-                stop()
-        results.os.replace = replace
-    res = _small_result()
-    ri.save(res, out, model=model_from_result(res, title=title), overwrite=True)
-
-
 def _small_result():
     return loads_model(small_model("x")).simulate()
 
 
-def _kill_while(where: str, tmp_path: Path, sig: int = signal.SIGKILL) -> int:
-    out, flag = tmp_path / "out", tmp_path / "flag"
-    proc = FORK.Process(target=_slow_save, args=(str(out), "new", where, str(flag)))
-    proc.start()
-    t0 = time.monotonic()
-    while not flag.exists():
-        assert time.monotonic() - t0 < 120 and proc.is_alive(), "the child never reached the point to be killed"
-        time.sleep(0.02)
-    os.kill(proc.pid, sig)
-    proc.join(60)
-    return proc.exitcode
+#: Where a writer is stopped inside the write window (``_RODIMPACT_TEST_PAUSE``, rodimpact/io/results.py) and what
+#: its temporary folder then holds.
+INSIDE = {"entered": "the temporary folder, nothing written yet",
+          "csv": "signals.csv half written (its header only), result.nc already complete",
+          "finishing": "every file written, just before the rename"}
 
 
-def test_a_run_killed_while_writing_leaves_the_previous_result_and_the_next_run_cleans_up(tmp_path):
-    res = _small_result()
-    out = tmp_path / "out"
+def _files(folder: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(folder)): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def _stopped_at(point: str, model: Path, out: Path, sig: int = signal.SIGKILL) -> tuple[int, str]:
+    """Run ``rodimpact simulate MODEL -o OUT --force`` (the installed command's entry point) in a new process that
+    stops at ``point`` of the write window; once it says it is there, send it ``sig``. Returns (exit code,
+    stderr). Deterministic: the signal always lands at ``point``, however loaded the machine is."""
+    flag = out.parent.parent / f"at-{point}"
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "_RODIMPACT_TEST_PAUSE": f"{point}:{flag}"}
+    code = "import sys, rodimpact_cli; sys.argv[0] = 'rodimpact'; raise SystemExit(rodimpact_cli.main())"
+    proc = subprocess.Popen([sys.executable, "-c", code, "simulate", str(model), "-o", str(out), "--force",
+                             "--quiet"], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        t0 = time.monotonic()
+        while not flag.exists():
+            if proc.poll() is not None:
+                pytest.fail(f"the writer ended (exit {proc.returncode}) without reaching {point!r}: "
+                            f"{proc.stderr.read()}")
+            assert time.monotonic() - t0 < 600, f"the writer did not reach {point!r} in 10 minutes"
+            time.sleep(0.02)
+        proc.send_signal(sig)
+        _, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    flag.unlink()
+    return proc.returncode, err
+
+
+@pytest.fixture
+def runs(tmp_path):
+    """(model file of a run titled 'new', output folder tmp_path/runs/out, the small result)."""
+    model = tmp_path / "m.toml"
+    model.write_text(small_model("new"))
+    (tmp_path / "runs").mkdir()
+    return model, tmp_path / "runs" / "out", _small_result()
+
+
+@pytest.mark.parametrize("point, previous", [("entered", True), ("csv", True), ("csv", False), ("finishing", True)],
+                         ids=["entered", "csv", "csv-into-a-new-folder", "finishing"])
+def test_a_run_killed_inside_the_write_window_leaves_the_previous_result_and_the_next_run_cleans_up(
+        runs, point, previous):
+    """SIGKILL at each point of the write window (issue 20, item 20: a kill at a random time rarely landed inside
+    it): the output folder is the previous result byte for byte (or still absent), never a half-written one; the
+    killed run's temporary folder holds what it had written; the next run removes it."""
+    model, out, res = runs
+    if previous:
+        ri.save(res, out, model=model_from_result(res, title="old"))
+    before = _files(out) if previous else None
+    code, err = _stopped_at(point, model, out)
+    assert code == -signal.SIGKILL, err
+    assert (_files(out) if out.exists() else None) == before                  # intact, or still absent
+    leftovers = [p for p in out.parent.iterdir() if p.name.startswith(".out.tmp-")]
+    assert len(leftovers) == 1
+    assert {p.name for p in out.parent.iterdir()} <= {"out", ".out.rodimpact-lock", leftovers[0].name}
+    written = sorted(_files(leftovers[0]))
+    if point == "entered":
+        assert written == [results.MARKER]
+    elif point == "csv":
+        assert written == sorted([results.MARKER, "model.toml", results.RESULT_FILE, "signals.csv"])
+        text = (leftovers[0] / "signals.csv").read_text()
+        assert text.startswith("time [s],") and text.count("\n") == 1            # the header, no rows
+    else:
+        assert "summary.json" in written and "energy.csv" in written
+    assert cli.main(["simulate", str(model), "-o", str(out), "--force", "--quiet"]) == 0
+    assert _title(out) == "new" and ri.load(out).n_steps == res.n_steps
+    assert [p.name for p in out.parent.iterdir()] == ["out"]                   # leftover and lock gone
+
+
+def test_a_run_killed_between_the_renames_gets_the_old_result_back(runs):
+    model, out, res = runs
     ri.save(res, out, model=model_from_result(res, title="old"))
-    before = {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()}
-    assert _kill_while("writing", tmp_path) == -signal.SIGKILL
-    assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before      # intact
-    assert ri.load(out).n_steps == res.n_steps
-    leftovers = [p for p in tmp_path.iterdir() if p.name.startswith(".out.tmp-")]
-    assert len(leftovers) == 1 and (leftovers[0] / "signals.csv").is_file()            # the killed run's files
-    ri.save(res, out, model=model_from_result(res, title="newer"), overwrite=True)
-    assert _title(out) == "newer"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["flag", "out"]               # leftover and lock gone
-
-
-def test_a_run_killed_between_the_renames_gets_the_old_result_back(tmp_path):
-    res = _small_result()
-    out = tmp_path / "out"
-    ri.save(res, out, model=model_from_result(res, title="old"))
-    assert _kill_while("renaming", tmp_path) == -signal.SIGKILL
+    before = _files(out)
+    code, err = _stopped_at("aside", model, out)
+    assert code == -signal.SIGKILL, err
     assert not out.exists()                                     # the old result was moved aside ...
-    aside = [p for p in tmp_path.iterdir() if p.name.startswith(".out.old-")]
-    assert len(aside) == 1 and _title(aside[0]) == "old"
+    aside = [p for p in out.parent.iterdir() if p.name.startswith(".out.old-")]
+    assert len(aside) == 1 and _files(aside[0]) == before
     with pytest.raises(results.OutputExistsError, match="exists and is not empty"):
         ri.save(res, out, model=model_from_result(res, title="newer"))     # ... put back, and not replaced
-    assert _title(out) == "old"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["flag", "out"]
+    assert _files(out) == before
+    assert [p.name for p in out.parent.iterdir()] == ["out"]
 
 
-def test_sigterm_is_handled_like_ctrl_c(tmp_path):
-    (tmp_path / "m.toml").write_text(small_model("new"))
-    out = tmp_path / "out"
-    res = _small_result()
+def test_sigterm_is_handled_like_ctrl_c(runs):
+    """SIGTERM while signals.csv is half written: exit 143, one line, the previous result intact, nothing left."""
+    model, out, res = runs
     ri.save(res, out, model=model_from_result(res, title="old"))
-    flag = tmp_path / "flag"
-
-    def child() -> None:
-        real = results._write_csv
-
-        def write_csv(*a, **k):
-            real(*a, **k)
-            flag.touch()
-            time.sleep(600)
-        results._write_csv = write_csv
-        err = io.StringIO()
-        sys.stderr = err
-        code = cli.main(["simulate", str(tmp_path / "m.toml"), "-o", str(out), "--force", "--quiet"])
-        (tmp_path / "stderr").write_text(err.getvalue())
-        sys.exit(code)
-
-    proc = FORK.Process(target=child)
-    proc.start()
-    t0 = time.monotonic()
-    while not flag.exists():
-        assert time.monotonic() - t0 < 120 and proc.is_alive()
-        time.sleep(0.02)
-    os.kill(proc.pid, signal.SIGTERM)
-    proc.join(60)
-    assert proc.exitcode == 128 + signal.SIGTERM
-    assert (tmp_path / "stderr").read_text() == "rodimpact: error: terminated; no partial results were written\n"
-    assert _title(out) == "old"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["flag", "m.toml", "out", "stderr"]
+    before = _files(out)
+    code, err = _stopped_at("csv", model, out, signal.SIGTERM)
+    assert code == 128 + signal.SIGTERM
+    assert err == "rodimpact: error: terminated; no partial results were written\n"
+    assert _files(out) == before
+    assert [p.name for p in out.parent.iterdir()] == ["out"]
 
 
 def test_only_leftovers_of_this_folder_are_removed(tmp_path):

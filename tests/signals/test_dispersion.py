@@ -182,6 +182,29 @@ def test_tone_burst_travels_at_the_group_velocity():
     assert t_peak - t_center == pytest.approx(expected, rel=0.01)
 
 
+@pytest.mark.parametrize("nu", [0.29, 0.30, 0.35])
+def test_group_velocity_is_d_omega_d_k_of_the_exact_roots(nu):
+    """:meth:`PochhammerChree.group_velocity` (from the spline of the phase velocity) against d omega / d k by a
+    central difference of omega = c(k) k over exact roots of the frequency equation at a / Lambda (1 +- 1e-4)
+    (issue 20, item 22: a flipped sign in the method gave 5665.5 m/s instead of 4070.2 m/s at f a / c0 = 0.2, and
+    no test called it). The difference's own error is O(1e-8); the spline's derivative is good to about 1e-6."""
+    a, c0 = 0.01, 5000.0
+    model = PochhammerChree(nu, radius=a, bar_wave_speed=c0)
+    fbar = np.array([0.02, 0.1, 0.2, 0.35, 0.5, 0.8, 1.2])
+    ratio = fbar / phase_velocity_at_frequency(nu, fbar)           # a / Lambda = (f a / c0) / (c / c0)
+    h = 1e-4
+    omega = [ratio * s * phase_velocity_at_wavelength(nu, ratio * s) for s in (1 - h, 1 + h)]    # omega a/(2 pi c0)
+    expected = (omega[1] - omega[0]) / (2 * h * ratio) * c0
+    np.testing.assert_allclose(model.group_velocity(fbar * c0 / a), expected, rtol=1e-5)
+    if nu == 0.30:
+        assert float(model.group_velocity(0.2 * c0 / a)) == pytest.approx(4070.2, abs=0.05)
+    # long waves: Rayleigh's c = c0 (1 - nu^2 pi^2 (a/Lambda)^2) gives c_g = c0 (1 - 3 nu^2 pi^2 (a/Lambda)^2)
+    long = ratio[:2]
+    rayleigh = c0 * (1 - 3 * nu**2 * np.pi**2 * long**2)
+    assert np.all(np.abs(model.group_velocity(fbar[:2] * c0 / a) / rayleigh - 1) <= 50 * long**4)
+    assert float(model.group_velocity(0.0)) == pytest.approx(c0, rel=1e-12)
+
+
 def test_propagate_then_correct_returns_the_pulse():
     model = PochhammerChree(0.29, radius=0.00475, bar_wave_speed=4975.0)
     dt = 0.1e-6

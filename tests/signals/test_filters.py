@@ -40,6 +40,39 @@ def test_analog_simulation_matches_lsim():
     assert np.max(np.abs(y - y_lsim)) < 1e-8
 
 
+def _hold_by_hand(t, x, grid):
+    """Zero-order hold: at each grid time the last sample taken at or before it (a sample at exactly that time
+    counts), walked through in order."""
+    out, i = [], 0
+    for g in grid:
+        while i + 1 < len(t) and t[i + 1] <= g:
+            i += 1
+        out.append(x[i])
+    return np.array(out)
+
+
+def test_analog_simulation_of_a_held_record_matches_lsim():
+    """interpolation='previous' on an uneven or too slow record holds each sample until the next one (issue 20,
+    item 22: a hold that took the sample before whenever a grid time fell on a sample time lagged one sample:
+    [0, 1, 2, 2, 4, 5] became [0, 0, 1, 2, 2, 4]); checked against a hold by hand and scipy's lsim. The sample
+    times are whole multiples of the grid step 2^-21 s, exact in binary, so grid times fall on sample times."""
+    h = 2.0**-21
+    rate = 1 / h                                             # 2.1 MHz >= 10 x the corner
+    t = np.array([0, 1, 2, 4, 5]) * h
+    x = np.array([0.0, 1.0, 2.0, 4.0, 5.0])
+    np.testing.assert_array_equal(_hold_by_hand(t, x, np.arange(6) * h), [0, 1, 2, 2, 4, 5])
+    rng = np.random.default_rng(7)
+    uneven = np.cumsum(np.concatenate([[0], rng.integers(1, 6, 80)])) * h
+    slow = np.arange(60) * 4 * h                             # uniform, but 4 x slower than the grid
+    for t in (np.array([0, 1, 2, 4, 5]) * h, uneven, slow):
+        x = np.concatenate([[0.0], rng.normal(size=t.size - 1)])     # at rest at the start, as lsim begins
+        grid, y = simulate_analog_filter(t, x, order=5, corner=100e3, simulation_rate=rate,
+                                         interpolation="previous")
+        np.testing.assert_array_equal(grid, np.arange(round(t[-1] / h) + 1) * h)
+        _, y_lsim, _ = signal.lsim(bessel_analog(5, 100e3), _hold_by_hand(t, x, grid), grid)
+        assert np.max(np.abs(y - y_lsim)) < 1e-8
+
+
 def test_analog_stage_gain_and_phase_at_corner_match_freqs():
     f = 100e3
     dt = 1 / 20e6
