@@ -151,6 +151,9 @@ def run_tests(copy: Path, tests: tuple[str, ...], timeout: float, python: str) -
         return "passed", "", log
     if res.returncode in (4, 5):          # the subset itself is wrong: never a kill
         return "error", "usage error or no tests collected (check the 'tests' paths)", log
+    if "ERROR collecting" in log or "errors during collection" in log:
+        # a test module that cannot be imported proves nothing about the law: never a kill
+        return "error", "a test module failed to import (see log)", log
     hit = _FAILED.search(log)
     if hit:
         return "failed", hit.group(1), log

@@ -32,3 +32,16 @@ def test_applying_a_mutation_replaces_exactly_the_old_text(tmp_path):
     mutation_check.apply(tmp_path, m)
     assert (tmp_path / "law.py").read_text() == "def f(dt):\n    h = dt\n    return h\n"
     assert mutation_check.occurrences(tmp_path, m) == 0
+
+
+def test_a_test_module_that_cannot_be_imported_is_no_kill(tmp_path):
+    """A subset that fails because a test module does not import (a name moved, a file missing) says nothing
+    about the mutated law: the verdict is 'error', not 'killed' (a moved kernel name once made 25 entries look
+    killed in 5 s each)."""
+    (tmp_path / "tests").mkdir()
+    (tmp_path / "tests" / "test_broken.py").write_text("from nowhere_at_all import law\n\ndef test_law():\n    pass\n")
+    (tmp_path / "tests" / "test_fails.py").write_text("def test_law():\n    assert 1 + 1 == 3\n")
+    status, why, _ = mutation_check.run_tests(tmp_path, ("tests/test_broken.py",), 120, sys.executable)
+    assert (status, why) == ("error", "a test module failed to import (see log)")
+    status, killer, _ = mutation_check.run_tests(tmp_path, ("tests/test_fails.py",), 120, sys.executable)
+    assert (status, killer) == ("failed", "tests/test_fails.py::test_law")

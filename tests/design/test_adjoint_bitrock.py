@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from rodimpact.design._adjoint_kernels import end_vjp
-from rodimpact.direct._kernels import BITROCK, end_solve
+from rodimpact.direct.boundary import BITROCK, end_solve
 
 DT = 1e-6
 Z = 4e4

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import rodimpact as ri
-from rodimpact.direct._kernels import BITROCK, end_solve
+from rodimpact.direct.boundary import BITROCK, end_solve
 
 Z = 4e4          # N s/m
 F_I = -1e5       # N, incident force
