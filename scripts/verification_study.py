@@ -293,8 +293,8 @@ def study_closed_forms() -> list[list[str]]:
                  fmt(rel(f, rr.rod_against_wall_force(t, z, 25 * dt, v)))])
     z1 = [2.0 * z] * 6 + [0.7 * z] * 4
     z2 = [z] * 9 + [3.0 * z] * 5 + [0.5 * z] * 2
-    res = ri.simulate(ri.System([ri.Rod.from_impedance(z1, dt), ri.Rod.from_impedance(z2, dt)], [v, -1.0], right="free"),
-                      steps=300, dt=dt)
+    res = ri.simulate(ri.System([ri.Rod.from_impedance(z1, dt), ri.Rod.from_impedance(z2, dt)], [v, -1.0],
+                                right="free"), steps=300, dt=dt)
     p = lambda a, n: rr.UniformPiece(a, n * dt)  # noqa: E731
     ex = rr.solve_wave_trains([p(2 * z, 6), p(0.7 * z, 4)], [p(z, 9), p(3 * z, 5), p(0.5 * z, 2)], v, 300 * dt,
                               rod_velocity=-1.0, right="free")

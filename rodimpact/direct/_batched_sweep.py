@@ -3,10 +3,11 @@
 
 A grid qualifies when every point's ``build`` result is a :class:`~rodimpact.direct.problem.Problem` (or a dict of
 its keywords, :mod:`rodimpact.direct._sweep_keywords`, or a model that holds one) without probes or snapshots, and
-the systems agree in everything but rod 0 and its velocity (the same struck rods, velocities of rods 1, 2, ..., junctions, end
-conditions, loads, initial states, time step, number of steps and energy stride; objects compared with ``==``) and the metrics are default metrics. The points are
-grouped by the striker's element count; each group is one batch. The metrics equal those of the per-run path
-bit for bit (the batch reproduces ``simulate``'s arithmetic).
+the systems agree in everything but rod 0 and its velocity (the same struck rods, velocities of rods 1, 2, ...,
+junctions, end conditions, loads, initial states, time step, number of steps and energy stride; objects compared
+with ``==``) and the metrics are default metrics. The points are grouped by the striker's element count; each
+group is one batch. The metrics equal those of the per-run path bit for bit (the batch reproduces ``simulate``'s
+arithmetic).
 """
 
 from __future__ import annotations

@@ -62,7 +62,7 @@ def test_default_run_is_bit_identical_to_the_frozen_loop(make, steps, probes):
     With its default energy sampling the old loop rebuilt its waves at every sample, which moves the last bits."""
     system = make()
     ref = old_simulate(system, steps, DT, probes, energy_every=steps)
-    res = ri.simulate(system, steps=steps, dt=DT, outputs=ri.Outputs(probes=probes))       # default energy sampling (~256 samples)
+    res = ri.simulate(system, steps=steps, dt=DT, outputs=ri.Outputs(probes=probes))   # default energy sampling (~256)
     assert np.array_equal(res.junction_force, ref.junction_force)
     assert np.array_equal(res.junction_contact, ref.junction_contact)
     for side in ("left", "right"):

@@ -71,7 +71,8 @@ def test_bad_recordings_name_the_field(kw, error, match):
 def test_recording_and_keywords_together_are_refused():
     with pytest.raises(ValueError, match="outputs: give the outputs either as outputs=Outputs.*energy_every="):
         problem_of(point(outputs=ri.Outputs(), energy_every=5))
-    with pytest.raises(TypeError, match=r"energy_every: give the outputs as one Outputs: .*outputs=ri.Outputs\(energy_every="):
+    with pytest.raises(TypeError, match=r"energy_every: give the outputs as one Outputs: .*"
+                                        r"outputs=ri.Outputs\(energy_every="):
         impact(outputs=ri.Outputs(), energy_every=5)
     with pytest.raises(TypeError, match="outputs: must be an Outputs"):
         impact(outputs={"energy_every": 5})

@@ -23,8 +23,8 @@ def result():
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)], name="striker"), ri.Rod([ri.Cylinder(0.3, 0.05)], name="adapter"),
             ri.Rod([ri.Cylinder(0.6, 0.04)], name="bar")]
     return ri.simulate(ri.System(rods, [5.0, 0.0, 0.0], junctions=[ri.Contact(), ri.Contact()]), duration=0.3e-3,
-                       dt=1e-6,
-                       outputs=ri.Outputs(probes=[ri.Probe("SG1", 2, 0.1), ri.Probe("SG 2", 2, 0.3)], snapshot_every=50))
+                       dt=1e-6, outputs=ri.Outputs(probes=[ri.Probe("SG1", 2, 0.1), ri.Probe("SG 2", 2, 0.3)],
+                                                   snapshot_every=50))
 
 
 def open_nc(path):

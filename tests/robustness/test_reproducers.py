@@ -174,7 +174,8 @@ def test_the_default_limit_refuses_and_the_option_lifts_it():
         ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=1_500_000_000, elements=(1, 80)))
     with pytest.raises(ValueError, match=r"max_element_updates: must be a number > 0"):
         ri.simulate(rods, [5.0, 0.0], steps=10, max_element_updates=-1)
-    res = ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=40, elements=(1, 80)), max_element_updates=88 * 40)   # exactly at it
+    res = ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=40, elements=(1, 80)),
+                      max_element_updates=88 * 40)   # exactly at it
     assert res.n_steps == 40
     with pytest.raises(ValueError, match=r"duration: the run needs 88 elements x 41 steps = 3\.61e\+03"):
         ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=41, elements=(1, 80)), max_element_updates=88 * 40)
