@@ -1,5 +1,6 @@
-"""Recording stride: ``simulate(record_every=s)`` keeps every s-th step of the histories, bit for bit the
-samples of the full run, while contact events and the peak contact force are still taken at every step."""
+"""Recording stride: ``simulate(..., outputs=Outputs(record_every=s))`` keeps every s-th step of the histories, bit
+for bit the samples of the full run, while contact events and the peak contact force are still taken at every
+step."""
 
 import numpy as np
 import pytest

@@ -128,7 +128,7 @@ def test_plots_do_not_need_pyplot_or_a_display(tmp_path):
 import sys, rodimpact as ri
 from rodimpact.plotting import save_plots
 r = ri.simulate([ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(0.5, 0.04)])], [1.0, 0.0], steps=200,
-                dt=1e-6, snapshot_every=10)
+                dt=1e-6, outputs=ri.Outputs(snapshot_every=10))
 save_plots(r, {str(tmp_path)!r}, ["forces", "profile", "snapshots", "xt", "energy"])
 assert "matplotlib.pyplot" not in sys.modules, "pyplot was imported"
 """
