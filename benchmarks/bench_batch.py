@@ -65,13 +65,13 @@ def simulate_loop(system: ri.System, zs: np.ndarray, vel: np.ndarray, **kwargs) 
     for z, v in zip(zs, vel):
         s = dataclasses.replace(system, rods=(ri.Rod.from_impedance(z, DT), *system.rods[1:]),
                                 velocities=(float(v), 0.0))
-        out.append(ri.simulate(s, dt=DT, steps=STEPS, progress=False, **kwargs))
+        out.append(ri.simulate(s, dt=DT, steps=STEPS, progress=False, outputs=ri.Outputs(**kwargs) if kwargs else None))
     return out
 
 
 def warm_up() -> None:
     """Load the compiled batch kernel in a worker process."""
-    ri.simulate_batch(struck(), designs(2), 5.0, dt=DT, steps=10, threads=1)
+    ri.simulate_batch(struck(), designs(2), 5.0, ri.TimeGrid(DT, 10), threads=1)
 
 
 def main() -> None:
@@ -84,12 +84,12 @@ def main() -> None:
     zs = designs(max(n_batch, n_dask))
     vel = np.random.default_rng(1).uniform(3.0, 10.0, zs.shape[0])
     cpus = os.cpu_count() or 1
-    ri.simulate_batch(system, zs[:4], vel[:4], dt=DT, steps=STEPS, threads=2)      # compile / load the caches
-    ri.simulate_batch(system, zs[:4], vel[:4], dt=DT, steps=STEPS, threads=1)
+    ri.simulate_batch(system, zs[:4], vel[:4], ri.TimeGrid(DT, STEPS), threads=2)      # compile / load the caches
+    ri.simulate_batch(system, zs[:4], vel[:4], ri.TimeGrid(DT, STEPS), threads=1)
     simulate_loop(system, zs[:2], vel[:2])
 
     # bit-identity spot check
-    check = ri.simulate_batch(system, zs[:8], vel[:8], dt=DT, steps=STEPS)
+    check = ri.simulate_batch(system, zs[:8], vel[:8], ri.TimeGrid(DT, STEPS))
     runs = simulate_loop(system, zs[:8], vel[:8])
     identical = all(np.array_equal(check.contact_force[d], r.junction_force[0]) for d, r in enumerate(runs))
     print(f"contact force of 8 designs equals simulate() exactly: {identical}")
@@ -99,7 +99,7 @@ def main() -> None:
         t = best_of(lambda: simulate_loop(system, zs[:n_loop], vel[:n_loop], **kwargs), repeat)
         rows.append((f"`simulate()` loop, {label}", 1, n_loop, n_loop / t))
     for threads in sorted({1, min(2, cpus)}):
-        t = best_of(lambda: ri.simulate_batch(system, zs[:n_batch], vel[:n_batch], dt=DT, steps=STEPS,
+        t = best_of(lambda: ri.simulate_batch(system, zs[:n_batch], vel[:n_batch], ri.TimeGrid(DT, STEPS),
                                               threads=threads), repeat)
         rows.append(("`simulate_batch`", threads, n_batch, n_batch / t))
     for r in rows:
@@ -110,7 +110,8 @@ def main() -> None:
 
     # the designs' scalars only (what a large study keeps), and with the striker's final fields sent back too
     options = {"final_state=False": False, "final_state=True": True}
-    kws = {k: dict(dt=DT, steps=STEPS, contact_force=False, final_state=v) for k, v in options.items()}
+    kws = {k: dict(time=ri.TimeGrid(DT, STEPS), outputs=ri.BatchOutputs(contact_force=False, final_state=v))
+           for k, v in options.items()}
     t_in = {k: best_of(lambda: ri.simulate_batch(system, zs[:n_dask], vel[:n_dask], threads=min(2, cpus), **kw), 2)
             for k, kw in kws.items()}
     t0 = time.perf_counter()

@@ -73,7 +73,7 @@ def run_baseline(n: int, iterations: int):
     def misfit(u: np.ndarray) -> float:
         runs[0] += 1
         striker = ri.Rod.from_impedance(u[::-1] * zr, dt)
-        sim = ri.simulate([striker, bar], [V, 0.0], steps=2 * n, dt=dt, right="nonreflecting")
+        sim = ri.simulate(ri.System([striker, bar], [V, 0.0], right="nonreflecting"), steps=2 * n, dt=dt)
         return float(np.sum((sim.junction_force[0] - ref) ** 2) / np.sum(ref ** 2))
 
     t0 = time.perf_counter()

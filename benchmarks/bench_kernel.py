@@ -150,8 +150,8 @@ def _elwaspatid_snapshots(repeat: int):
 def main(quick: bool = False) -> None:
     repeat = 5 if quick else 200
     striker, bar = thesis_impact()
-    new = lambda **kw: ri.simulate([striker, bar], velocities=[5.0, 0.0], steps=600, dt=DT,  # noqa: E731
-                                   right="nonreflecting", **kw)
+    new = lambda **kw: ri.simulate(ri.System([striker, bar], [5.0, 0.0], right="nonreflecting"),  # noqa: E731
+                                   steps=600, dt=DT, outputs=ri.Outputs(**kw) if kw else None)
     old = lambda **kw: old_simulate(ri.System([striker, bar], velocities=[5.0, 0.0],  # noqa: E731
                                               right="nonreflecting"), 600, DT, **kw)
     assert np.array_equal(new().contact_force, old(energy_every=600).contact_force)     # same numbers
@@ -177,9 +177,9 @@ def main(quick: bool = False) -> None:
     peaks = {}
     for stride in (1, 100):
         tracemalloc.start()
-        ri.simulate([striker, bar], velocities=[5.0, 0.0], steps=1_000_000, right="nonreflecting",
-                    snapshot_times=np.linspace(0, 0.9, 10), record_every=stride,
-                    probes=[ri.Probe("a", 1, 0.1), ri.Probe("b", 1, 0.5), ri.Probe("c", 1, 1.0)])
+        ri.simulate(ri.System([striker, bar], [5.0, 0.0], right="nonreflecting"), steps=1_000_000,
+                    outputs=ri.Outputs(probes=[ri.Probe("a", 1, 0.1), ri.Probe("b", 1, 0.5), ri.Probe("c", 1, 1.0)],
+                                       snapshot_times=np.linspace(0, 0.9, 10), record_every=stride))
         peaks[stride] = tracemalloc.get_traced_memory()[1]
         tracemalloc.stop()
     lines = [

@@ -225,7 +225,7 @@ def transform_old(prob, n: int, dt: float, frozen: bool) -> np.ndarray:
     steps = loc.node + 2 * n - 1
     driving = driven(at_rest(lin), np.array([1.0, 0.0]), dt)
     sim = (old_simulate(driving, steps, dt, [position_probe(loc)]) if frozen
-           else ri.simulate(driving, steps=steps, dt=dt, probes=[position_probe(loc)]))
+           else ri.simulate(driving, steps=steps, dt=dt, outputs=ri.Outputs(probes=[position_probe(loc)])))
     p = sim.probe("synthesis_position")
     g = position_quantity(o["quantity"], p.force, p.velocity, float(sim.lattice.impedance[loc.element_left]))
     g = g[loc.node + 2 * np.arange(n)]

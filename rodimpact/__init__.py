@@ -23,7 +23,7 @@ from .direct.recording import Outputs
 from .direct.problem import Problem, TimeGrid
 from .direct.simulate import simulate
 from .direct.sweep import drilling_metrics, sweep
-from .direct.batch import BatchResult, simulate_batch
+from .direct.batch import BatchOutputs, BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
                       impedance_to_shape, synthesize, transform_force)
@@ -51,7 +51,8 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
-    "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
+    "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
+    "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
     "FieldSnapshots", "EnergyHistory",
     "JunctionEvents", "BitRockOutcome",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",

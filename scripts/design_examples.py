@@ -42,8 +42,8 @@ def drilling(n: int):
     m = n * dt * z
     d = ri.design(None, objective="efficiency", struck=rod, far_end=rock, striker_velocity=10.0, n=n, dt=dt,
                   diameter_bounds=(0.02, 0.09), mass=m)
-    uniform = ri.simulate([ri.Rod.from_impedance([z] * n, dt), rod], [10.0, 0.0], steps=d.time.size, dt=dt,
-                          right=rock)
+    uniform = ri.simulate(ri.System([ri.Rod.from_impedance([z] * n, dt), rod], [10.0, 0.0], right=rock),
+                          steps=d.time.size, dt=dt)
     eta_u = -dt * np.dot(uniform.end_force["right"], uniform.end_velocity["right"]) / (0.5 * m * 100.0)
     return d, k, z, eta_u
 

@@ -27,13 +27,13 @@ def main() -> None:
     rows = []
     # 1 equal impedance
     z, v = 51e3, 5.0
-    res = ri.simulate([bar(z, 50), bar(z, 400)], velocities=[v, 0.0], steps=300, right="nonreflecting")
+    res = ri.simulate(ri.System([bar(z, 50), bar(z, 400)], [v, 0.0], right="nonreflecting"), steps=300)
     expected = np.where(res.time < 100 * DT - 0.5 * DT, -z * v / 2, 0.0)
     rows.append(("Equal impedances: N = -Z v/2 for 2L/c", "closed form", rel(res.contact_force, expected, z * v / 2)))
     # 2 thesis first example vs wave trains
     z0, z1 = 51.0e3, 28.7e3
     striker = ri.Rod.from_impedance([z0] * 50 + [z1] * 50, dt=DT)
-    res = ri.simulate([striker, bar(z0, 400)], velocities=[v, 0.0], steps=600, right="nonreflecting")
+    res = ri.simulate(ri.System([striker, bar(z0, 400)], [v, 0.0], right="nonreflecting"), steps=600)
     exact = rr.solve_wave_trains([rr.UniformPiece(z0, 50 * DT), rr.UniformPiece(z1, 50 * DT)],
                                  [rr.UniformPiece(z0, 2.0)], v, 600e-6)
     rows.append(("Thesis Tab. 3.1 stepped striker: whole staircase", "exact wave-train superposition",
@@ -48,17 +48,17 @@ def main() -> None:
                  float(np.max(np.abs(tot - tot[0])) / tot[0])))
     # 4 momentum with loads and friction
     b = ri.Rod.from_impedance(np.linspace(30e3, 70e3, 120), dt=DT)
-    res = ri.simulate([bar(45e3, 40), b], velocities=[3.0, 0.0], steps=3000, energy_every=7,
-                      right=ri.ForceEnd(lambda t: -2e3 * np.sin(2e4 * t)),
-                      loads=[ri.Bearings(1, [(0.05, 0.15)], friction_coefficient=0.3, normal_load=2e4)])
+    res = ri.simulate(ri.System([bar(45e3, 40), b], [3.0, 0.0], right=ri.ForceEnd(lambda t: -2e3 * np.sin(2e4 * t)),
+                                loads=[ri.Bearings(1, [(0.05, 0.15)], friction_coefficient=0.3, normal_load=2e4)]),
+                      steps=3000, outputs=ri.Outputs(energy_every=7))
     p = res.energy.momentum.sum(axis=0)
     rows.append(("Momentum change = external impulse (end force, friction)", "balance",
                  rel(p - p[0], res.energy.impulse, 45e3 * 40 * DT * 3.0)))
     rows.append(("Energy change = work of end force and friction", "balance", res.energy.balance_error))
     # 5 numba vs numpy
-    kw = dict(velocities=[6.0, 0.0], steps=800, left=ri.SpringEnd(2e8, 50.0), right=ri.BitRockEnd(3e8, 9e8))
-    a = ri.simulate([st, b], backend="numba", **kw)
-    c = ri.simulate([st, b], backend="numpy", **kw)
+    system = ri.System([st, b], [6.0, 0.0], left=ri.SpringEnd(2e8, 50.0), right=ri.BitRockEnd(3e8, 9e8))
+    a = ri.simulate(system, steps=800, backend="numba")
+    c = ri.simulate(system, steps=800, backend="numpy")
     rows.append(("Compiled (wave variables) vs numpy (thesis N, v form)", "two formulations",
                  rel(a.contact_force, c.contact_force, 60e3 * 6.0)))
     # 6 cone convergence
@@ -71,7 +71,7 @@ def main() -> None:
     ns = [50, 100, 200, 400, 800]
     for n in ns:
         dt = 1.0 / cc / n
-        r = ri.simulate([cone], velocities=[0.0], steps=int(1.8 * n), dt=dt, left=ri.VelocityEnd(-2.0))
+        r = ri.simulate(ri.System([cone], [0.0], left=ri.VelocityEnd(-2.0)), steps=int(1.8 * n), dt=dt)
         t = r.time + 0.5 * dt
         ex = e * a0 * 2.0 * (1 / cc + xi * t)
         errs.append(np.max(np.abs(r.end_force["left"] - ex)) / np.max(ex))

@@ -97,14 +97,8 @@ def simulate_incident_force(material, diameter, striker_length, velocity, gauge_
     dt = striker_length / c / elements
     striker = ri.Rod([ri.Cylinder(striker_length, diameter)], material, name="striker")
     bar = ri.Rod([ri.Cylinder(gauge_distance + 0.2, diameter)], material, name="incident bar")
-    res = ri.simulate(
-        [striker, bar],
-        velocities=[velocity, 0.0],
-        duration=duration,
-        dt=dt,
-        right="nonreflecting",
-        probes=[ri.Probe("gauge", 1, gauge_distance)],
-    )
+    res = ri.simulate(ri.System([striker, bar], [velocity, 0.0], right="nonreflecting"), duration=duration, dt=dt,
+                      outputs=ri.Outputs(probes=[ri.Probe("gauge", 1, gauge_distance)]))
     return np.asarray(res.time), np.asarray(res.probe("gauge").force), float(res.dt)
 
 

@@ -39,8 +39,8 @@ def setup3_lattice(n_per_rod: int, duration: float = 0.44e-3, junction=None, sna
     d = math.sqrt(4 * SETUP3.area / math.pi)
     rods = [ri.Rod([ri.Cylinder(1.0, d)]), ri.Rod([ri.ExponentialHorn(1.0, SETUP3.area, XI)])]
     dt = (1.0 / C0) / n_per_rod
-    res = ri.simulate(rods, [V, 0.0], duration=duration, dt=dt, right="fixed",
-                      junctions=[junction or ri.Bonded()], snapshot_times=snapshot_times)
+    res = ri.simulate(ri.System(rods, [V, 0.0], right="fixed", junctions=[junction or ri.Bonded()]), duration=duration,
+                      dt=dt, outputs=ri.Outputs(snapshot_times=snapshot_times))
     return res, dt
 
 
@@ -273,7 +273,7 @@ def study_closed_forms() -> list[list[str]]:
 
     def lat(z1, z2, steps, right="nonreflecting"):
         rods = [ri.Rod.from_impedance(z1, dt), ri.Rod.from_impedance(z2, dt)]
-        res = ri.simulate(rods, [v, 0.0], steps=steps, dt=dt, right=right)
+        res = ri.simulate(ri.System(rods, [v, 0.0], right=right), steps=steps, dt=dt)
         return res.time + 0.5 * dt, res.contact_force
 
     def rel(a, b):
@@ -293,8 +293,8 @@ def study_closed_forms() -> list[list[str]]:
                  fmt(rel(f, rr.rod_against_wall_force(t, z, 25 * dt, v)))])
     z1 = [2.0 * z] * 6 + [0.7 * z] * 4
     z2 = [z] * 9 + [3.0 * z] * 5 + [0.5 * z] * 2
-    res = ri.simulate([ri.Rod.from_impedance(z1, dt), ri.Rod.from_impedance(z2, dt)], [v, -1.0], steps=300, dt=dt,
-                      right="free")
+    res = ri.simulate(ri.System([ri.Rod.from_impedance(z1, dt), ri.Rod.from_impedance(z2, dt)], [v, -1.0],
+                                right="free"), steps=300, dt=dt)
     p = lambda a, n: rr.UniformPiece(a, n * dt)  # noqa: E731
     ex = rr.solve_wave_trains([p(2 * z, 6), p(0.7 * z, 4)], [p(z, 9), p(3 * z, 5), p(0.5 * z, 2)], v, 300 * dt,
                               rod_velocity=-1.0, right="free")
@@ -315,8 +315,8 @@ def study_closed_forms() -> list[list[str]]:
     nsl = np.array([50, 100, 200, 400])
     for n in nsl:
         d = theta_total / n
-        res = ri.simulate([ri.Rod([ri.AreaFunction(length, area)]), ri.Rod.from_impedance([zr] * 2, d)], [v, 0.0],
-                          steps=2 * n - 2, dt=d, right="nonreflecting")
+        res = ri.simulate(ri.System([ri.Rod([ri.AreaFunction(length, area)]), ri.Rod.from_impedance([zr] * 2, d)],
+                                    [v, 0.0], right="nonreflecting"), steps=2 * n - 2, dt=d)
         tm = (2 * np.arange(n - 1) + 1) * d
         errs.append(float(np.max(np.abs(res.contact_force[0::2][: n - 1] - rr.lundberg_lesser_force(tm, nh, t0))) / nh))
     rows.append(["Lundberg-Lesser striker (AreaFunction, eq. 4.26), n = 50..400 elements", "lundberg_lesser_force",
@@ -337,8 +337,8 @@ def study_general_chain() -> dict:
     rows = []
     for n in (50, 100, 200):
         dt = 0.1 / (C0 * n)
-        res = ri.simulate([striker, rod], [V, 0.0], duration=0.36e-3, dt=dt, junctions=[ri.Bonded()], right="free",
-                          snapshot_times=[0.2e-3, 0.35e-3])
+        res = ri.simulate(ri.System([striker, rod], [V, 0.0], right="free", junctions=[ri.Bonded()]), duration=0.36e-3,
+                          dt=dt, outputs=ri.Outputs(snapshot_times=[0.2e-3, 0.35e-3]))
         snap = res.snapshots
         eu = ef = 0.0
         for k, t in enumerate(snap.time):

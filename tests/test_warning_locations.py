@@ -48,14 +48,14 @@ def test_model_loading_and_running():
 
 def test_simulate_with_a_dt_that_misrepresents_a_rod():
     with pytest.warns(UserWarning, match="travel time is represented with a") as record:
-        ri.simulate(_pair(), [5.0, 0.0], duration=1e-4, dt=7e-6, allow_discretization_error=True)
+        ri.simulate(ri.Problem.of(_pair(), [5.0, 0.0], duration=1e-4, dt=7e-6, allow_discretization_error=True))
     _located_here(record)
 
 
 def test_simulate_batch():
     system = ri.System(_pair(), [0.0, 0.0])
     with pytest.warns(UserWarning, match="travel time represented with more than 1 % error") as record:
-        ri.simulate_batch(system, [ri.Rod([ri.Cylinder(0.3, 0.02)])], [5.0], duration=1e-4, dt=7e-6)
+        ri.simulate_batch(system, [ri.Rod([ri.Cylinder(0.3, 0.02)])], [5.0], ri.TimeGrid.of(duration=1e-4, dt=7e-6))
     _located_here(record)
 
 

@@ -24,7 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from ..direct.batch import simulate_batch
+from ..direct.batch import BatchOutputs, simulate_batch
+from ..direct.problem import TimeGrid
 from ..inverse.struck import with_striker
 from ..rods.rod import Rod
 from .constraints import Constraints
@@ -88,8 +89,8 @@ def screen(struck: Any, dt: float, steps: int, objective: MatchObjective | Effic
     zs = np.array([z for _, z in pool])
     n = zs.shape[1]
     template = with_striker(struck, Rod.from_impedance(np.ones(n), dt=dt), 1.0)
-    batch = simulate_batch(template, zs[:, ::-1], np.full(zs.shape[0], velocity), dt=dt, steps=steps,
-                           contact_force=isinstance(objective, MatchObjective))
+    batch = simulate_batch(template, zs[:, ::-1], np.full(zs.shape[0], velocity), TimeGrid.of(steps=steps, dt=dt),
+                           outputs=BatchOutputs(contact_force=isinstance(objective, MatchObjective)))
     if isinstance(objective, MatchObjective):
         values = np.array([objective.evaluate(_Observed(row), z, velocity)[0]
                            for row, z in zip(batch.contact_force, zs)])

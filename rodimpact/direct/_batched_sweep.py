@@ -1,12 +1,13 @@
 """How :func:`rodimpact.sweep` runs a grid that varies only the striker and its velocity: batches of
 :func:`~rodimpact.direct.batch.simulate_batch` designs instead of one :func:`~rodimpact.simulate` run per point.
 
-A grid qualifies when every point's ``build`` result is a dict of :func:`~rodimpact.simulate` keyword arguments
-(or a :class:`~rodimpact.direct.problem.Problem`, or a model that holds one) without probes or snapshots, and the systems agree in
-everything but rod 0 and its velocity (the same struck rods, velocities of rods 1, 2, ..., junctions, end
-conditions, loads, initial states, time step, number of steps and energy stride; objects compared with ``==``) and the metrics are default metrics. The points are
-grouped by the striker's element count; each group is one batch. The metrics equal those of the per-run path
-bit for bit (the batch reproduces ``simulate``'s arithmetic).
+A grid qualifies when every point's ``build`` result is a :class:`~rodimpact.direct.problem.Problem` (or a dict of
+its keywords, :mod:`rodimpact.direct._sweep_keywords`, or a model that holds one) without probes or snapshots, and
+the systems agree in everything but rod 0 and its velocity (the same struck rods, velocities of rods 1, 2, ...,
+junctions, end conditions, loads, initial states, time step, number of steps and energy stride; objects compared
+with ``==``) and the metrics are default metrics. The points are grouped by the striker's element count; each
+group is one batch. The metrics equal those of the per-run path bit for bit (the batch reproduces ``simulate``'s
+arithmetic).
 """
 
 from __future__ import annotations
@@ -18,7 +19,8 @@ import numpy as np
 from ..lattice.discretize import discretize_rod
 from ..rods.system import System
 from .batch import BatchResult, run_designs, slot_problem
-from .problem import Problem, TimeGrid
+from ._sweep_keywords import problem_of
+from .problem import Problem
 from .result import ROCK_QUANTITIES, rock_value
 
 #: largest relative travel-time error of a striker that is batched (simulate reports larger ones per point)
@@ -26,7 +28,7 @@ _TOLERANCE = 0.01
 
 _KEYS = {"rods", "velocities", "duration", "dt", "steps", "elements", "resolution", "left", "right", "junctions",
          "loads", "initial", "energy_every", "record_every", "backend", "progress", "probes", "snapshot_times",
-         "snapshot_every"}
+         "snapshot_every", "outputs"}
 
 
 def batch_metric(name: str, res: BatchResult) -> np.ndarray:
@@ -45,37 +47,31 @@ def batch_metric(name: str, res: BatchResult) -> np.ndarray:
 
 
 def _point(spec: Any) -> tuple[System, float, int] | str:
-    """(system, dt, steps) of one point: a dict of simulate() arguments, a :class:`~rodimpact.direct.problem.Problem`
-    or an object that holds one as ``problem`` (a :class:`~rodimpact.io.model.Model`, with its ``backend``); or
-    why it cannot be batched."""
-    problem = spec if isinstance(spec, Problem) else getattr(spec, "problem", None)
-    if isinstance(problem, Problem):
-        out = problem.outputs
-        if out.probes or out.snapshot_times is not None or out.snapshot_every is not None:
+    """(system, dt, steps) of one point: a :class:`~rodimpact.direct.problem.Problem`, a dict of keywords
+    (:mod:`rodimpact.direct._sweep_keywords`) or an object that holds a problem as ``problem`` (a
+    :class:`~rodimpact.io.model.Model`, with its ``backend``); or why it cannot be batched."""
+    if isinstance(spec, Mapping):
+        unknown = set(spec) - _KEYS
+        if unknown:
+            return f"keywords {sorted(unknown)} are not batched"
+        if spec.get("probes") or spec.get("snapshot_times") is not None or spec.get("snapshot_every") is not None:
             return "probes and snapshots are not recorded by simulate_batch"
-        if getattr(spec, "backend", "numba") != "numba":
-            return "backend='numpy' runs the reference path"
-        return problem.system, problem.time.dt, problem.time.steps
-    if not isinstance(spec, Mapping):
-        return f"build returns a {type(spec).__name__}, not a dict of simulate() arguments"
-    unknown = set(spec) - _KEYS
-    if unknown:
-        return f"simulate() arguments {sorted(unknown)} are not batched"
-    if spec.get("probes") or spec.get("snapshot_times") is not None or spec.get("snapshot_every") is not None:
+        try:
+            problem, options = problem_of(spec)
+        except Exception as exc:       # the per-run path reports it, naming the point
+            return f"{type(exc).__name__}: {exc}"
+        backend = options.get("backend", "numba")
+    else:
+        problem = spec if isinstance(spec, Problem) else getattr(spec, "problem", None)
+        if not isinstance(problem, Problem):
+            return f"build returns a {type(spec).__name__}, not a Problem or a dict of its keywords"
+        backend = getattr(spec, "backend", "numba")
+    out = problem.outputs
+    if out.probes or out.snapshot_times is not None or out.snapshot_every is not None:
         return "probes and snapshots are not recorded by simulate_batch"
-    if spec.get("backend", "numba") != "numba":
+    if backend != "numba":
         return "backend='numpy' runs the reference path"
-    rods = spec.get("rods")
-    try:
-        system = rods if isinstance(rods, System) else System(
-            rods, spec["velocities"], spec.get("junctions"), spec.get("left", "free"), spec.get("right", "free"),
-            tuple(spec.get("loads", ())), spec.get("initial"))
-        time = TimeGrid.of(system, duration=spec.get("duration"), steps=spec.get("steps"), dt=spec.get("dt"),
-                           elements=spec.get("elements"), resolution=spec.get("resolution"))
-        dt, n_steps = time.dt, time.steps
-    except Exception as exc:       # the per-run path reports it, naming the point
-        return f"{type(exc).__name__}: {exc}"
-    return system, dt, n_steps
+    return problem.system, problem.time.dt, problem.time.steps
 
 
 def _same_struck(a: tuple, b: tuple) -> bool:

@@ -20,6 +20,7 @@ from typing import Any, Iterator, Optional
 
 import numpy as np
 
+from .._moved import moved
 from .._version import __version__
 from .._validate import caller_stacklevel, finite_array, finite_values, fits_in_memory, positive
 from ..lattice.discretize import discretize_rod
@@ -118,7 +119,7 @@ class BatchResult:
             n = int(self.n_phases[d, r])
             if n > self.phase_start.shape[2]:
                 raise ValueError(f"design {d}, junction {r}: {n} contact phases, only {self.phase_start.shape[2]} "
-                                 f"kept; run again with max_phases >= {n}")
+                                 f"kept; run again with outputs=BatchOutputs(max_phases={n})")
             out.append(JunctionEvents(
                 start=self.phase_start[d, r, :n].copy(), stop=self.phase_stop[d, r, :n].copy(),
                 max_abs_force=self.phase_max_abs_force[d, r, :n].copy(), min_force=float(self.peak_force[d, r]),
@@ -172,15 +173,61 @@ class BatchResult:
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Optional[float] = None,
-                   dt: Optional[float] = None, *, steps: Optional[int] = None, wave_speed: Optional[float] = None,
-                   record_every: int = 1, contact_force: bool = True,
-                   final_state: bool = True, max_phases: int = MAX_PHASES, threads: Optional[int] = None,
-                   executor: Any = None, chunk_size: Optional[int] = None) -> BatchResult:
+@dataclass(frozen=True)
+class BatchOutputs:
+    """What :func:`simulate_batch` records besides the peak forces, contact phases, energies and work (which are
+    always kept).
+
+    record_every:
+        Keep every n-th step of the contact force (``time = [0, n dt, ...]``); events use every step.
+    contact_force:
+        Record the contact-force history at junction 0 (False: only events, energies and work).
+    final_state:
+        Keep the striker's element forces and velocities at the end (``final_force``, ``final_velocity``;
+        False: None, and only its :attr:`~BatchResult.rigid_body_velocity` is kept). False makes the result
+        smaller and, with an ``executor``, what the workers send back: 2 x designs x striker elements floats less.
+    max_phases:
+        Contact phases kept per design and junction (all are counted in ``n_phases``).
+    """
+
+    record_every: int = 1
+    contact_force: bool = True
+    final_state: bool = True
+    max_phases: int = MAX_PHASES
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "record_every", step_stride("record_every", self.record_every))
+        for name in ("contact_force", "final_state"):
+            value = getattr(self, name)
+            if not isinstance(value, (bool, np.bool_)):
+                raise TypeError(f"{name}: must be True or False, got {value!r}")
+            object.__setattr__(self, name, bool(value))
+        m = self.max_phases
+        if isinstance(m, bool) or not isinstance(m, (int, np.integer)) or m < 1:
+            raise ValueError(f"max_phases: must be an integer >= 1, got {m!r}")
+        object.__setattr__(self, "max_phases", int(m))
+
+
+_TIME = ("{key}: give the time as one TimeGrid: ri.simulate_batch(system, strikers, velocities, "
+         "ri.TimeGrid.of(duration=..., dt=...)) (or ri.TimeGrid(dt, steps))")
+#: the keywords simulate_batch() took before its parameters moved into the objects it receives, and where each went
+MOVED = {
+    **{key: _TIME.format(key=key) for key in ("duration", "dt", "steps")},
+    **{key: (f"{key}: give the recording options as one BatchOutputs: ri.simulate_batch(system, strikers, "
+             f"velocities, time, outputs=ri.BatchOutputs({key}=...))")
+       for key in ("record_every", "contact_force", "final_state", "max_phases")},
+}
+
+
+@moved(MOVED, positional=("system", "strikers", "velocities", "duration", "dt"))
+def simulate_batch(system: System, strikers: Any, velocities: Any, time: TimeGrid, *,
+                   wave_speed: Optional[float] = None, outputs: Optional[BatchOutputs] = None,
+                   threads: Optional[int] = None, executor: Any = None,
+                   chunk_size: Optional[int] = None) -> BatchResult:
     """Simulate many strikers against one struck system (thesis Sec. 3.1), one compiled call for all.
 
     Design ``d`` is the run ``simulate(dataclasses.replace(system, rods=(striker_d, *system.rods[1:]),
-    velocities=(velocities[d], *system.velocities[1:])), duration, dt)``, and its
+    velocities=(velocities[d], *system.velocities[1:])), steps=time.steps, dt=time.dt)``, and its
     contact force, energies, work and junction events equal that run's bit for bit.
 
     Parameters
@@ -195,23 +242,17 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
         or a sequence of :class:`~rodimpact.Rod` that all have the same number of elements at ``dt``.
     velocities:
         Impact velocity of each design's striker (m/s, positive to the right), or one for all.
-    duration, steps:
-        Simulated time (s) or number of steps, as in :func:`~rodimpact.simulate` (exactly one).
-    dt:
-        Time step = element travel time, s (required).
+    time:
+        The :class:`~rodimpact.TimeGrid`: time step = element travel time (s) and number of steps, e.g.
+        ``TimeGrid(1e-6, 400)`` or ``TimeGrid.of(duration=400e-6, dt=1e-6)`` (the rounding of
+        :func:`~rodimpact.simulate`).
     wave_speed:
         Wave speed of impedance rows (default that of :meth:`Rod.from_impedance`, steel): sets only the
         element lengths, hence the re-contact tolerance of a gap.
-    record_every:
-        Keep every n-th step of the contact force (``time = [0, n dt, ...]``); events use every step.
-    contact_force:
-        Record the contact-force history at junction 0 (False: only events, energies and work).
-    final_state:
-        Keep the striker's element forces and velocities at the end (``final_force``, ``final_velocity``;
-        False: None, and only its :attr:`~BatchResult.rigid_body_velocity` is kept). False makes the result
-        smaller and, with an ``executor``, what the workers send back: 2 x designs x striker elements floats less.
-    max_phases:
-        Contact phases kept per design and junction (all are counted in ``n_phases``).
+    outputs:
+        The recording options, a :class:`BatchOutputs` (``record_every``, ``contact_force``, ``final_state``,
+        ``max_phases``); default ``BatchOutputs()``: every step of the contact force, the striker's final
+        state, 16 contact phases kept per design and junction.
     threads:
         numba threads for an in-process run (default ``numba.get_num_threads()``); designs run in parallel.
     executor:
@@ -220,6 +261,10 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
         in-process. Only numpy arrays travel to the workers (the system is turned into kernel arrays first).
     chunk_size:
         Designs per task with an ``executor`` (default: about 32 tasks, between 64 and 4096 designs each).
+
+    The keywords this function took before (``duration``, ``dt``, ``steps``; ``record_every``,
+    ``contact_force``, ``final_state``, ``max_phases``) raise a ``TypeError`` that says where each went
+    (:data:`MOVED`).
 
     Returns
     -------
@@ -230,21 +275,19 @@ def simulate_batch(system: System, strikers: Any, velocities: Any, duration: Opt
     problem = slot_problem(system)
     if problem:
         raise ValueError(problem)
-    if dt is None:
-        raise ValueError("dt: required (s): the time step is the element travel time of every striker")
-    dt = positive("dt", dt, "s")
-    n_steps = TimeGrid.of(system, duration=duration, steps=steps, dt=dt).steps
-    stride = step_stride("record_every", record_every)
-    if not isinstance(contact_force, (bool, np.bool_)):
-        raise TypeError(f"contact_force: must be True or False, got {contact_force!r}")
-    if not isinstance(final_state, (bool, np.bool_)):
-        raise TypeError(f"final_state: must be True or False, got {final_state!r}")
-    if isinstance(max_phases, bool) or not isinstance(max_phases, (int, np.integer)) or max_phases < 1:
-        raise ValueError(f"max_phases: must be an integer >= 1, got {max_phases!r}")
+    if not isinstance(time, TimeGrid):
+        raise TypeError(f"time: must be a TimeGrid, e.g. ri.TimeGrid(dt, steps) or ri.TimeGrid.of(duration=..., "
+                        f"dt=...), got {type(time).__name__}")
+    if outputs is None:
+        outputs = BatchOutputs()
+    elif not isinstance(outputs, BatchOutputs):
+        raise TypeError(f"outputs: must be a BatchOutputs(record_every=..., contact_force=..., final_state=..., "
+                        f"max_phases=...), got {type(outputs).__name__}")
+    dt = time.dt
     zs, tail = _striker_impedances(strikers, dt, wave_speed)
     vel = _velocities(velocities, zs.shape[0])
-    return run_designs(system, zs, tail, vel, dt, n_steps, stride, contact_force, bool(final_state),
-                       int(max_phases), _threads(threads), executor, chunk_size)
+    return run_designs(system, zs, tail, vel, dt, time.steps, outputs.record_every, outputs.contact_force,
+                       outputs.final_state, outputs.max_phases, _threads(threads), executor, chunk_size)
 
 
 def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarray, dt: float, n_steps: int,
@@ -260,7 +303,8 @@ def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarra
     # each running design also keeps its per-step junction and end values (events are taken from them)
     per_thread = 8.0 * (2 * n_j + 4) * n_steps
     fits_in_memory("strikers", per_design * n_d + per_thread * max(threads, 1), f"the results of {n_d} designs",
-                   "record the contact force with a larger record_every (or contact_force=False), or split the batch")
+                   "record the contact force with a larger BatchOutputs(record_every=...) (or contact_force=False), "
+                   "or split the batch")
     wall0 = _time.perf_counter()
     plan, end_par, gap_tol = _plan(system, zs, vel, tail, dt, n_steps, stride, n_rec, max_phases)
     if executor is None:

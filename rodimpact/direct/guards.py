@@ -123,8 +123,8 @@ def check_run_memory(n_elements: int, n_steps: int, rows: int, stride: int, n_sn
     _check_memory(run_bytes(n_elements, n_steps, rows, stride, n_snapshots), _RUN_HINTS, _RUN_NAMES)
 
 
-_RUN_HINTS = {"histories": "keep every n-th step with record_every=n, or split the run",
-              "snapshots": "fewer snapshots (a larger snapshot_every, fewer snapshot_times)",
+_RUN_HINTS = {"histories": "keep every n-th step with record_every=n of the Outputs, or split the run",
+              "snapshots": "fewer snapshots (a larger snapshot_every, fewer snapshot_times of the Outputs)",
               "lattice": "a larger dt (fewer elements)"}
 _RUN_NAMES = {"histories": "steps", "snapshots": "snapshot_every", "lattice": "dt"}
 

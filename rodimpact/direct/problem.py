@@ -53,7 +53,7 @@ class TimeGrid:
         object.__setattr__(self, "steps", int(s))
 
     @classmethod
-    def of(cls, system: Optional[System], *, duration: Optional[float] = None, steps: Optional[int] = None,
+    def of(cls, system: Optional[System] = None, *, duration: Optional[float] = None, steps: Optional[int] = None,
            dt: Optional[float] = None, elements: Optional[int | tuple[int, int]] = None,
            resolution: Optional[float] = None) -> TimeGrid:
         """The grid of a run of ``duration`` (s) or ``steps`` (exactly one), with ``dt`` from exactly one of the
@@ -63,6 +63,8 @@ class TimeGrid:
         * ``elements``: ``n`` elements in rod 0, or ``(rod, n)``; dt = that rod's travel time / n;
         * ``resolution``: the longest element, m; dt = resolution / (largest wave speed);
         * none: :func:`~rodimpact.lattice.lattice.default_time_step` (impedance-level rods keep their own dt).
+
+        ``TimeGrid.of(duration=400e-6, dt=1e-6)`` needs no system (e.g. for :func:`~rodimpact.simulate_batch`).
 
         A duration becomes ``round(duration / dt)`` steps when it is a whole number of steps to 1e-9, else the
         next whole number: the run covers at least ``duration``.
@@ -80,7 +82,11 @@ class TimeGrid:
 class Problem:
     """Everything that defines a run of the direct problem: ``system`` (a :class:`~rodimpact.System`), ``time``
     (a :class:`TimeGrid`) and ``outputs`` (a :class:`~rodimpact.Outputs`: probes, snapshots, energy and
-    history strides; the contact force and end values are always kept). Validated when made: probes that name a
+    history strides; the contact force and end values are always kept); ``allow_discretization_error``: run
+    even if the lattice represents a rod's travel time or mass with an error above 1 % or smears a segment
+    shorter than one element (:mod:`rodimpact.lattice.tolerance`; the error is then a warning, also listed in
+    ``result.diagnostics["warnings"]``), default ``False``: the solver refuses such a lattice with a ``ValueError``
+    that names the rod, the error and a dt that would satisfy it. Validated when made: probes that name a
     rod are resolved to its index. :meth:`compile` turns it into the lattice and the kernel inputs;
     :func:`~rodimpact.simulate` solves it.
 
@@ -95,6 +101,7 @@ class Problem:
     system: System
     time: TimeGrid
     outputs: Outputs = NO_OUTPUTS
+    allow_discretization_error: bool = False
 
     def __post_init__(self) -> None:
         if not isinstance(self.system, System):
@@ -104,6 +111,10 @@ class Problem:
         if not isinstance(self.outputs, Outputs):
             raise TypeError(f"outputs: must be an Outputs(probes=..., snapshot_times=..., ...), got "
                             f"{type(self.outputs).__name__}")
+        if not isinstance(self.allow_discretization_error, (bool, np.bool_)):
+            raise TypeError(f"allow_discretization_error: must be True or False, got "
+                            f"{self.allow_discretization_error!r}")
+        object.__setattr__(self, "allow_discretization_error", bool(self.allow_discretization_error))
         probes = tuple(_named_rod(p, i, self.system) for i, p in enumerate(self.outputs.probes))
         if probes != self.outputs.probes:
             object.__setattr__(self, "outputs", _with_probes(self.outputs, probes))
@@ -115,10 +126,10 @@ class Problem:
            left: EndCondition | str = "free", right: EndCondition | str = "free",
            junctions: Optional[Sequence[Any]] = None, loads: Sequence[NodalForce | Bearings] = (),
            initial: Optional[Sequence[Optional[InitialState]]] = None,
-           outputs: Optional[Outputs] = None) -> Problem:
+           outputs: Optional[Outputs] = None, allow_discretization_error: bool = False) -> Problem:
         """The short form: rods listed left to right with their initial ``velocities`` (m/s) and the system's
         other parts as keywords (or a ready :class:`~rodimpact.System`, and then none of them), the time rule
-        of :meth:`TimeGrid.of`, and the ``outputs``."""
+        of :meth:`TimeGrid.of`, the ``outputs`` and ``allow_discretization_error``."""
         if isinstance(rods, System):
             given = [k for k, v in (("velocities", velocities), ("junctions", junctions), ("initial", initial))
                      if v is not None] + [k for k, v in (("left", left), ("right", right)) if v != "free"]
@@ -134,7 +145,7 @@ class Problem:
                                  "rod, m/s)")
             system = System(rods, velocities, junctions, left, right, tuple(loads), initial)
         time = TimeGrid.of(system, duration=duration, steps=steps, dt=dt, elements=elements, resolution=resolution)
-        return cls(system, time, NO_OUTPUTS if outputs is None else outputs)
+        return cls(system, time, NO_OUTPUTS if outputs is None else outputs, allow_discretization_error)
 
     @functools.cached_property
     def lattice(self) -> Lattice:

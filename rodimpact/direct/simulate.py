@@ -3,21 +3,20 @@
 from __future__ import annotations
 
 import time as _time
-from typing import Any, Iterable, Literal, Optional, Sequence
+from typing import Any, Literal, Optional, Sequence
 
 import numpy as np
 
+from .._moved import moved
 from .._version import __version__
 from ..lattice import tolerance
 from ..lattice.lattice import Lattice
-from ..rods.conditions import EndCondition
-from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
-from ..rods.system import InitialState, System
+from ..rods.system import System
 from . import _kernels as K
 from . import boundary as B
 from . import guards
-from .problem import NO_OUTPUTS, Problem, TimeGrid, wave_arrays
+from .problem import Problem, wave_arrays
 from .recording import Recorder, Outputs
 from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes
 
@@ -25,104 +24,104 @@ Backend = Literal["numba", "numpy"]
 _MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-step input and output arrays
 
 
-def simulate(rods: Problem | System | Sequence[Rod] | Rod, velocities: Optional[Sequence[float]] = None,
-             duration: Optional[float] = None, dt: Optional[float] = None, *,
-             steps: Optional[int] = None, elements: Optional[int | tuple[int, int]] = None,
-             resolution: Optional[float] = None, left: EndCondition | str = "free", right: EndCondition | str = "free",
-             junctions: Optional[Sequence[Any]] = None, loads: Sequence[NodalForce | Bearings] = (),
-             initial: Optional[Sequence[Optional[InitialState]]] = None, outputs: Optional[Outputs] = None,
-             probes: Optional[Iterable[Probe]] = None, snapshot_times: Optional[Sequence[float]] = None,
-             snapshot_every: Optional[int] = None, energy_every: Optional[int] = None,
-             record_every: Optional[int] = None, backend: Backend = "numba",
-             progress: bool | None = None, allow_discretization_error: bool = False,
+_SYSTEM = ("give the {what} in the System: ri.System(rods, velocities, {key}=...), then "
+           "ri.simulate(system, duration=...)")
+_TIME = ("give the time-step rule to the Problem: ri.simulate(ri.Problem.of(rods, velocities, duration=..., "
+         "{key}=...)) (or ri.TimeGrid.of(system, duration=..., {key}=...))")
+_OUTPUT = ("give the outputs as one Outputs: ri.simulate(rods, velocities, duration=..., "
+           "outputs=ri.Outputs({key}=...))")
+#: the keywords simulate() took before its parameters moved into the objects it receives, and where each went
+MOVED = {
+    "rods": "rods: the rods (or a System or a Problem) are the first argument: ri.simulate(rods, velocities, "
+            "duration=...)",
+    **{key: f"{key}: " + _SYSTEM.format(what=what, key=key) for key, what in (
+        ("left", "ends"), ("right", "ends"), ("junctions", "junctions"), ("loads", "loads"),
+        ("initial", "initial state"))},
+    **{key: f"{key}: " + _TIME.format(key=key) for key in ("elements", "resolution")},
+    **{key: f"{key}: " + _OUTPUT.format(key=key) for key in ("probes", "snapshot_times", "snapshot_every",
+                                                             "energy_every", "record_every")},
+    "allow_discretization_error": "allow_discretization_error: it is part of the Problem now: ri.simulate("
+                                  "ri.Problem.of(rods, velocities, duration=..., allow_discretization_error=True))",
+}
+
+
+@moved(MOVED, positional=("problem", "velocities", "duration", "dt"))
+def simulate(problem: Problem | System | Sequence[Rod] | Rod, velocities: Optional[Sequence[float]] = None, *,
+             duration: Optional[float] = None, steps: Optional[int] = None, dt: Optional[float] = None,
+             outputs: Optional[Outputs] = None, backend: Backend = "numba", progress: bool | None = None,
              max_element_updates: Optional[float] = None) -> SimulationResult:
     """Simulate the longitudinal impact of rods with the exact wave propagation method (thesis Sec. 3.1).
 
+    ``ri.simulate([striker, bar], [5.0, 0.0], duration=400e-6)`` runs two free rods;
+    ``ri.simulate(ri.System([striker, bar], [5.0, 0.0], right="nonreflecting"), duration=400e-6)`` a system
+    with its ends, junctions, loads and initial state; ``ri.simulate(problem)`` a whole
+    :class:`~rodimpact.Problem`.
+
     Parameters
     ----------
-    rods:
-        Rods listed left to right; or a ready :class:`~rodimpact.rods.system.System`, which holds the
-        ``velocities``, ``left``, ``right``, ``junctions``, ``loads`` and ``initial`` (give none of them then);
-        or a whole :class:`~rodimpact.direct.problem.Problem` (system, time grid and outputs: give only the run
-        options ``backend``, ``progress``, ``allow_discretization_error``, ``max_element_updates``).
+    problem:
+        A :class:`~rodimpact.direct.problem.Problem` (system, time grid, outputs and
+        ``allow_discretization_error``: give only the run options ``backend``, ``progress``,
+        ``max_element_updates`` then); or a :class:`~rodimpact.rods.system.System` (rods, velocities, ends,
+        junctions, loads, initial state), with the time (``duration`` or ``steps``, ``dt``) and ``outputs``; or
+        rods listed left to right (one :class:`~rodimpact.Rod` or a sequence) with their ``velocities``: two
+        free rods joined by a unilateral :class:`~rodimpact.Contact`. Ends, junctions, loads and initial state
+        go into the ``System``; the other time-step rules (``elements``, ``resolution``) and
+        ``allow_discretization_error`` into :meth:`Problem.of <rodimpact.direct.problem.Problem.of>`.
     velocities:
-        Initial velocity of each rod, m/s (positive to the right).
-    duration:
-        Simulated time, s (or give ``steps``).
+        With rods: the initial velocity of each rod, m/s (positive to the right).
+    duration, steps:
+        Simulated time, s, or the number of steps (exactly one).
     dt:
         Time step = travel time of every element, s. Default: the ``dt`` of impedance-level rods, else one
-        that gives each segment >= 4 and the longest rod >= 200 elements.
-    elements:
-        Instead of ``dt``: the number of elements of rod 0, or ``(rod_index, n)``; dt = travel time / n.
-    resolution:
-        Instead of ``dt``: the largest element length in m; dt = resolution / (largest wave speed).
-    left, right:
-        Outer end conditions (objects or "free", "fixed", "nonreflecting"); default free.
-    junctions:
-        One per neighbouring pair; default unilateral :class:`~rodimpact.Contact`.
-    loads:
-        :class:`~rodimpact.NodalForce` / :class:`~rodimpact.Bearings`.
-    initial:
-        Optional per-rod :class:`~rodimpact.InitialState` (non-uniform initial force/velocity).
+        that gives each segment >= 4 and the longest rod >= 200 elements (:meth:`TimeGrid.of
+        <rodimpact.direct.problem.TimeGrid.of>` holds the rule).
     outputs:
-        What to record besides the contact force and end values: an :class:`~rodimpact.Outputs` (probes,
-        snapshots, energy stride, history stride). Or give its fields as the keywords below (not both).
-    probes, snapshot_times, snapshot_every, energy_every, record_every:
-        The fields of :class:`~rodimpact.Outputs`: probe histories; field snapshots at the steps nearest to
-        the given times and/or every k steps; the energy sampling stride (default: about 256 samples per run);
-        keep every ``record_every``-th step of the histories (default 1). Contact and separation times, contact
-        durations and the peak contact force are taken at every step whatever the stride
-        (``result.junction_events``).
+        What to record besides the contact force and end values: an :class:`~rodimpact.Outputs` (probe
+        histories; field snapshots at the steps nearest to given times and/or every k steps; the energy
+        sampling stride, default about 256 samples per run; keep every ``record_every``-th step of the
+        histories, default 1). Contact and separation times, contact durations and the peak contact force are
+        taken at every step whatever the stride (``result.junction_events``).
     backend:
         "numba" (compiled, default) or "numpy" (readable reference path; slow).
     progress:
         Report progress on stderr (default: for runs of more than 10^9 element updates; a bar on a terminal,
         else a line every 10 %).
-    allow_discretization_error:
-        Run even if the lattice represents a rod's travel time or mass with an error above 1 % or smears a
-        segment shorter than one element (:mod:`rodimpact.lattice.tolerance`); the error is then a warning (also
-        listed in ``result.diagnostics["warnings"]``).
-        Default ``False``: a ``ValueError`` that names the rod, the error and a dt that would satisfy it.
     max_element_updates:
         Refuse runs of more elements x steps than this (default 1e11, see
         :data:`rodimpact.direct.guards.DEFAULT_MAX_ELEMENT_UPDATES`; ``math.inf``: no limit). The memory the
         histories and snapshots need is checked against the available memory before the run as well.
 
+    A lattice that represents a rod's travel time or mass with an error above 1 % (or smears a segment shorter
+    than one element) is refused with a ``ValueError`` that names the rod, the error and a dt that would satisfy
+    it, unless the problem allows it (``Problem.of(..., allow_discretization_error=True)``: a warning then).
+    The keywords this function took before the parameters moved into these objects (``left``, ``right``,
+    ``junctions``, ``loads``, ``initial``, ``elements``, ``resolution``, ``probes``, ``snapshot_times``,
+    ``snapshot_every``, ``energy_every``, ``record_every``, ``allow_discretization_error``) raise a ``TypeError``
+    that says where each went (:data:`MOVED`).
+
     Physical quantities may be numbers in SI units, unit strings (``"2 ms"``) or pint Quantities.
     """
-    if isinstance(rods, Problem):
-        keywords = dict(velocities=velocities, duration=duration, dt=dt, steps=steps, elements=elements,
-                        resolution=resolution, junctions=junctions, initial=initial, outputs=outputs, probes=probes,
-                        snapshot_times=snapshot_times, snapshot_every=snapshot_every, energy_every=energy_every,
-                        record_every=record_every)
-        given = [k for k, v in keywords.items() if v is not None] + [k for k, v in (("left", left), ("right", right))
-                                                                      if v != "free"] + (["loads"] if loads else [])
+    if isinstance(problem, Problem):
+        given = [k for k, v in (("velocities", velocities), ("duration", duration), ("steps", steps), ("dt", dt),
+                                ("outputs", outputs)) if v is not None]
         if given:
             raise ValueError(f"{given[0]}: a Problem already holds its system, time grid and outputs; give either "
                              f"the Problem or the rods with {', '.join(f'{k}=' for k in given)}")
-        problem = rods
-    else:
-        outputs = _outputs(outputs, probes=probes, snapshot_times=snapshot_times, snapshot_every=snapshot_every,
-                             energy_every=energy_every, record_every=record_every)
-        if isinstance(rods, System):     # the System holds its velocities, ends, junctions, loads, initial state
-            problem = Problem(rods, TimeGrid.of(rods, duration=duration, steps=steps, dt=dt, elements=elements,
-                                                resolution=resolution), outputs)
-        else:
-            problem = Problem.of(rods, velocities, duration=duration, steps=steps, dt=dt, elements=elements,
-                                 resolution=resolution, left=left, right=right, junctions=junctions, loads=loads,
-                                 initial=initial, outputs=outputs)
+    else:       # a System holds its velocities, ends, junctions, loads and initial state; Problem.of checks
+        problem = Problem.of(problem, velocities, duration=duration, steps=steps, dt=dt, outputs=outputs)
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
-    return _solve(problem, backend, progress, allow_discretization_error, max_element_updates)
+    return _solve(problem, backend, progress, max_element_updates)
 
 
-def _solve(problem: Problem, backend: Backend, progress: Optional[bool], allow_discretization_error: bool,
+def _solve(problem: Problem, backend: Backend, progress: Optional[bool],
            max_element_updates: Optional[float]) -> SimulationResult:
     """Run ``problem``: the discretisation check, the compiled or numpy loop, the result with its diagnostics."""
     system, record = problem.system, problem.outputs
     dt, n_steps = problem.time.dt, problem.time.steps
     lattice = problem.lattice
-    allowed = tolerance.check(system, lattice, allow_discretization_error)
+    allowed = tolerance.check(system, lattice, problem.allow_discretization_error)
     guards.check_element_updates(lattice.n_elements, n_steps, max_element_updates)
     wall0 = _time.perf_counter()
     compiled = problem.compile()
@@ -212,20 +211,6 @@ def passive_right(arrays: dict) -> bool:
     end whose continuation is at rest (prescribed forces and velocities may act at any step)."""
     code, par = int(arrays["end_code"][1]), arrays["end_par"][1]
     return code in (B.FREE, B.FIXED, B.SPRING, B.BITROCK) or (code == B.NONREFLECTING and par[1] == 0.0)
-
-
-def _outputs(outputs: Optional[Outputs], **keywords: Any) -> Outputs:
-    """``outputs``, or an :class:`Outputs` of the keywords that were given (not both)."""
-    given = {key: val for key, val in keywords.items() if val is not None}
-    if outputs is None:
-        return Outputs(**given) if given else NO_OUTPUTS
-    if not isinstance(outputs, Outputs):
-        raise TypeError(f"outputs: must be an Outputs(probes=..., snapshot_times=..., ...), got "
-                        f"{type(outputs).__name__}")
-    if given:
-        raise ValueError(f"outputs: give the outputs either as outputs=Outputs(...) or as the keywords "
-                         f"{', '.join(f'{key}=' for key in given)}, not both")
-    return outputs
 
 
 def _probe_histories(system: System, lat: Lattice, probes: list[Probe], arrays: dict) -> dict[str, ProbeHistory]:

@@ -26,7 +26,9 @@ from typing import Any, Callable, Mapping, Optional, Sequence
 import numpy as np
 
 from .._version import __version__
+from ._sweep_keywords import problem_of
 from .guards import Progress
+from .problem import Problem
 from .result import ROCK_QUANTITIES, SimulationResult, rock_value
 from .simulate import simulate
 
@@ -163,9 +165,15 @@ def sweep(build: Callable[..., Any], grid: Mapping[str, Sequence[Any]],
     Parameters
     ----------
     build:
-        ``build(**point)`` for a grid point (e.g. ``build(length=0.2, velocity=5.0)``) returns the keyword
-        arguments of :func:`~rodimpact.simulate` as a dict, or an object with a ``simulate()`` method (a
-        :class:`~rodimpact.io.model.Model`).
+        ``build(**point)`` for a grid point (e.g. ``build(length=0.2, velocity=5.0)``) returns the run: a
+        :class:`~rodimpact.Problem`; or a dict of keywords, read by one rule
+        (:mod:`rodimpact.direct._sweep_keywords`): ``rods`` (or a ``System``), ``velocities``, the ends,
+        junctions, loads, initial state, the time (``duration`` or ``steps``; ``dt``, ``elements`` or
+        ``resolution``) and ``allow_discretization_error`` go to :meth:`Problem.of <rodimpact.Problem.of>`;
+        ``probes``, ``snapshot_times``, ``snapshot_every``, ``energy_every``, ``record_every`` make one
+        :class:`~rodimpact.Outputs` (or give ``outputs``); ``backend``, ``progress`` and
+        ``max_element_updates`` go to :func:`~rodimpact.simulate`; or an object with a ``simulate()`` method
+        (a :class:`~rodimpact.io.model.Model`).
     grid:
         Parameter name -> 1-d sequence of values (numbers or strings); all combinations are run, at most
         :data:`MAX_SWEEP_POINTS` (a larger grid is refused before anything runs). Names are the keyword arguments
@@ -370,12 +378,15 @@ def _metrics(metrics: Any) -> tuple[dict[str, Metric], dict[str, str]]:
 
 
 def _simulate(spec: Any) -> SimulationResult:
+    if isinstance(spec, Problem):
+        return simulate(spec, progress=False)
     if isinstance(spec, Mapping):
-        return simulate(**{"progress": False, **spec})
+        problem, options = problem_of(spec)
+        return simulate(problem, **{"progress": False, **options})
     if callable(getattr(spec, "simulate", None)):
         return spec.simulate(progress=False)
-    raise TypeError(f"build: must return the keyword arguments of rodimpact.simulate as a dict, or a Model; got "
-                    f"{type(spec).__name__}")
+    raise TypeError(f"build: must return the keyword arguments of a run as a dict (rods, velocities, duration, ...: "
+                    f"see rodimpact.sweep), a Problem, or a Model; got {type(spec).__name__}")
 
 
 def _scalar(name: str, value: Any) -> float:

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..direct.problem import Problem
+from ..direct.recording import Outputs
 from ..direct.simulate import simulate
 from ..lattice.lattice import build_lattice
 from ..rods.rod import Rod
@@ -58,8 +60,9 @@ def synthesize_by_resimulation(window_values: np.ndarray, struck: System, strike
     for q in range(2, n + 1):
         trial = np.concatenate([[z[q - 2]], z[q - 2::-1]])      # left to right: Z_q = Z_{q-1}, Z_{q-1}, ..., Z_1
         rod = Rod.from_impedance(trial, dt)
-        sim = simulate(with_striker(struck, rod, striker_velocity), steps=2 * q - 1, dt=dt, backend=backend,
-                       energy_every=2 * q, allow_discretization_error=True)
+        sim = simulate(Problem.of(with_striker(struck, rod, striker_velocity), steps=2 * q - 1, dt=dt,
+                                  outputs=Outputs(energy_every=2 * q), allow_discretization_error=True),
+                       backend=backend)
         n_bar = float(sim.junction_force[0, 2 * (q - 1)])
         pairs = 4.0 * z[:q - 2] * z[1:q - 1] / (z[:q - 2] + z[1:q - 1]) ** 2     # K_{r,r+1}, r = 1..q-2
         k = k11 * float(np.prod(pairs))                                         # eq. 4.8

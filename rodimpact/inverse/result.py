@@ -10,6 +10,8 @@ from typing import Any, Optional
 import numpy as np
 
 from ..direct.result import SimulationResult
+from ..direct.problem import Problem
+from ..direct.recording import Outputs
 from ..direct.simulate import simulate
 from ._files import write_new_file
 from ..rods.material import STEEL, Material
@@ -302,7 +304,8 @@ class SynthesisResult(SynthesisTables):
         system = with_striker(self.struck, self.to_rod(), self.striker_velocity)
         tr = self.transformation
         if tr is None:
-            sim = simulate(system, steps=2 * m, dt=self.dt, backend=backend, allow_discretization_error=True)
+            sim = simulate(Problem.of(system, steps=2 * m, dt=self.dt, allow_discretization_error=True),
+                           backend=backend)
             achieved = np.asarray(sim.junction_force[0], dtype=float)
             target = np.repeat(self.window_values[:m], 2)
             dev = np.max(np.abs(achieved - target)) / np.max(np.abs(target))
@@ -310,8 +313,10 @@ class SynthesisResult(SynthesisTables):
                                       float(dev), float(dev), sim)
         loc = tr.location
         d = loc.node
-        sim = simulate(system, steps=d + 2 * m, dt=self.dt, backend=backend, probes=[position_probe(loc, 1)],
-                       snapshot_times=[0.0] if tr.quantity == "incident" else None, allow_discretization_error=True)
+        outputs = Outputs(probes=[position_probe(loc, 1)],
+                          snapshot_times=[0.0] if tr.quantity == "incident" else None)
+        sim = simulate(Problem.of(system, steps=d + 2 * m, dt=self.dt, outputs=outputs,
+                                  allow_discretization_error=True), backend=backend)
         p = sim.probe("synthesis_position")
         k_left = sim.lattice.rod_start[1] + loc.element_left
         n0 = v0 = 0.0

@@ -16,6 +16,8 @@ import numpy as np
 
 from .._validate import finite, fits_in_memory, non_negative
 from ..direct.result import Probe
+from ..direct.problem import Problem
+from ..direct.recording import Outputs
 from ..direct.simulate import simulate
 from ..lattice.lattice import Lattice, build_lattice
 from ..rods.conditions import (BitRockEnd, Bonded, Contact, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
@@ -163,8 +165,8 @@ def face_response(system: System, force_windows: np.ndarray, dt: float, backend:
     fast = chain_response(system, 0, dt, 2 * n, np.repeat(force_windows, 2)) if backend == "numba" else None
     if fast is not None:         # the same lattice equations, only where they reach the face in time
         return FaceResponse(fast[1], z1, "simulated")
-    res = simulate(driven(system, force_windows, dt), steps=2 * n, dt=dt, backend=backend,
-                   allow_discretization_error=True)    # the synthesis runs at the user's dt: a warning
+    res = simulate(Problem.of(driven(system, force_windows, dt), steps=2 * n, dt=dt,
+                              allow_discretization_error=True), backend=backend)   # at the user's dt: a warning
     return FaceResponse(np.asarray(res.end_velocity["left"], dtype=float), z1, "simulated")
 
 
@@ -226,9 +228,9 @@ def simulate_observed(system: System, location: Optional[Location], quantity: st
     observed history: the contact force at the impact face (``location`` None) or the ``quantity`` at the
     located node of the struck system (see :func:`position_quantity`)."""
     probes = [] if location is None else [position_probe(location, 1)]
-    sim = simulate(system, steps=steps, dt=dt, backend=backend, probes=probes,
-                   snapshot_times=[0.0] if location is not None and quantity == "incident" else None,
-                   allow_discretization_error=True)    # at the user's dt, as synthesize: a warning
+    outputs = Outputs(probes=probes, snapshot_times=[0.0] if location is not None and quantity == "incident" else None)
+    sim = simulate(Problem.of(system, steps=steps, dt=dt, outputs=outputs,        # at the user's dt, as
+                              allow_discretization_error=True), backend=backend)  # synthesize: a warning
     if location is None:
         return sim, np.asarray(sim.junction_force[0], dtype=float)
     p = sim.probe("synthesis_position")

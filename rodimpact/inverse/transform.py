@@ -28,6 +28,8 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .._validate import positive
+from ..direct.problem import Problem
+from ..direct.recording import Outputs
 from ..direct.simulate import simulate
 from ..rods.system import InitialState, System
 from ._rectangular import rectangular_response
@@ -84,9 +86,10 @@ def _check_quantity(quantity: str) -> str:
 def _response(system: System, location: Location, dt: float, steps: int, quantity: str, backend: str,
               relative_to_initial: bool) -> np.ndarray:
     """Quantity at the located node, per step, from one run of the direct solver."""
-    res = simulate(system, steps=steps, dt=dt, probes=[position_probe(location)], backend=backend,
-                   snapshot_times=[0.0] if quantity == "incident" and relative_to_initial else None,
-                   allow_discretization_error=True)     # the synthesis runs at the user's dt: a warning
+    outputs = Outputs(probes=[position_probe(location)],
+                      snapshot_times=[0.0] if quantity == "incident" and relative_to_initial else None)
+    res = simulate(Problem.of(system, steps=steps, dt=dt, outputs=outputs, allow_discretization_error=True),
+                   backend=backend)     # the synthesis runs at the user's dt: a warning
     p = res.probe("synthesis_position")
     z_left = float(res.lattice.impedance[location.element_left])
     n0 = v0 = 0.0

@@ -134,11 +134,11 @@ class Model:
     @property
     def problem(self) -> Problem:
         """The run as a :class:`~rodimpact.direct.problem.Problem`: the system, :attr:`time` and the outputs the
-        file declares (probes, snapshots, energy and history strides)."""
+        file declares (probes, snapshots, energy and history strides), and ``allow_discretization_error``."""
         outputs = Outputs(probes=self.probes, snapshot_times=list(self.output.snapshot_times) or None,
                             snapshot_every=self.snapshot_every(), energy_every=self.energy_every,
                             record_every=self.output.record_every)
-        return Problem(self.system, self.time, outputs)
+        return Problem(self.system, self.time, outputs, self.allow_discretization_error)
 
     def simulate(self, *, progress: Optional[bool] = None, backend: Optional[str] = None,
                  max_element_updates: Optional[float] = None) -> SimulationResult:
@@ -150,7 +150,6 @@ class Model:
 
         try:
             return simulate(self.problem, backend=backend or self.backend, progress=progress,
-                            allow_discretization_error=self.allow_discretization_error,
                             max_element_updates=max_element_updates)
         except ModelError:
             raise

@@ -5,8 +5,9 @@ travel time and its mass by ``time_scale = n dt / theta_L`` (:mod:`rodimpact.lat
 shorter than one element is smeared over its neighbours. Both change the physics (a 0.3 m striker at
 dt = 100 us becomes one element with 72.5 % more mass), so :func:`rodimpact.simulate` refuses a lattice whose
 travel-time or mass error exceeds :data:`TOLERANCE` (1 %) or that has a segment shorter than an element, unless
-``allow_discretization_error=True`` (model files: ``simulation.allow_discretization_error = true``). The solver's
-own default time step always satisfies this tolerance (:func:`resolving_time_step`).
+the problem says ``allow_discretization_error=True`` (:class:`~rodimpact.Problem`; model files:
+``simulation.allow_discretization_error = true``). The solver's own default time step always satisfies this
+tolerance (:func:`resolving_time_step`).
 """
 
 from __future__ import annotations
@@ -110,7 +111,7 @@ def check(system: System, lattice: Lattice, allow: bool) -> list[str]:
     shown = "; ".join(found[:_SHOWN]) + (f"; and {len(found) - _SHOWN} more" if len(found) > _SHOWN else "")
     text = f"dt: {shown}. dt = {good:.6g} s represents every rod within {TOLERANCE:.0%}"
     if not allow:
-        raise ValueError(text + " (or allow the error: allow_discretization_error=True, in a model file "
-                                "simulation.allow_discretization_error = true)")
+        raise ValueError(text + " (or allow the error: Problem.of(..., allow_discretization_error=True), in a "
+                                "model file simulation.allow_discretization_error = true)")
     warnings.warn(text, stacklevel=caller_stacklevel())
     return [text]

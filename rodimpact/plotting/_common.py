@@ -139,7 +139,7 @@ def check_snapshot_times(recorded: np.ndarray, wanted: Any, dt: float, name: str
             i = int(np.flatnonzero(outside)[0])
             raise ValueError(f"{name}: {t[i]:.6g} s (entry {i}) lies outside the recorded snapshots, "
                              f"{lo:.6g} to {hi:.6g} s ({recorded.size} snapshot(s)); record snapshots there with "
-                             "snapshot_times= or snapshot_every= ([output] in a model file)")
+                             "Outputs(snapshot_times=...) or Outputs(snapshot_every=...) ([output] in a model file)")
     return t
 
 
@@ -148,8 +148,8 @@ def nearest_snapshots(times: np.ndarray, wanted: Optional[np.ndarray], dt: float
     """Indices of the recorded snapshots nearest to ``wanted`` times (default: 3 spread over the run); every wanted
     time must lie within the recorded ones (to ``dt``, see :func:`check_snapshot_times`)."""
     if times.size == 0:
-        raise ValueError("snapshots: the result holds no field snapshots; record some with snapshot_times= or "
-                         "snapshot_every= ([output] in a model file)")
+        raise ValueError("snapshots: the result holds no field snapshots; record some with "
+                         "Outputs(snapshot_times=...) or Outputs(snapshot_every=...) ([output] in a model file)")
     if wanted is not None:
         wanted = check_snapshot_times(times, wanted, dt, name)
     if wanted is None or len(wanted) == 0:

@@ -43,7 +43,8 @@ def animate_force(result: Any, path: str | Path, *, fps: int = 15, max_frames: i
 
     s = result.snapshots
     if s is None or s.time.size < 2:
-        raise ValueError("animate_force: needs at least two field snapshots (snapshot_every= or snapshot_count)")
+        raise ValueError("animate_force: needs at least two field snapshots (Outputs(snapshot_every=...), or "
+                         "snapshot_count in a model file)")
     frames = np.unique(np.linspace(0, s.time.size - 1, min(max_frames, s.time.size)).round().astype(int))
     lat = result.lattice
     fig = Figure(figsize=(7.0, 3.5), layout="constrained")

@@ -27,8 +27,8 @@ def plot_snapshots(result: Any, times: Optional[Sequence[float]] = None, axes: A
     check_result(result)
     s = result.snapshots
     if s is None:
-        raise ValueError("plot_snapshots: the result holds no field snapshots; record some with snapshot_times= "
-                         "or snapshot_every= ([output] in a model file)")
+        raise ValueError("plot_snapshots: the result holds no field snapshots; record some with "
+                         "Outputs(snapshot_times=...) or Outputs(snapshot_every=...) ([output] in a model file)")
     idx = nearest_snapshots(s.time, times, result.dt, "times")
     if axes is None:
         fig, axes = new_axes(None, nrows=len(idx), ncols=2, figsize=(9.0, 2.3 * len(idx) + 0.6), sharex=True)
@@ -97,7 +97,7 @@ def plot_xt(result: Any, ax: Any = None, *, cmap: str = "RdBu_r", limit: Optiona
     _check_cmap(cmap)
     s = result.snapshots
     if s is None or s.time.size < 2:
-        raise ValueError("plot_xt: needs at least two field snapshots; record them with snapshot_every= or "
+        raise ValueError("plot_xt: needs at least two field snapshots; record them with Outputs(snapshot_every=...) or "
                          "snapshot_count ([output] in a model file)")
     fig, ax = new_axes(ax, figsize=(7.0, 5.0))
     order = np.argsort(s.time)

@@ -78,8 +78,8 @@ def plot_strain(result: Any, ax: Any = None, *, probes: Optional[Sequence[str]] 
     check_result(result)
     names = _probe_names(result, probes)
     if not names:
-        raise ValueError("plot_strain: the result holds no probes; record strains with probes=[Probe(name, rod, "
-                         "position)] ([[probes]] in a model file)")
+        raise ValueError("plot_strain: the result holds no probes; record strains with outputs=Outputs(probes=["
+                         "Probe(name, rod, position)]) ([[probes]] in a model file)")
     _, ax = new_axes(ax)
     t = result.time
     k, unit = time_scale(float(t[-1]) if t.size else 0.0)

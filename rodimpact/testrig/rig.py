@@ -55,6 +55,7 @@ import numpy as np
 
 from .._validate import finite, positive
 from ..direct.result import Probe, SimulationResult
+from ..direct.recording import Outputs
 from ..direct.simulate import simulate
 from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
@@ -553,7 +554,7 @@ def simulate_rig(setup: RigSetup, duration: float = 1.6e-3, dt: Optional[float] 
                          f"(dt = {dt:.4g} s), got {duration!r} s")
     t_eff = min(2.0 * setup.rod.total_travel_time, duration)
     k_eff = max(1, int(math.floor(t_eff / dt * (1 + 1e-12))))
-    res = simulate(setup.system, duration=duration, dt=dt, probes=setup.probes, energy_every=k_eff,
+    res = simulate(setup.system, duration=duration, dt=dt, outputs=Outputs(probes=setup.probes, energy_every=k_eff),
                    backend=backend)
     raw = {name: res.probe(name).force for name, _ in setup.gauges}
     filtered_time = None

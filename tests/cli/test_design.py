@@ -43,8 +43,8 @@ def test_init_design_runs_as_it_is_and_beats_every_uniform_striker(tmp_path):
     best = np.inf
     for d in np.linspace(0.005, 0.06, 56):
         z = ri.STEEL.impedance(np.pi / 4 * d * d)
-        sim = ri.simulate([ri.Rod.from_impedance([z] * n, dt), bar], [12.0, 0.0], steps=t.size, dt=dt,
-                          right="nonreflecting")
+        sim = ri.simulate(ri.System([ri.Rod.from_impedance([z] * n, dt), bar], [12.0, 0.0], right="nonreflecting"),
+                          steps=t.size, dt=dt)
         best = min(best, np.linalg.norm(sim.junction_force[0] - target) / np.linalg.norm(target))
     assert s["misfit"] < 0.8 * best
     assert 0.005 - 1e-12 <= s["outer_diameter_min_m"] and s["outer_diameter_max_m"] <= 0.06 + 1e-12

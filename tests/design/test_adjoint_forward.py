@@ -18,7 +18,8 @@ def reference(struck, z, v, steps, location=None, quantity="force"):
     if location is None:
         sim = ri.simulate(system, steps=steps, dt=DT)
         return sim, sim.junction_force[0]
-    sim = ri.simulate(system, steps=steps, dt=DT, probes=[position_probe(location, 1)], snapshot_times=[0.0])
+    sim = ri.simulate(system, steps=steps, dt=DT,
+                      outputs=ri.Outputs(probes=[position_probe(location, 1)], snapshot_times=[0.0]))
     p = sim.probe("synthesis_position")
     k = sim.lattice.rod_start[1] + location.element_left
     q = position_quantity(quantity, p.force, p.velocity, float(sim.lattice.impedance[k]),

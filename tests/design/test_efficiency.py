@@ -68,7 +68,7 @@ def test_design_beats_the_uniform_piston_of_the_same_mass_and_length():
     assert d.mass == pytest.approx(m, rel=1e-10)
     assert d.constraint_report["mass_active"] == "prescribed"
     uniform = ri.Rod.from_impedance(np.full(n, m / (n * dt)), dt)
-    sim = ri.simulate([uniform, rod], [10.0, 0.0], steps=d.time.size, dt=dt, right=end)
+    sim = ri.simulate(ri.System([uniform, rod], [10.0, 0.0], right=end), steps=d.time.size, dt=dt)
     work = -dt * np.dot(sim.end_force["right"], sim.end_velocity["right"])
     eta_uniform = work / (0.5 * m * 10.0 ** 2)
     assert d.efficiency > eta_uniform + 0.01

@@ -14,34 +14,39 @@ def rods():
     return [ri.Rod.from_impedance([5e4] * 20, dt=DT), ri.Rod.from_impedance([5e4] * 40, dt=DT)]
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(velocities=[1.0]), "velocities: need one initial velocity per rod"),
-    (dict(velocities=[1.0, float("nan")]), r"velocities\[1\]: must be finite"),
-    (dict(velocities=[1.0, 0.0], duration=-1.0), "duration: must be > 0"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, steps=10), "exactly one of duration"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, dt=0.0), "dt: must be > 0"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, right="sticky"), "right: must be an end condition"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, probes=[ri.Probe("p", 1, 5.0)]),
+@pytest.mark.parametrize("run, match", [
+    (lambda rods: ri.simulate(rods, [1.0]), "velocities: need one initial velocity per rod"),
+    (lambda rods: ri.simulate(rods, [1.0, float("nan")]), r"velocities\[1\]: must be finite"),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=-1.0), "duration: must be > 0"),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e-4, steps=10), "exactly one of duration"),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e-4, dt=0.0), "dt: must be > 0"),
+    (lambda rods: ri.simulate(ri.System(rods, [1.0, 0.0], right="sticky"), duration=1e-4),
+     "right: must be an end condition"),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e-4, outputs=ri.Outputs(probes=[ri.Probe("p", 1, 5.0)])),
      r"probes\[0\].position: must lie within rod 1"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, probes=[ri.Probe("p", 3, 0.0)]), "rod index 3 does not exist"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, junctions=[ri.Bonded(), ri.Bonded()]), "junctions: need one"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, loads=[ri.NodalForce(1, 9.0, 1.0)]),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e-4, outputs=ri.Outputs(probes=[ri.Probe("p", 3, 0.0)])),
+     "rod index 3 does not exist"),
+    (lambda rods: ri.simulate(ri.System(rods, [1.0, 0.0], junctions=[ri.Bonded(), ri.Bonded()]), duration=1e-4),
+     "junctions: need one"),
+    (lambda rods: ri.simulate(ri.System(rods, [1.0, 0.0], loads=[ri.NodalForce(1, 9.0, 1.0)]), duration=1e-4),
      r"loads\[0\].position: must lie inside rod 1"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, loads=[ri.Bearings(1, [(0.0, 9.0)], 0.3)]),
+    (lambda rods: ri.simulate(ri.System(rods, [1.0, 0.0], loads=[ri.Bearings(1, [(0.0, 9.0)], 0.3)]), duration=1e-4),
      r"loads\[0\].spans: span \(0.0, 9.0\) m lies outside rod 1"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, left=ri.ForceEnd(lambda t: np.where(t > 1e-5, np.nan, 0.0))),
+    (lambda rods: ri.simulate(ri.System(rods, [1.0, 0.0],
+                                        left=ri.ForceEnd(lambda t: np.where(t > 1e-5, np.nan, 0.0))), duration=1e-4),
      "ForceEnd.force: evaluates to nan"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, backend="fortran"), "backend: must be"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, snapshot_times=[1.0]), "snapshot_times: must lie in"),
-    (dict(velocities=[1.0, 0.0], steps=10**12), "steps: at most"),
-    (dict(velocities=[1.0, 0.0], duration=1e308), "duration: .* steps of dt"),
-    (dict(velocities=[1.0, 0.0], duration=1e-4, probes=[ri.Probe("p", "nope", 0.0)]),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e-4, backend="fortran"), "backend: must be"),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e-4, outputs=ri.Outputs(snapshot_times=[1.0])),
+     "snapshot_times: must lie in"),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], steps=10**12), "steps: at most"),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e308), "duration: .* steps of dt"),
+    (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e-4, outputs=ri.Outputs(probes=[ri.Probe("p", "nope", 0.0)])),
      r"probes\[0\].rod: no rod is named 'nope'"),
-    (dict(velocities=[1.0, 0.0], steps=2, elements=(True, 10)), "elements: rod index"),
+    (lambda rods: ri.simulate(ri.Problem.of(rods, [1.0, 0.0], steps=2, elements=(True, 10))), "elements: rod index"),
 ])
-def test_bad_simulation_input(rods, kwargs, match):
+def test_bad_simulation_input(rods, run, match):
     with pytest.raises((ValueError, TypeError), match=match):
-        ri.simulate(rods, **kwargs)
+        run(rods)
 
 
 def test_dt_that_cannot_resolve_a_segment():
@@ -53,20 +58,20 @@ def test_dt_that_cannot_resolve_a_segment():
 def test_bearing_span_without_nodes():
     rod = ri.Rod([ri.Cylinder(0.5, 0.05)])
     with pytest.raises(ValueError, match="no lattice node"):
-        ri.simulate([rod], velocities=[1.0], duration=1e-4, dt=rod.total_travel_time / 5,    # nodes every 0.1 m
-                    loads=[ri.Bearings(0, [(0.22, 0.25)], 0.3)])
+        ri.simulate(ri.System([rod], [1.0], loads=[ri.Bearings(0, [(0.22, 0.25)], 0.3)]), duration=1e-4,
+                    dt=rod.total_travel_time / 5)    # nodes every 0.1 m
 
 
 @pytest.mark.skipif(physical_memory() is None, reason="the platform does not report its memory (no sysconf)")
 def test_runs_too_large_for_the_memory_are_refused_before_allocating():
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(1.0, 0.04)])]
     with pytest.raises(ValueError, match="dt: .* lattice elements .* more than this machine's memory"):
-        ri.simulate(rods, [1.0, 0.0], steps=2, elements=10**12)
+        ri.simulate(ri.Problem.of(rods, [1.0, 0.0], steps=2, elements=10**12))
     with pytest.raises(ValueError, match="dt: .* lattice elements"):
-        ri.simulate(rods, [1.0, 0.0], steps=2, resolution=1e-13)
+        ri.simulate(ri.Problem.of(rods, [1.0, 0.0], steps=2, resolution=1e-13))
     with pytest.raises(ValueError, match=r"steps: the run would need about .* GiB of memory \(histories .*\), more than the .* available now; keep every n-th step with record_every"):
-        ri.simulate(rods, [1.0, 0.0], steps=1_999_000_000, elements=2,
-                    probes=[ri.Probe(f"p{i}", 1, 0.5) for i in range(20)])
+        ri.simulate(ri.Problem.of(rods, [1.0, 0.0], steps=1_999_000_000, elements=2,
+                                  outputs=ri.Outputs(probes=[ri.Probe(f"p{i}", 1, 0.5) for i in range(20)])))
 
 
 def test_probe_fields_are_checked_and_rods_may_be_named():
@@ -78,15 +83,15 @@ def test_probe_fields_are_checked_and_rods_may_be_named():
         ri.Probe("p", True, 0.1)
     assert ri.Probe("p", np.int64(1), np.float32(0.5)).rod == 1
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)], name="striker"), ri.Rod([ri.Cylinder(1.0, 0.04)], name="bar")]
-    by_name = ri.simulate(rods, [5.0, 0.0], duration=3e-4, probes=[ri.Probe("g", "bar", 0.5)])
-    by_index = ri.simulate(rods, [5.0, 0.0], duration=3e-4, probes=[ri.Probe("g", 1, 0.5)])
+    by_name = ri.simulate(rods, [5.0, 0.0], duration=3e-4, outputs=ri.Outputs(probes=[ri.Probe("g", "bar", 0.5)]))
+    by_index = ri.simulate(rods, [5.0, 0.0], duration=3e-4, outputs=ri.Outputs(probes=[ri.Probe("g", 1, 0.5)]))
     assert by_name.probes["g"].probe == by_index.probes["g"].probe
     assert np.array_equal(by_name.probes["g"].force, by_index.probes["g"].force)
 
 
 def test_elements_accepts_numpy_integers():
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(1.0, 0.04)])]
-    res = ri.simulate(rods, [5.0, 0.0], steps=10, elements=(np.int64(1), np.int32(10)))
+    res = ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=10, elements=(np.int64(1), np.int32(10))))
     assert res.lattice.rod_start[2] - res.lattice.rod_start[1] == 10
 
 

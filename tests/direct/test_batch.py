@@ -14,10 +14,10 @@ DT = 1e-6
 C = ri.STEEL.wave_speed
 
 
-def alone(system, striker, velocity, **kwargs):
-    """The reference: simulate() with the design in the striker slot."""
+def alone(system, striker, velocity, steps, **outputs):
+    """The reference: simulate() with the design in the striker slot (``outputs``: fields of its Outputs)."""
     s = dataclasses.replace(system, rods=(striker, *system.rods[1:]), velocities=(velocity, *system.velocities[1:]))
-    return ri.simulate(s, dt=DT, **kwargs)
+    return ri.simulate(s, steps=steps, dt=DT, outputs=ri.Outputs(**outputs) if outputs else None)
 
 
 def assert_design_equals_run(res, d, run):
@@ -56,7 +56,7 @@ def test_random_strikers_equal_simulate(right):
     zs = random_strikers(6, 30, seed=1)
     velocities = np.linspace(2.0, 9.0, 6)
     system = ri.System([bar(1), bar(300)], [0.0, 0.0], right=right)
-    res = ri.simulate_batch(system, zs, velocities, dt=DT, steps=400, threads=2)
+    res = ri.simulate_batch(system, zs, velocities, ri.TimeGrid(DT, 400), threads=2)
     phases = []
     for d in range(6):
         run = alone(system, ri.Rod.from_impedance(zs[d], DT), velocities[d], steps=400)
@@ -73,7 +73,7 @@ def test_struck_rod_moving_at_first_or_forced_far_end(right, moving):
     zs = random_strikers(3, 25, seed=3)
     initial = [None, ri.InitialState(velocity=lambda x: np.where((x > 0.2) & (x < 0.3), -0.5, 0.0))] if moving else None
     system = ri.System([bar(1), bar(100)], [0.0, 0.0], right=right, initial=initial)
-    res = ri.simulate_batch(system, zs, [3.0, 4.0, 5.0], dt=DT, steps=350)
+    res = ri.simulate_batch(system, zs, [3.0, 4.0, 5.0], ri.TimeGrid(DT, 350))
     for d in range(3):
         assert_design_equals_run(res, d, alone(system, ri.Rod.from_impedance(zs[d], DT), [3.0, 4.0, 5.0][d],
                                                steps=350))
@@ -92,11 +92,11 @@ def test_stepped_striker_separates_and_recontacts_on_a_loaded_chain():
                        loads=[ri.NodalForce(2, 0.2, lambda t: -2e3 * np.sin(2e4 * t)),
                               ri.Bearings(1, [(0.01, 0.07)], 0.2)])
     velocities = [4.0, 6.0, 8.0, 10.0]
-    res = ri.simulate_batch(system, strikers, velocities, dt=dt, duration=1.2e-3, record_every=3,
-                            max_phases=64)
+    res = ri.simulate_batch(system, strikers, velocities, ri.TimeGrid.of(duration=1.2e-3, dt=dt),
+                            outputs=ri.BatchOutputs(record_every=3, max_phases=64))
     for d, striker in enumerate(strikers):
         s = dataclasses.replace(system, rods=(striker, adapter, rod), velocities=(velocities[d], 0.0, 0.0))
-        run = ri.simulate(s, dt=dt, duration=1.2e-3, record_every=3)
+        run = ri.simulate(s, duration=1.2e-3, dt=dt, outputs=ri.Outputs(record_every=3))
         assert_design_equals_run(res, d, run)
     assert res.n_phases[:, 0].max() >= 2 and res.n_phases[:, 1].max() >= 1
     assert np.all(res.work_loads != 0.0) and np.all(res.work_friction < 0.0)
@@ -106,13 +106,13 @@ def test_energy_stride_and_threads_and_executor_do_not_change_the_numbers():
     """simulate's energy stride changes nothing (its waves persist between compiled calls), nor do threads."""
     zs = random_strikers(5, 20, seed=2)
     system = ri.System([bar(1), bar(60)], [0.0, 0.0], right="nonreflecting")
-    res = ri.simulate_batch(system, zs, 5.0, dt=DT, steps=300, threads=1)
+    res = ri.simulate_batch(system, zs, 5.0, ri.TimeGrid(DT, 300), threads=1)
     for d in range(5):
         assert_design_equals_run(res, d, alone(system, ri.Rod.from_impedance(zs[d], DT), 5.0, steps=300,
                                                energy_every=7))
-    two = ri.simulate_batch(system, zs, 5.0, dt=DT, steps=300, threads=2)
+    two = ri.simulate_batch(system, zs, 5.0, ri.TimeGrid(DT, 300), threads=2)
     with ThreadPoolExecutor(2) as pool:
-        pooled = ri.simulate_batch(system, zs, 5.0, dt=DT, steps=300, executor=pool, chunk_size=2)
+        pooled = ri.simulate_batch(system, zs, 5.0, ri.TimeGrid(DT, 300), executor=pool, chunk_size=2)
     for other in (two, pooled):
         for f in dataclasses.fields(res):
             if f.name not in ("system", "diagnostics"):
@@ -125,10 +125,11 @@ def test_without_the_final_state_only_the_final_fields_are_left_out(pooled):
     rigid-body velocity taken from them, bit for bit."""
     zs = random_strikers(5, 20, seed=3)
     system = ri.System([bar(1), bar(60)], [0.0, 0.0], right="free")
-    full = ri.simulate_batch(system, zs, np.linspace(3.0, 8.0, 5), dt=DT, steps=300)
+    full = ri.simulate_batch(system, zs, np.linspace(3.0, 8.0, 5), ri.TimeGrid(DT, 300))
     with ThreadPoolExecutor(2) as pool:
-        slim = ri.simulate_batch(system, zs, np.linspace(3.0, 8.0, 5), dt=DT, steps=300, final_state=False,
-                                 executor=pool if pooled else None, chunk_size=2)
+        slim = ri.simulate_batch(system, zs, np.linspace(3.0, 8.0, 5), ri.TimeGrid(DT, 300),
+                                 outputs=ri.BatchOutputs(final_state=False), executor=pool if pooled else None,
+                                 chunk_size=2)
     assert slim.final_force is None and slim.final_velocity is None
     assert np.all(np.abs(full.rigid_body_velocity) > 0.0)
     for f in dataclasses.fields(full):
@@ -181,7 +182,7 @@ def test_equal_impedances_give_the_closed_form():
     zs = np.full((3, n), z)
     velocities = np.array([1.0, 2.5, 7.0])
     res = ri.simulate_batch(ri.System([bar(1), bar(100)], [0.0, 0.0], right="nonreflecting"), zs, velocities,
-                            dt=DT, steps=150)
+                            ri.TimeGrid(DT, 150))
     expected = np.where(np.arange(150) < 2 * n, -z * velocities[:, None] / 2, 0.0)
     np.testing.assert_allclose(res.contact_force, expected, rtol=1e-12, atol=1e-9)
     np.testing.assert_allclose(res.contact_duration[:, 0], 2 * n * DT, rtol=1e-12)
@@ -192,8 +193,8 @@ def test_equal_impedances_give_the_closed_form():
 def test_to_xarray_and_truncated_phases():
     zs = random_strikers(4, 30, seed=1)
     system = ri.System([bar(1), bar(120)], [0.0, 0.0], right="free")
-    res = ri.simulate_batch(system, zs, np.linspace(2.0, 9.0, 4), dt=DT, steps=400, max_phases=1,
-                            contact_force=False)
+    res = ri.simulate_batch(system, zs, np.linspace(2.0, 9.0, 4), ri.TimeGrid(DT, 400),
+                            outputs=ri.BatchOutputs(contact_force=False, max_phases=1))
     assert res.contact_force is None and res.time.size == 0
     ds = res.to_xarray()
     assert ds["peak_force"].dims == ("design", "junction") and ds["kinetic_energy"].dims == ("design", "rod",
@@ -234,7 +235,16 @@ SYSTEM = ri.System([bar(1), bar(20)], [0.0, 0.0])
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, executor="pool"), TypeError, "executor: must be"),
     ((SYSTEM, np.ones((2, 5)), 1.0), dict(steps=10, dt=DT, executor=ThreadPoolExecutor(1), chunk_size=0),
      ValueError, "chunk_size: must be"),
+    ((SYSTEM, np.ones((2, 5)), 1.0, (DT, 10)), dict(), TypeError, r"time: must be a TimeGrid, e.g. ri.TimeGrid\(dt, "),
+    ((SYSTEM, np.ones((2, 5)), 1.0, ri.TimeGrid(DT, 10)), dict(outputs={"max_phases": 2}), TypeError,
+     r"outputs: must be a BatchOutputs\(record_every="),
 ])
 def test_bad_input(args, kwargs, error, match):
+    """The time given as ``TimeGrid.of(steps= / duration=, dt=)``, the recording options as ``BatchOutputs``: their
+    fields are checked when made and name the field."""
+    time = {key: kwargs.pop(key) for key in ("duration", "steps", "dt") if key in kwargs}
+    out = {key: kwargs.pop(key) for key in ("record_every", "contact_force", "final_state", "max_phases")
+           if key in kwargs}
     with pytest.raises(error, match=match):
-        ri.simulate_batch(*args, **kwargs)
+        ri.simulate_batch(*args, *([ri.TimeGrid.of(**time)] if time else []),
+                          **({"outputs": ri.BatchOutputs(**out)} if out else {}), **kwargs)

@@ -33,7 +33,7 @@ def closed_form(x, n):
     return eta, delta_max, delta_max * (1.0 - 1.0 / RATIO)
 
 
-def blow(x, n, steps=None, mirrored=False, **kw):
+def blow(x, n, steps=None, mirrored=False, outputs=None):
     """The piston on a rod of 4 n elements with the rock at its far end, run for 9 n steps: the rock has unloaded
     and no reflection has come back to it (the first would arrive at 12 n). ``mirrored``: the same system
     reflected, rock at the left end, the piston coming from the right."""
@@ -42,8 +42,8 @@ def blow(x, n, steps=None, mirrored=False, **kw):
     rod = ri.Rod.from_impedance([Z] * (4 * n), DT, name="rod")
     rock = ri.BitRockEnd(k1, RATIO * k1)
     if mirrored:
-        return ri.simulate([rod, piston], [0.0, -V], steps=steps or 9 * n, dt=DT, left=rock, **kw)
-    return ri.simulate([piston, rod], [V, 0.0], steps=steps or 9 * n, dt=DT, right=rock, **kw)
+        return ri.simulate(ri.System([rod, piston], [0.0, -V], left=rock), steps=steps or 9 * n, dt=DT, outputs=outputs)
+    return ri.simulate(ri.System([piston, rod], [V, 0.0], right=rock), steps=steps or 9 * n, dt=DT, outputs=outputs)
 
 
 @pytest.mark.parametrize("x", [0.5, 1.2564, 2.0])
@@ -86,8 +86,8 @@ def test_energy_and_penetrations_obey_the_bilinear_law_with_rebounds():
     k1, k2 = 1.5 * Z / (n * DT), 4.5 * Z / (n * DT)
     striker = ri.Rod.from_impedance(np.full(n, 2.0 * Z), DT)
     rod = ri.Rod.from_impedance(np.full(3 * n, Z), DT)
-    run = ri.simulate([striker, rod], [8.0, 0.0], steps=40 * n, dt=DT, right=ri.BitRockEnd(k1, k2),
-                      junctions=[ri.Bonded()])
+    run = ri.simulate(ri.System([striker, rod], [8.0, 0.0], right=ri.BitRockEnd(k1, k2), junctions=[ri.Bonded()]),
+                      steps=40 * n, dt=DT)
     (o,) = run.bit_rock
     w = run.end_velocity["right"]
     path = np.concatenate([[0.0], np.cumsum(w * DT)])        # the bit's path, step by step
@@ -99,8 +99,8 @@ def test_energy_and_penetrations_obey_the_bilinear_law_with_rebounds():
     assert o.energy == pytest.approx(e.total[0] - e.total[-1], rel=1e-11)
     assert o.efficiency == pytest.approx(o.energy / (0.5 * 2.0 * Z * n * DT * 8.0 ** 2), rel=1e-12)
     loading = next(k for k in range(1, w.size) if w[k] > 0 and path[k + 1] > 0.5 * path.max())
-    mid = ri.simulate([striker, rod], [8.0, 0.0], steps=loading + 1, dt=DT, right=ri.BitRockEnd(k1, k2),
-                      junctions=[ri.Bonded()]).bit_rock[0]
+    mid = ri.simulate(ri.System([striker, rod], [8.0, 0.0], right=ri.BitRockEnd(k1, k2), junctions=[ri.Bonded()]),
+                      steps=loading + 1, dt=DT).bit_rock[0]
     assert mid.in_contact and mid.final_force > 0.1 * k1 * mid.max_penetration
     assert mid.energy == pytest.approx(bilinear_work(mid.final_penetration, mid.max_penetration, k1, k2), rel=1e-11)
 
@@ -115,7 +115,7 @@ def test_a_rock_at_the_left_end_is_the_mirror_image():
 
 def test_independent_of_the_recording_stride_and_kept_by_save_and_load(tmp_path):
     full = blow(1.2564, 50)
-    sparse = blow(1.2564, 50, record_every=7, energy_every=13)
+    sparse = blow(1.2564, 50, outputs=ri.Outputs(record_every=7, energy_every=13))
     assert sparse.bit_rock == full.bit_rock
     ri.save(sparse, tmp_path / "run")
     assert ri.load(tmp_path / "run").bit_rock == full.bit_rock
@@ -126,8 +126,9 @@ def test_no_rock_no_entry_and_a_force_driven_rod_has_no_efficiency():
                         steps=50, dt=DT)
     assert plain.bit_rock == () and summarize(plain)["bit_rock"] == []
     assert "rock" not in format_summary(summarize(plain))
-    driven = ri.simulate([ri.Rod.from_impedance([Z] * 40, DT)], [0.0], steps=120, dt=DT,
-                         left=ri.ForceEnd(lambda t: np.where(t < 20 * DT, -1e5, 0.0)), right=ri.BitRockEnd(2e9, 4e9))
+    driven = ri.simulate(ri.System([ri.Rod.from_impedance([Z] * 40, DT)], [0.0],
+                                   left=ri.ForceEnd(lambda t: np.where(t < 20 * DT, -1e5, 0.0)),
+                                   right=ri.BitRockEnd(2e9, 4e9)), steps=120, dt=DT)
     (o,) = driven.bit_rock
     assert o.energy > 0 and o.striker_energy == 0.0 and o.efficiency is None
     text = format_summary(summarize(driven))

@@ -30,7 +30,7 @@ def closed_form(x, k2_over_k1):
     return 2.0 * (1.0 - np.exp(-x)) ** 2 / x * (1.0 - 1.0 / k2_over_k1)
 
 
-def pulse_into_rock(x, k2_over_k1, n, backend="numba", **kw):
+def pulse_into_rock(x, k2_over_k1, n, backend="numba"):
     """A uniform rod of 1.5 n + 5 elements (dt = T / n), the rectangular wave F_I for T entering at the left end
     (prescribed force, free afterwards), rock at the right end; simulated until the rock has unloaded and
     before the wave reflected at the rock comes back to it."""
@@ -38,8 +38,8 @@ def pulse_into_rock(x, k2_over_k1, n, backend="numba", **kw):
     k1 = x * Z / T
     n_el = int(1.5 * n) + 5
     rod = ri.Rod.from_impedance(np.full(n_el, Z), dt=dt)
-    return ri.simulate([rod], [0.0], steps=n_el + 3 * n, left=ri.ForceEnd(lambda t: np.where(t < T, F_I, 0.0)),
-                       right=ri.BitRockEnd(k1, k2_over_k1 * k1), backend=backend, **kw)
+    return ri.simulate(ri.System([rod], [0.0], left=ri.ForceEnd(lambda t: np.where(t < T, F_I, 0.0)),
+                                 right=ri.BitRockEnd(k1, k2_over_k1 * k1)), steps=n_el + 3 * n, backend=backend)
 
 
 @pytest.mark.parametrize("x", [0.5, 1.2564, 2.0])
@@ -74,8 +74,8 @@ def test_work_at_the_rock_is_that_of_the_continuous_law(n):
     k1, k2 = 1.5 * Z / T, 4.5 * Z / T
     striker = ri.Rod.from_impedance(np.full(n, 2.0 * Z), dt=dt)
     rod = ri.Rod.from_impedance(np.full(3 * n, Z), dt=dt)
-    r = ri.simulate([striker, rod], [8.0, 0.0], steps=40 * n, right=ri.BitRockEnd(k1, k2),
-                    junctions=[ri.Bonded()])
+    r = ri.simulate(ri.System([striker, rod], [8.0, 0.0], right=ri.BitRockEnd(k1, k2), junctions=[ri.Bonded()]),
+                    steps=40 * n)
     w = r.end_velocity["right"]
     delta = np.concatenate([[0.0], np.cumsum(w * dt)])
     delta_max = float(np.max(delta))
@@ -125,10 +125,10 @@ def test_numba_and_numpy_agree():
     k1 = 1.2 * Z / T
     striker = ri.Rod.from_impedance(np.full(30, 1.5 * Z), dt=dt)
     rod = ri.Rod.from_impedance(np.linspace(Z, 2 * Z, 70), dt=dt)
-    kw = dict(steps=1500, left=ri.BitRockEnd(0.3 * k1, 2 * k1), right=ri.BitRockEnd(k1, 3 * k1),
-              junctions=[ri.Contact()])
-    fast = ri.simulate([striker, rod], [6.0, -1.0], backend="numba", **kw)
-    ref = ri.simulate([striker, rod], [6.0, -1.0], backend="numpy", **kw)
+    system = ri.System([striker, rod], [6.0, -1.0], left=ri.BitRockEnd(0.3 * k1, 2 * k1),
+                       right=ri.BitRockEnd(k1, 3 * k1), junctions=[ri.Contact()])
+    fast = ri.simulate(system, steps=1500, backend="numba")
+    ref = ri.simulate(system, steps=1500, backend="numpy")
     scale = 2 * Z * 6.0
     for side in ("left", "right"):
         assert np.max(np.abs(fast.end_force[side])) > 0.05 * scale          # both rocks are loaded

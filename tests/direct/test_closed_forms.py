@@ -16,8 +16,7 @@ def rect_bar(z, n):
 def test_equal_impedance_rectangular_pulse_exact():
     """Uniform striker on a uniform rod of equal impedance: N = -Z v / 2 for 2 L / c, then separation."""
     z, v, n = 51.0e3, 5.0, 50
-    res = ri.simulate([rect_bar(z, n), rect_bar(z, 400)], velocities=[v, 0.0], duration=300e-6,
-                      right="nonreflecting")
+    res = ri.simulate(ri.System([rect_bar(z, n), rect_bar(z, 400)], [v, 0.0], right="nonreflecting"), duration=300e-6)
     expected = np.where(res.time < 2 * n * DT - 0.5 * DT, -z * v / 2, 0.0)
     np.testing.assert_allclose(res.contact_force, expected, rtol=0, atol=1e-12 * z * v)
     np.testing.assert_allclose(res.separation_times(), [2 * n * DT], rtol=1e-12)
@@ -31,8 +30,7 @@ def test_unequal_impedance_staircase(z1, z2):
     """Uniform striker Z1 (n elements) on a semi-infinite bar Z2: window k of length 2T carries
     N1 r^k, r = (Z1 - Z2)/(Z1 + Z2), while compressive; for Z1 < Z2 the rods separate at 2T."""
     v, n = 4.0, 40
-    res = ri.simulate([rect_bar(z1, n), rect_bar(z2, 50)], velocities=[v, 0.0], steps=8 * n,
-                      right="nonreflecting")
+    res = ri.simulate(ri.System([rect_bar(z1, n), rect_bar(z2, 50)], [v, 0.0], right="nonreflecting"), steps=8 * n)
     n1 = -z1 * z2 * v / (z1 + z2)
     r = (z1 - z2) / (z1 + z2)
     k = np.arange(res.time.size) // (2 * n)
@@ -53,7 +51,7 @@ def test_stepped_striker_first_stairs_and_separation():
     (R = (Z0-Z1)/(Z0+Z1)) and transmitted into the bar (T = 2 Z0/(Z0+Z1)): N2 = N1 (1 + R T)."""
     z0, z1, v = 51.0e3, 28.7e3, 5.0
     striker = ri.Rod.from_impedance([z0] * 50 + [z1] * 50, dt=DT)
-    res = ri.simulate([striker, rect_bar(z0, 400)], velocities=[v, 0.0], duration=400e-6, right="nonreflecting")
+    res = ri.simulate(ri.System([striker, rect_bar(z0, 400)], [v, 0.0], right="nonreflecting"), duration=400e-6)
     n1 = -z1 * z0 * v / (z1 + z0)
     big_r = (z0 - z1) / (z0 + z1)
     big_t = 2 * z0 / (z0 + z1)
@@ -73,8 +71,8 @@ def test_free_end_reflects_with_sign_change_fixed_end_without():
     pulse = ri.ForceEnd(lambda t: np.where(t < width * DT, p, 0.0))
     probe = ri.Probe("mid", 0, rect_bar(40e3, n).length / 2)
     for right, sign in (("free", -1.0), ("fixed", 1.0)):
-        res = ri.simulate([rect_bar(40e3, n)], velocities=[0.0], steps=2 * n, left=pulse, right=right,
-                          probes=[probe])
+        res = ri.simulate(ri.System([rect_bar(40e3, n)], [0.0], left=pulse, right=right), steps=2 * n,
+                          outputs=ri.Outputs(probes=[probe]))
         f = res.probe("mid").force
         first = f[n // 2: n // 2 + width]
         back = f[3 * n // 2: 3 * n // 2 + width]
@@ -87,8 +85,8 @@ def test_free_end_reflects_with_sign_change_fixed_end_without():
 def test_nonreflecting_end_absorbs_completely():
     n, width, p = 100, 30, -2500.0
     pulse = ri.ForceEnd(lambda t: np.where(t < width * DT, p, 0.0))
-    res = ri.simulate([rect_bar(40e3, n)], velocities=[0.0], steps=3 * n, left=pulse, right="nonreflecting",
-                      energy_every=1)
+    res = ri.simulate(ri.System([rect_bar(40e3, n)], [0.0], left=pulse, right="nonreflecting"), steps=3 * n,
+                      outputs=ri.Outputs(energy_every=1))
     assert np.max(np.abs(res.final_force)) <= 1e-12 * abs(p)
     assert np.max(np.abs(res.final_velocity)) <= 1e-12 * abs(p) / 40e3
     # energy that came in through the left end all left through the right end
@@ -110,8 +108,8 @@ def test_recontact_hand_calculation():
     z, v0, na = 40e3, 2.0, 60
     t1, t2 = 20 * DT, 35 * DT
     drive = ri.VelocityEnd(lambda t: np.where(t < t1, v0, np.where(t < t2, -v0, v0)))
-    res = ri.simulate([rect_bar(z, na), rect_bar(z, 400)], velocities=[0.0, 0.0], steps=na + 100,
-                      left=drive, right="nonreflecting")
+    res = ri.simulate(ri.System([rect_bar(z, na), rect_bar(z, 400)], [0.0, 0.0], left=drive, right="nonreflecting"),
+                      steps=na + 100)
     ta = na * DT
     np.testing.assert_allclose(res.separation_times(), [ta + t1], rtol=1e-12)
     np.testing.assert_allclose(res.contact_times(), [ta, ta + 2 * t2 - t1], rtol=1e-12)
@@ -127,7 +125,7 @@ def test_thesis_setup2_full_staircase_and_separation_time():
 
     z0, z1, v = 51.0e3, 28.7e3, 5.0
     striker = ri.Rod.from_impedance([z0] * 50 + [z1] * 50, dt=DT)
-    res = ri.simulate([striker, rect_bar(z0, 400)], velocities=[v, 0.0], duration=600e-6, right="nonreflecting")
+    res = ri.simulate(ri.System([striker, rect_bar(z0, 400)], [v, 0.0], right="nonreflecting"), duration=600e-6)
     exact = rr.solve_wave_trains([rr.UniformPiece(z0, 50 * DT), rr.UniformPiece(z1, 50 * DT)],
                                  [rr.UniformPiece(z0, 2.0)], v, 600e-6)
     mid = res.time + 0.5 * DT
@@ -140,7 +138,7 @@ def test_no_spurious_recontact_after_separation_at_rest():
     """Equal cylinders: after separation the striker face is at rest and the gap stays zero to rounding; the
     rods must not be re-contacted by rounding noise (exactly one contact phase)."""
     rods = [ri.Rod([ri.Cylinder(0.4, 0.05)]), ri.Rod([ri.Cylinder(1.6, 0.05)])]
-    res = ri.simulate(rods, velocities=[3.0, 0.0], steps=400, elements=(0, 40))
+    res = ri.simulate(ri.Problem.of(rods, [3.0, 0.0], steps=400, elements=(0, 40)))
     np.testing.assert_allclose(res.separation_times(), [80 * res.dt], rtol=1e-12)
     assert res.contact_times().size == 1
 
@@ -150,8 +148,9 @@ def test_prescribed_histories_are_applied_at_every_step_of_a_long_run():
     (every 65536 steps and at energy samples) the end force equals the history at the step midpoints."""
     rod = rect_bar(3e4, 6)
     hist = lambda t: -100.0 * np.sin(2e3 * t) - 50.0      # noqa: E731
-    res = ri.simulate([rod], velocities=[0.0], steps=140_000, left=ri.ForceEnd(hist), right="fixed",
-                      loads=[ri.NodalForce(0, rod.length / 2, lambda t: 10.0 * np.cos(1e3 * t))], energy_every=999)
+    res = ri.simulate(ri.System([rod], [0.0], left=ri.ForceEnd(hist), right="fixed",
+                                loads=[ri.NodalForce(0, rod.length / 2, lambda t: 10.0 * np.cos(1e3 * t))]),
+                      steps=140_000, outputs=ri.Outputs(energy_every=999))
     np.testing.assert_allclose(res.end_force["left"], hist((np.arange(140_000) + 0.5) * DT), rtol=0, atol=1e-12 * 150)
     e = res.energy
     assert e.balance_error < 1e-10

@@ -62,7 +62,7 @@ def test_default_run_is_bit_identical_to_the_frozen_loop(make, steps, probes):
     With its default energy sampling the old loop rebuilt its waves at every sample, which moves the last bits."""
     system = make()
     ref = old_simulate(system, steps, DT, probes, energy_every=steps)
-    res = ri.simulate(system, steps=steps, dt=DT, probes=probes)       # default energy sampling (~256 samples)
+    res = ri.simulate(system, steps=steps, dt=DT, outputs=ri.Outputs(probes=probes))   # default energy sampling (~256)
     assert np.array_equal(res.junction_force, ref.junction_force)
     assert np.array_equal(res.junction_contact, ref.junction_contact)
     for side in ("left", "right"):
@@ -105,9 +105,9 @@ def test_results_do_not_depend_on_what_is_recorded():
     """Energy samples and snapshots at every step leave the motion untouched, bit for bit (the kernel no longer
     stops and rebuilds its wave variables at each sample)."""
     system = busy_system()
-    plain = ri.simulate(system, steps=700, dt=DT, energy_every=700)
-    dense = ri.simulate(system, steps=700, dt=DT, energy_every=1, snapshot_every=1, record_every=3,
-                        probes=BUSY_PROBES)
+    plain = ri.simulate(system, steps=700, dt=DT, outputs=ri.Outputs(energy_every=700))
+    dense = ri.simulate(system, steps=700, dt=DT,
+                        outputs=ri.Outputs(probes=BUSY_PROBES, snapshot_every=1, energy_every=1, record_every=3))
     assert np.array_equal(dense.junction_force, plain.junction_force[:, ::3])
     assert np.array_equal(dense.final_force, plain.final_force)
     assert np.array_equal(dense.final_velocity, plain.final_velocity)
@@ -121,8 +121,8 @@ def test_recorded_samples_follow_their_definitions(backend):
     """Energy and momentum per rod are the sums of thesis eq. 3.25 over the snapshot fields; the snapshot
     displacement at a node equals the probe's displacement there (accumulated V dt) to rounding."""
     system = busy_system()
-    res = ri.simulate(system, steps=400, dt=DT, energy_every=40, snapshot_every=40, probes=BUSY_PROBES,
-                      backend=backend)
+    res = ri.simulate(system, steps=400, dt=DT,
+                      outputs=ri.Outputs(probes=BUSY_PROBES, snapshot_every=40, energy_every=40), backend=backend)
     s, e, lat = res.snapshots, res.energy, res.lattice
     assert np.array_equal(s.time, e.time) and np.allclose(s.time, np.arange(0, 401, 40) * DT, rtol=0, atol=1e-18)
     z, rs = lat.impedance[:, None], lat.rod_start
@@ -144,8 +144,8 @@ def test_recorded_samples_follow_their_definitions(backend):
 
 def test_numba_and_numpy_record_the_same():
     system = busy_system()
-    kw = dict(steps=900, dt=DT, energy_every=13, snapshot_times=[1e-4, 3.3e-4], snapshot_every=300,
-              record_every=7, probes=BUSY_PROBES)
+    kw = dict(steps=900, dt=DT, outputs=ri.Outputs(energy_every=13, snapshot_times=[1e-4, 3.3e-4], snapshot_every=300,
+                                                   record_every=7, probes=BUSY_PROBES))
     fast, ref = ri.simulate(system, backend="numba", **kw), ri.simulate(system, backend="numpy", **kw)
     for q in ("kinetic", "strain", "momentum", "work_left", "work_right", "work_loads", "work_friction", "impulse"):
         a, b = getattr(fast.energy, q), getattr(ref.energy, q)
@@ -169,8 +169,8 @@ def test_many_contact_phases_outgrow_the_event_buffer(monkeypatch):
     drive = ri.VelocityEnd(lambda t: v0 * (0.5 + np.sign(np.sin(2 * np.pi * t / (60 * DT)))))
     rods = [ri.Rod.from_impedance(np.full(20, z), dt=DT), ri.Rod.from_impedance(np.full(50, z), dt=DT)]
     for backend in ("numba", "numpy"):
-        res = ri.simulate(rods, velocities=[0.0, 0.0], steps=1200, left=drive, right="nonreflecting",
-                          backend=backend, junctions=[ri.Contact(gap=1e-5)])
+        res = ri.simulate(ri.System(rods, [0.0, 0.0], left=drive, right="nonreflecting",
+                                    junctions=[ri.Contact(gap=1e-5)]), steps=1200, backend=backend)
         (ev,) = res.junction_events
         (expected,) = junction_events_from_history(res.junction_force, res.junction_contact)
         assert ev.start.size >= 8, ev.start

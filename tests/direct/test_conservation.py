@@ -22,8 +22,8 @@ def test_energy_conserved_over_1e5_steps():
     striker = ri.Rod.from_impedance([60e3] * 30 + [20e3] * 30 + [90e3] * 20, dt=DT)
     middle = ri.Rod.from_impedance(np.linspace(40e3, 80e3, 70), dt=DT)
     bar = ri.Rod.from_impedance([50e3] * 150, dt=DT)
-    res = ri.simulate([striker, middle, bar], velocities=[6.0, 0.0, -1.0], steps=100_000,
-                      junctions=[ri.Contact(), ri.Bonded()], energy_every=97)
+    res = ri.simulate(ri.System([striker, middle, bar], [6.0, 0.0, -1.0], junctions=[ri.Contact(), ri.Bonded()]),
+                      steps=100_000, outputs=ri.Outputs(energy_every=97))
     assert res.energy.balance_error < 1e-12
     free = ri.simulate([striker, bar], velocities=[6.0, 0.0], steps=100_000)
     total = free.energy.total
@@ -33,11 +33,12 @@ def test_energy_conserved_over_1e5_steps():
 def test_momentum_balance_with_end_force_loads_and_friction():
     bar = ri.Rod.from_impedance(np.linspace(30e3, 70e3, 120), dt=DT)
     striker = ri.Rod.from_impedance([45e3] * 40, dt=DT)
-    res = ri.simulate(
-        [striker, bar], velocities=[3.0, 0.0], steps=3000, energy_every=7,
+    res = ri.simulate(ri.System(
+        [striker, bar], [3.0, 0.0],
         right=ri.ForceEnd(lambda t: -2e3 * np.sin(2e4 * t)),
         loads=[ri.NodalForce(1, 0.2, lambda t: 500.0 * np.cos(3e4 * t)),
-               ri.Bearings(1, [(0.05, 0.15), (0.3, 0.5)], friction_coefficient=0.3, normal_load=2e4)])
+               ri.Bearings(1, [(0.05, 0.15), (0.3, 0.5)], friction_coefficient=0.3, normal_load=2e4)]),
+        steps=3000, outputs=ri.Outputs(energy_every=7))
     e = res.energy
     p = e.momentum.sum(axis=0)
     scale = 45e3 * 40 * DT * 3.0
@@ -74,8 +75,8 @@ def test_linear_scaling_with_velocity(z1, z2, v, a):
     """Without friction the response is linear in the impact velocity (as long as a > 0 keeps the same
     contact pattern; for a < 0 the rods move apart and never touch)."""
     rods = [random_rod(z1), random_rod(z2)]
-    r1 = ri.simulate(rods, velocities=[v, 0.0], steps=300, right="nonreflecting")
-    r2 = ri.simulate(rods, velocities=[a * v, 0.0], steps=300, right="nonreflecting")
+    r1 = ri.simulate(ri.System(rods, [v, 0.0], right="nonreflecting"), steps=300)
+    r2 = ri.simulate(ri.System(rods, [a * v, 0.0], right="nonreflecting"), steps=300)
     if a > 0:
         np.testing.assert_allclose(r2.contact_force, a * r1.contact_force, rtol=0,
                                    atol=1e-11 * np.max(np.abs(r1.contact_force)))
@@ -92,10 +93,11 @@ def test_time_reversal_of_lossless_lattice(z, steps, left, right):
     rng = np.random.default_rng(len(z) + steps)
     n0 = rng.normal(size=len(z)) * 1e3
     v0 = rng.normal(size=len(z))
-    fwd = ri.simulate([rod], velocities=[0.0], steps=steps, left=left, right=right,
-                      initial=[ri.InitialState(force=n0, velocity=v0)])
-    back = ri.simulate([rod], velocities=[0.0], steps=steps, left=left, right=right,
-                       initial=[ri.InitialState(force=fwd.final_force, velocity=-fwd.final_velocity)])
+    fwd = ri.simulate(ri.System([rod], [0.0], left=left, right=right, initial=[ri.InitialState(force=n0, velocity=v0)]),
+                      steps=steps)
+    back = ri.simulate(ri.System([rod], [0.0], left=left, right=right,
+                                 initial=[ri.InitialState(force=fwd.final_force, velocity=-fwd.final_velocity)]),
+                       steps=steps)
     np.testing.assert_allclose(back.final_force, n0, rtol=0, atol=1e-9 * np.max(np.abs(n0)))
     np.testing.assert_allclose(-back.final_velocity, v0, rtol=0, atol=1e-9 * np.max(np.abs(v0)))
 
@@ -111,9 +113,9 @@ def test_friction_linear_energy_decay_over_100_round_trips():
     t_rod2 = rod2.total_travel_time
     duration = 100 * 2 * t_rod2
     bearings = ri.Bearings(1, [(0.2, 0.5), (1.1, 1.4)], friction_coefficient=0.3)
-    kw = dict(velocities=[3.0, -3.0], duration=duration, dt=t_rod2 / 300, energy_every=200)
-    with_f = ri.simulate([rod1, rod2], loads=[bearings], **kw)
-    without = ri.simulate([rod1, rod2], **kw)
+    kw = dict(duration=duration, dt=t_rod2 / 300, outputs=ri.Outputs(energy_every=200))
+    with_f = ri.simulate(ri.System([rod1, rod2], [3.0, -3.0], loads=[bearings]), **kw)
+    without = ri.simulate([rod1, rod2], [3.0, -3.0], **kw)
     e0 = without.energy.total
     assert np.max(np.abs(e0 - e0[0])) / e0[0] < 1e-12
     e = with_f.energy
@@ -133,8 +135,9 @@ def test_friction_stops_a_sliding_rod_without_chatter_or_energy_gain():
     at rest: nodes stick (no sign chatter), the energy never increases and stays constant once stuck."""
     rod = ri.Rod.from_impedance([4e4] * 50, dt=DT)
     m, v0, f_r = 4e4 * 50 * DT, 0.3, 0.5 * 2e4
-    res = ri.simulate([rod], velocities=[v0], steps=3000, energy_every=1,
-                      loads=[ri.Bearings(0, [(0.0, rod.length)], friction_coefficient=0.5, normal_load=2e4)])
+    res = ri.simulate(ri.System([rod], [v0],
+                                loads=[ri.Bearings(0, [(0.0, rod.length)], friction_coefficient=0.5, normal_load=2e4)]),
+                      steps=3000, outputs=ri.Outputs(energy_every=1))
     e = res.energy
     p, t, total = e.momentum[0], e.time, e.total
     t_stop = m * v0 / f_r

@@ -33,8 +33,8 @@ def test_first_contact_after_an_initial_gap_at_gap_over_closing_speed(fraction, 
     closing = v_striker - v_target
     steps_to_contact = 20 + fraction
     gap = steps_to_contact * DT * closing
-    res = ri.simulate([bar(30), bar(200)], velocities=[v_striker, v_target], steps=60,
-                      junctions=[ri.Contact(gap=gap)], right="nonreflecting")
+    res = ri.simulate(ri.System([bar(30), bar(200)], [v_striker, v_target], right="nonreflecting",
+                                junctions=[ri.Contact(gap=gap)]), steps=60)
     t_star = gap / closing
     contact = res.contact_times()
     assert contact.size == 1
@@ -62,7 +62,7 @@ def test_recontact_after_separation_at_the_hand_calculated_time(fraction):
     closing_steps = 10 + fraction
     v1 = v0 * (k2 - k1) / closing_steps
     drive = ri.VelocityEnd(lambda t: np.where(t < t1, v0, np.where(t < t2, -v0, v1)))
-    res = ri.simulate([bar(n_a), bar(300)], velocities=[0.0, 0.0], steps=n_a + 60, left=drive, right="nonreflecting")
+    res = ri.simulate(ri.System([bar(n_a), bar(300)], [0.0, 0.0], left=drive, right="nonreflecting"), steps=n_a + 60)
     t_a = n_a * DT
     t_star = t_a + t2 + v0 * (t2 - t1) / v1
     np.testing.assert_allclose(res.separation_times(), [t_a + t1], rtol=1e-12)

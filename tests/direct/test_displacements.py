@@ -18,7 +18,7 @@ N_EL = 50
 def test_probe_displacement_of_a_rigidly_moving_rod_is_v_t():
     rod = ri.Rod.from_impedance(np.full(N_EL, Z), dt=DT)
     probes = [ri.Probe(name, 0, x) for name, x in (("left", 0.0), ("mid", rod.length / 2), ("right", rod.length))]
-    res = ri.simulate([rod], velocities=[2.0], steps=80, probes=probes)
+    res = ri.simulate([rod], [2.0], steps=80, outputs=ri.Outputs(probes=probes))
     for p in probes:
         np.testing.assert_allclose(res.probe(p.name).displacement, 2.0 * np.arange(80) * DT, rtol=1e-12, atol=0)
 
@@ -33,8 +33,8 @@ def test_probe_and_snapshot_displacements_behind_a_wave_front():
     m = 20
     x_probe = m / N_EL * rod.length
     steps = N_EL - 5
-    res = ri.simulate([rod], velocities=[0.0], steps=steps, left=ri.ForceEnd(-force),
-                      probes=[ri.Probe("p", 0, x_probe)], snapshot_times=[30 * DT])
+    res = ri.simulate(ri.System([rod], [0.0], left=ri.ForceEnd(-force)), steps=steps,
+                      outputs=ri.Outputs(probes=[ri.Probe("p", 0, x_probe)], snapshot_times=[30 * DT]))
     k = np.arange(steps)
     expected = force / Z * np.maximum(k - m, 0) * DT
     np.testing.assert_allclose(res.probe("p").displacement, expected, rtol=0, atol=1e-12 * force / Z * steps * DT)

@@ -32,7 +32,7 @@ def run_right_end(n: int, right: ri.EndCondition, incident) -> tuple[np.ndarray,
     end velocity, dt) over the 2 T after the incident wave reaches the right end."""
     dt = T / n
     rod = ri.Rod.from_impedance(np.full(n, Z), dt=dt)
-    res = ri.simulate([rod], velocities=[0.0], steps=3 * n, left=ri.ForceEnd(incident), right=right)
+    res = ri.simulate(ri.System([rod], [0.0], left=ri.ForceEnd(incident), right=right), steps=3 * n)
     force = res.end_force["right"]
     assert np.all(force[:n] == 0.0)                      # nothing arrives before the travel time
     t = (np.arange(2 * n) + 0.5) * dt
@@ -178,8 +178,8 @@ def test_nonreflecting_end_with_its_own_impedance_reflects_with_the_impedance_ra
     n = 50
     rod = ri.Rod.from_impedance(np.full(n, Z), dt=T / n)
     probe = ri.Probe("mid", 0, rod.length / 2)
-    res = ri.simulate([rod], velocities=[0.0], steps=2 * n, left=ri.ForceEnd(rectangular), right=ri.NonReflectingEnd(z_end),
-                      probes=[probe])
+    res = ri.simulate(ri.System([rod], [0.0], left=ri.ForceEnd(rectangular), right=ri.NonReflectingEnd(z_end)),
+                      steps=2 * n, outputs=ri.Outputs(probes=[probe]))
     r = (z_end - Z) / (z_end + Z)
     end = res.end_force["right"]
     np.testing.assert_allclose(end[n:2 * n], (1 + r) * -F_I, rtol=1e-12)
@@ -193,7 +193,8 @@ def test_nonreflecting_end_leaves_a_uniformly_moving_rod_alone():
     """The continuation is in the initial state of the end element: a rod moving uniformly at v (any end
     impedance) stays unstressed; with an end that ignored the motion the force would be Z_end v / 2 or so."""
     rod = ri.Rod.from_impedance(np.full(30, Z), dt=T / 30)
-    res = ri.simulate([rod], velocities=[3.0], steps=90, left=ri.NonReflectingEnd(2 * Z), right=ri.NonReflectingEnd(Z / 3))
+    res = ri.simulate(ri.System([rod], [3.0], left=ri.NonReflectingEnd(2 * Z), right=ri.NonReflectingEnd(Z / 3)),
+                      steps=90)
     assert np.max(np.abs(res.end_force["left"])) <= 1e-12 * Z * 3.0
     assert np.max(np.abs(res.end_force["right"])) <= 1e-12 * Z * 3.0
     np.testing.assert_allclose(res.final_velocity, 3.0, rtol=1e-12)

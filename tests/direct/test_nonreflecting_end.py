@@ -43,8 +43,8 @@ def test_rodimpact_end_equals_a_literal_implementation_of_eq_3_20(seed):
     v0 = rng.uniform(-3.0, 3.0, n)                    # random initial velocity, m/s
     rod = ri.Rod.from_impedance(z, dt)
     for steps in (1, 7, 45, 150):
-        res = ri.simulate([rod], velocities=[0.0], steps=steps, dt=dt, left="nonreflecting",
-                          right="nonreflecting", initial=[ri.InitialState(force=n0, velocity=v0)])
+        res = ri.simulate(ri.System([rod], [0.0], left="nonreflecting", right="nonreflecting",
+                                    initial=[ri.InitialState(force=n0, velocity=v0)]), steps=steps, dt=dt)
         n_ref, v_ref = thesis_lattice(z, n0, v0, steps)
         scale_n, scale_v = np.abs(n0).max(), np.abs(v0).max()
         assert np.max(np.abs(res.final_force - n_ref)) <= 1e-12 * scale_n
@@ -55,8 +55,8 @@ def test_a_reflecting_end_is_not_mistaken_for_eq_3_20():
     """The comparison can fail: a free end differs from the energy sink by far more than rounding."""
     rng = np.random.default_rng(5)
     z, n0, v0 = rng.uniform(20e3, 120e3, 40), rng.uniform(-5e4, 5e4, 40), rng.uniform(-3, 3, 40)
-    res = ri.simulate([ri.Rod.from_impedance(z, 1e-6)], velocities=[0.0], steps=30, dt=1e-6, left="free",
-                      right="nonreflecting", initial=[ri.InitialState(force=n0, velocity=v0)])
+    res = ri.simulate(ri.System([ri.Rod.from_impedance(z, 1e-6)], [0.0], left="free", right="nonreflecting",
+                                initial=[ri.InitialState(force=n0, velocity=v0)]), steps=30, dt=1e-6)
     n_ref, _ = thesis_lattice(z, n0, v0, 30)
     assert np.max(np.abs(res.final_force - n_ref)) > 1e-3 * np.abs(n0).max()
 

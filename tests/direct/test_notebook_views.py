@@ -18,8 +18,8 @@ def _uniform_impact(n_rods=2):
     """Equal steel bars (d = 20 mm); the striker (0.2 m) hits at 5 m/s; exact lattice (dt = 0.2 m / c / 40)."""
     rods = [ri.Rod([ri.Cylinder(0.2, 0.02)], name="striker")] + [ri.Rod([ri.Cylinder(0.6, 0.02)]) for _ in
                                                                  range(n_rods - 1)]
-    return ri.simulate(rods, [5.0] + [0.0] * (n_rods - 1), duration=4e-4, dt=0.2 / C / 40,
-                       junctions=["contact"] + ["bonded"] * (n_rods - 2), probes=[ri.Probe("SG", 1, 0.3)])
+    return ri.simulate(ri.System(rods, [5.0] + [0.0] * (n_rods - 1), junctions=["contact"] + ["bonded"] * (n_rods - 2)),
+                       duration=4e-4, dt=0.2 / C / 40, outputs=ri.Outputs(probes=[ri.Probe("SG", 1, 0.3)]))
 
 
 def test_simulation_dataframe_holds_the_histories_on_a_time_index():

@@ -1,5 +1,5 @@
 """The problem object (issue 21): one value holds the system, the time grid and the outputs; it is validated when
-made, compiled by one public step, and solved by simulate() exactly as the keyword form is."""
+made, compiled by one public step, and solved by simulate() exactly as the short forms are."""
 
 import numpy as np
 import pytest
@@ -14,11 +14,11 @@ def rods():
     return [ri.Rod.from_impedance([51e3] * 50 + [28.7e3] * 50, dt=DT), ri.Rod.from_impedance([51e3] * 400, dt=DT)]
 
 
-def test_the_problem_and_the_keyword_form_give_the_same_run_bit_for_bit():
+def test_the_problem_and_the_system_form_give_the_same_run_bit_for_bit():
     probe = ri.Probe("g", 1, 0.2)
-    kw = dict(duration=400e-6, right="nonreflecting")
-    a = ri.simulate(rods(), [5.0, 0.0], probes=[probe], **kw)
-    p = Problem.of(rods(), [5.0, 0.0], outputs=ri.Outputs(probes=[probe]), **kw)
+    a = ri.simulate(ri.System(rods(), [5.0, 0.0], right="nonreflecting"), duration=400e-6,
+                    outputs=ri.Outputs(probes=[probe]))
+    p = Problem.of(rods(), [5.0, 0.0], outputs=ri.Outputs(probes=[probe]), duration=400e-6, right="nonreflecting")
     b = ri.simulate(p)
     np.testing.assert_array_equal(a.contact_force, b.contact_force)
     np.testing.assert_array_equal(a.probe("g").force, b.probe("g").force)
@@ -49,7 +49,11 @@ def test_a_duration_becomes_whole_steps_covering_it():
     (lambda: Problem.of(ri.System(rods(), [1.0, 0.0]), steps=3, right="fixed"), "right: a System already holds"),
     (lambda: Problem.of(rods(), steps=3), "velocities: required"),
     (lambda: ri.simulate(Problem.of(rods(), [1.0, 0.0], steps=3), steps=5), "steps: a Problem already holds"),
-    (lambda: ri.simulate(Problem.of(rods(), [1.0, 0.0], steps=3), right="fixed"), "right: a Problem already holds"),
+    (lambda: ri.simulate(Problem.of(rods(), [1.0, 0.0], steps=3), velocities=[1.0, 0.0]),
+     "velocities: a Problem already holds"),
+    (lambda: ri.simulate(Problem.of(rods(), [1.0, 0.0], steps=3), right="fixed"), "right: give the ends in the System"),
+    (lambda: Problem(ri.System(rods(), [1.0, 0.0]), TimeGrid(DT, 3), allow_discretization_error="yes"),
+     "allow_discretization_error: must be True or False"),
 ])
 def test_bad_problems_are_refused_when_made_naming_the_part(make, match):
     with pytest.raises((TypeError, ValueError), match=match):

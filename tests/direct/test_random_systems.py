@@ -39,11 +39,11 @@ def test_random_systems_balance_energy_and_agree_across_backends(n_rods, left, r
         r = int(rng.integers(0, n_rods))
         loads.append(ri.Bearings(r, [(0.0, rods[r].length)], friction_coefficient=0.3,
                                  normal_load=float(rng.uniform(1e2, 1e5))))
-    kw = dict(velocities=velocities, steps=400, junctions=junctions, left=make_end(left, rng),
-              right=make_end(right, rng), loads=loads, energy_every=1,
-              probes=[ri.Probe("p", 0, rods[0].length / 2)])
-    fast = ri.simulate(rods, backend="numba", **kw)
-    ref = ri.simulate(rods, backend="numpy", **kw)
+    system = ri.System(rods, velocities, junctions=junctions, left=make_end(left, rng), right=make_end(right, rng),
+                       loads=loads)
+    kw = dict(steps=400, outputs=ri.Outputs(energy_every=1, probes=[ri.Probe("p", 0, rods[0].length / 2)]))
+    fast = ri.simulate(system, backend="numba", **kw)
+    ref = ri.simulate(system, backend="numpy", **kw)
     e = fast.energy
     assert np.all(np.isfinite(fast.final_force)) and np.all(np.isfinite(fast.final_velocity))
     scale = max(np.max(np.abs(e.total)), np.max(np.abs(e.exchanged)), 1e-30)

@@ -1,5 +1,6 @@
-"""Recording stride: ``simulate(record_every=s)`` keeps every s-th step of the histories, bit for bit the
-samples of the full run, while contact events and the peak contact force are still taken at every step."""
+"""Recording stride: ``simulate(..., outputs=Outputs(record_every=s))`` keeps every s-th step of the histories, bit
+for bit the samples of the full run, while contact events and the peak contact force are still taken at every
+step."""
 
 import numpy as np
 import pytest
@@ -14,14 +15,15 @@ from rodimpact.io.results import load, save, summarize
 DT = 1e-6
 
 
-def recontact_run(**kw):
+def recontact_run(record_every=1):
     """Rod A driven +V0 / -V0 / +V0 at its left end hits rod B, separates and hits again (a hand-checked case in
     test_closed_forms.py), with a probe in each rod."""
     z, v0 = 40e3, 2.0
     drive = ri.VelocityEnd(lambda t: np.where(t < 20 * DT, v0, np.where(t < 35 * DT, -v0, v0)))
     rods = [ri.Rod.from_impedance(np.full(60, z), dt=DT), ri.Rod.from_impedance(np.full(400, z), dt=DT)]
-    return ri.simulate(rods, velocities=[0.0, 0.0], steps=400, left=drive, right="nonreflecting",
-                       probes=[ri.Probe("a", 0, 0.05), ri.Probe("b", 1, 0.3)], **kw)
+    return ri.simulate(ri.System(rods, [0.0, 0.0], left=drive, right="nonreflecting"), steps=400,
+                       outputs=ri.Outputs(probes=[ri.Probe("a", 0, 0.05), ri.Probe("b", 1, 0.3)],
+                                          record_every=record_every))
 
 
 def assert_same_events(a, b):

@@ -1,23 +1,32 @@
-"""``Outputs``: the outputs of a run declared as one object, equivalent to the keywords of ``simulate``."""
+"""``Outputs``: the outputs of a run declared as one object, equivalent to the keywords of a sweep point's dict
+(which ``simulate`` took before, issue 21)."""
 
 import numpy as np
 import pytest
 
 import rodimpact as ri
+from rodimpact.direct._sweep_keywords import problem_of
 
 DT = 1e-6
 
 
-def impact(**kw):
+def point(**kw):
+    """A sweep point's dict of keywords: the impact of :func:`impact` with ``kw``."""
     rods = [ri.Rod.from_impedance(np.full(30, 40e3), dt=DT, name="striker"),
             ri.Rod.from_impedance(np.full(90, 40e3), dt=DT, name="bar")]
-    return ri.simulate(rods, velocities=[3.0, 0.0], steps=200, right="nonreflecting", **kw)
+    return dict(rods=rods, velocities=[3.0, 0.0], steps=200, right="nonreflecting", **kw)
+
+
+def impact(outputs=None, **kw):
+    rods = [ri.Rod.from_impedance(np.full(30, 40e3), dt=DT, name="striker"),
+            ri.Rod.from_impedance(np.full(90, 40e3), dt=DT, name="bar")]
+    return ri.simulate(ri.System(rods, [3.0, 0.0], right="nonreflecting"), steps=200, outputs=outputs, **kw)
 
 
 def test_a_recording_gives_the_run_of_its_keywords():
     fields = dict(probes=[ri.Probe("g", "bar", 0.01)], snapshot_times=[5e-5], snapshot_every=50, energy_every=3,
                   record_every=2)
-    by_keywords, by_object = impact(**fields), impact(outputs=ri.Outputs(**fields))
+    by_keywords, by_object = ri.simulate(problem_of(point(**fields))[0]), impact(outputs=ri.Outputs(**fields))
     assert np.array_equal(by_object.junction_force, by_keywords.junction_force)
     assert np.array_equal(by_object.probe("g").strain, by_keywords.probe("g").strain)
     assert np.array_equal(by_object.snapshots.time, by_keywords.snapshots.time)
@@ -55,12 +64,15 @@ def test_recording_is_frozen_and_normalised():
 def test_bad_recordings_name_the_field(kw, error, match):
     with pytest.raises(error, match=match):
         ri.Outputs(**kw)
-    with pytest.raises(error, match=match):        # the same through the keywords of simulate
-        impact(**kw)
+    with pytest.raises(error, match=match):        # the same through the keywords of a sweep point
+        problem_of(point(**kw))
 
 
 def test_recording_and_keywords_together_are_refused():
     with pytest.raises(ValueError, match="outputs: give the outputs either as outputs=Outputs.*energy_every="):
+        problem_of(point(outputs=ri.Outputs(), energy_every=5))
+    with pytest.raises(TypeError, match=r"energy_every: give the outputs as one Outputs: .*"
+                                        r"outputs=ri.Outputs\(energy_every="):
         impact(outputs=ri.Outputs(), energy_every=5)
     with pytest.raises(TypeError, match="outputs: must be an Outputs"):
         impact(outputs={"energy_every": 5})
@@ -71,7 +83,7 @@ def test_snapshot_limits_are_checked_against_the_run():
         impact(outputs=ri.Outputs(snapshot_times=[1.0]))
     with pytest.raises(ValueError, match="snapshot_every: 1 gives 200001 snapshots; use a larger stride"):
         rods = [ri.Rod.from_impedance(np.full(3, 40e3), dt=DT)]
-        ri.simulate(rods, velocities=[1.0], steps=200_000, snapshot_every=1)
+        ri.simulate(rods, [1.0], steps=200_000, outputs=ri.Outputs(snapshot_every=1))
 
 
 def test_snapshots_that_do_not_fit_in_memory_are_refused_before_the_run(monkeypatch):
@@ -84,5 +96,5 @@ def test_snapshots_that_do_not_fit_in_memory_are_refused_before_the_run(monkeypa
     rods = [ri.Rod.from_impedance(np.full(200, 40e3), dt=DT), ri.Rod.from_impedance(np.full(1000, 40e3), dt=DT)]
     with pytest.raises(ValueError, match=r"snapshot_every: the run would need about 27\.7 MiB of memory \(snapshots "
                                          r"27\.5 MiB\), more than the 3\.81 MiB available now"):
-        ri.simulate(rods, velocities=[1.0, 0.0], steps=500, snapshot_every=1)
-    assert ri.simulate(rods, velocities=[1.0, 0.0], steps=500, snapshot_every=10).snapshots.time.size == 51
+        ri.simulate(rods, [1.0, 0.0], steps=500, outputs=ri.Outputs(snapshot_every=1))
+    assert ri.simulate(rods, [1.0, 0.0], steps=500, outputs=ri.Outputs(snapshot_every=10)).snapshots.time.size == 51

@@ -38,7 +38,7 @@ def test_each_point_is_the_run_simulate_would_do_alone():
     threaded = ri.sweep(equal_bars, GRID, metrics, workers=2)
     for i, length in enumerate(GRID["length"]):
         for j, velocity in enumerate(GRID["velocity"]):
-            res = ri.simulate(**equal_bars(length, velocity))
+            res = ri.simulate(ri.Problem.of(**equal_bars(length, velocity)))
             for name, f in metrics.items():
                 assert serial[name].values[i, j] == f(res) == threaded[name].values[i, j]
 

@@ -126,7 +126,7 @@ def test_drilling_metrics_from_a_batch_equal_the_per_point_runs():
     per_point = ri.sweep(stepped, grid, ri.drilling_metrics(), batch=False)
     assert batched.attrs["runner"] == "simulate_batch" and per_point.attrs["runner"] == "simulate"
     same(batched, per_point)
-    run = ri.simulate(**stepped(0.16, 8.0))
+    run = ri.simulate(ri.Problem.of(**stepped(0.16, 8.0)))
     rock = run.bit_rock[0]
     point = batched.sel(length=0.16, velocity=8.0)
     assert float(point["rock_energy"]) == rock.energy > 0.0

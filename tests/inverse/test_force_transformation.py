@@ -43,7 +43,7 @@ def _stepped_struck():
 def _forward(system, x_windows, location, steps, quantity):
     """Quantity at the node from a direct simulation driven by x_windows (independent of the transform)."""
     sim = ri.simulate(driven(system, x_windows, DT), steps=steps, dt=DT,
-                      probes=[ri.Probe("p", location[0], location[1])], snapshot_times=[0.0])
+                      outputs=ri.Outputs(probes=[ri.Probe("p", location[0], location[1])], snapshot_times=[0.0]))
     p = sim.probe("p")
     if quantity == "force":
         return p.force

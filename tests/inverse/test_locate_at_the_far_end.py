@@ -22,5 +22,6 @@ def test_the_far_end_node_is_inside_the_rod_and_can_be_probed():
         length = system.rods[loc.rod].length
         assert loc.local <= length
         assert loc.node == ri.build_lattice(system, dt).rod_start[loc.rod + 1]      # the rod's last node
-        res = ri.simulate(system, steps=2, dt=dt, probes=[position_probe(loc)], allow_discretization_error=True)
+        res = ri.simulate(ri.Problem.of(system, steps=2, dt=dt, outputs=ri.Outputs(probes=[position_probe(loc)]),
+                                        allow_discretization_error=True))
     assert np.all(res.probe("synthesis_position").force == 0.0)      # no wave has arrived at the far end

@@ -15,7 +15,7 @@ def _face_history(z_striker, z_bar, v_in, dt=1e-6):
     m = z_striker.size
     striker = ri.Rod.from_impedance(z_striker[::-1], dt)
     bar = ri.Rod.from_impedance(np.full(4, z_bar), dt)
-    sim = ri.simulate([striker, bar], velocities=[v_in, 0.0], steps=2 * m, dt=dt, right="nonreflecting")
+    sim = ri.simulate(ri.System([striker, bar], [v_in, 0.0], right="nonreflecting"), steps=2 * m, dt=dt)
     n = sim.contact_force[0::2]
     v_face = -n / z_bar                      # right-going wave into the bar at rest
     return n, v_face - v_in

@@ -20,8 +20,8 @@ C = ri.STEEL.wave_speed
 
 def _direct(system, loc, dt, steps, quantity, backend="numba"):
     """The old computation: the direct solver driven by [1, 0] windows, quantity at the probe per step."""
-    sim = ri.simulate(driven(system, np.array([1.0, 0.0]), dt), steps=steps, dt=dt, probes=[position_probe(loc)],
-                      backend=backend)
+    sim = ri.simulate(driven(system, np.array([1.0, 0.0]), dt), steps=steps, dt=dt,
+                      outputs=ri.Outputs(probes=[position_probe(loc)]), backend=backend)
     p = sim.probe("synthesis_position")
     return position_quantity(quantity, p.force, p.velocity, float(sim.lattice.impedance[loc.element_left]))
 
@@ -43,7 +43,8 @@ def test_equals_the_direct_solver(far_end, node):
     loc = locate(system, node * C * DT, DT)
     assert loc.node == node
     steps = node + 2 * 120 - 1                    # 120 windows: reflections from every junction and the end
-    sim = ri.simulate(driven(system, np.array([1.0, 0.0]), DT), steps=steps, dt=DT, probes=[position_probe(loc)])
+    sim = ri.simulate(driven(system, np.array([1.0, 0.0]), DT), steps=steps, dt=DT,
+                      outputs=ri.Outputs(probes=[position_probe(loc)]))
     probe = sim.probe("synthesis_position")
     force, velocity, z = rectangular_response(system, node, DT, steps)
     np.testing.assert_array_equal(z, sim.lattice.impedance)
@@ -104,7 +105,8 @@ def test_transform_of_a_moving_loaded_system_round_trip():
     kw = dict(far_end="fixed", struck_velocity=[0.3, -0.2], loads=[ri.NodalForce(1, 4 * C * DT, -3e4)])
     system = as_struck_system(rods, **kw)
     x = -1e5 * (1 + 0.3 * np.sin(np.arange(20)))
-    sim = ri.simulate(driven(system, x, DT), steps=14 + 40, dt=DT, probes=[ri.Probe("p", 1, 4 * C * DT)])
+    sim = ri.simulate(driven(system, x, DT), steps=14 + 40, dt=DT,
+                      outputs=ri.Outputs(probes=[ri.Probe("p", 1, 4 * C * DT)]))
     y = sim.probe("p").force[14 + 2 * np.arange(20)]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SynthesisWarning)

@@ -81,7 +81,7 @@ def test_geometric_rod_reproduces_the_synthesized_force(bore):
     assert exact.native is not None and np.array_equal(exact.native.impedance, res.impedance[::-1])
     forces = []
     for rod in (geo, exact):
-        sim = ri.simulate([rod, prob.struck], velocities=[6.0, 0.0], steps=60, dt=prob.dt, right="nonreflecting")
+        sim = ri.simulate(ri.System([rod, prob.struck], [6.0, 0.0], right="nonreflecting"), steps=60, dt=prob.dt)
         forces.append(sim.contact_force)
     np.testing.assert_allclose(forces[0], forces[1], rtol=1e-11)
     np.testing.assert_allclose(forces[1], np.repeat(res.window_values, 2), rtol=1e-13)

@@ -60,8 +60,8 @@ def test_precision_warning_on_an_ill_conditioned_striker():
     dt = 1e-6
     z_true = np.where(np.arange(40) % 2 == 0, 1e5, 1e7)
     bar = ri.Rod.from_impedance([1e7] * 4, dt)
-    sim = ri.simulate([ri.Rod.from_impedance(z_true[::-1], dt), bar], velocities=[5.0, 0.0], steps=80, dt=dt,
-                      right="nonreflecting")
+    sim = ri.simulate(ri.System([ri.Rod.from_impedance(z_true[::-1], dt), bar], [5.0, 0.0], right="nonreflecting"),
+                      steps=80, dt=dt)
     x = sim.contact_force[0::2]
     with warnings.catch_warnings(record=True) as rec:
         warnings.simplefilter("always")

@@ -22,8 +22,9 @@ ENGINES = ["scipy"] + [e for e, mod in (("netcdf4", "netCDF4"), ("h5netcdf", "h5
 def result():
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)], name="striker"), ri.Rod([ri.Cylinder(0.3, 0.05)], name="adapter"),
             ri.Rod([ri.Cylinder(0.6, 0.04)], name="bar")]
-    return ri.simulate(rods, [5.0, 0.0, 0.0], duration=0.3e-3, dt=1e-6, junctions=[ri.Contact(), ri.Contact()],
-                       probes=[ri.Probe("SG1", 2, 0.1), ri.Probe("SG 2", 2, 0.3)], snapshot_every=50)
+    return ri.simulate(ri.System(rods, [5.0, 0.0, 0.0], junctions=[ri.Contact(), ri.Contact()]), duration=0.3e-3,
+                       dt=1e-6, outputs=ri.Outputs(probes=[ri.Probe("SG1", 2, 0.1), ri.Probe("SG 2", 2, 0.3)],
+                                                   snapshot_every=50))
 
 
 def open_nc(path):
@@ -65,7 +66,7 @@ def test_result_file_has_the_layout_of_to_xarray(result, tmp_path, engine):
 
 
 def test_single_rod_has_no_junction_coordinate(tmp_path):
-    res = ri.simulate([ri.Rod([ri.Cylinder(0.5, 0.04)])], [1.0], steps=50, dt=1e-6, right="fixed")
+    res = ri.simulate(ri.System([ri.Rod([ri.Cylinder(0.5, 0.04)])], [1.0], right="fixed"), steps=50, dt=1e-6)
     ds = res.to_xarray()
     assert "junction" not in ds.dims and "probe" not in ds.dims
     np.testing.assert_array_equal(ds.end_force.sel(end="right").values, res.end_force["right"])

@@ -20,11 +20,10 @@ ENGINES = ["scipy"] + [e for e, mod in (("netcdf4", "netCDF4"), ("h5netcdf", "h5
 def three_rod_result():
     rods = [ri.Rod([ri.Cylinder(0.3, 0.04)], name="striker"), ri.Rod([ri.Cylinder(0.4, 0.05)], name="adapter"),
             ri.Rod([ri.Cone(0.6, 0.05, 0.04)], name="bar")]
-    return ri.simulate(rods, [5.0, 0.0, 0.0], duration=1e-3, dt=1e-6, right=ri.SpringEnd(1e8),
-                       junctions=[ri.Contact(), ri.Bonded()],
-                       loads=[ri.Bearings(2, [(0.1, 0.3)], 0.3)],
-                       probes=[ri.Probe("SG 1", 2, 0.1), ri.Probe("a,b", 1, 0.2)],
-                       snapshot_times=[1e-4, 5e-4], snapshot_every=50)
+    return ri.simulate(ri.System(rods, [5.0, 0.0, 0.0], right=ri.SpringEnd(1e8), junctions=[ri.Contact(), ri.Bonded()],
+                                 loads=[ri.Bearings(2, [(0.1, 0.3)], 0.3)]), duration=1e-3, dt=1e-6,
+                       outputs=ri.Outputs(probes=[ri.Probe("SG 1", 2, 0.1), ri.Probe("a,b", 1, 0.2)],
+                                          snapshot_times=[1e-4, 5e-4], snapshot_every=50))
 
 
 def assert_identical(a, b):
@@ -81,8 +80,9 @@ def test_save_load_gives_identical_arrays(tmp_path, engine):
 
 
 def test_single_rod_without_junction_or_probes_round_trips(tmp_path):
-    res = ri.simulate([ri.Rod([ri.Cylinder(1.0, 0.05)])], [0.0], steps=300, dt=1e-6,
-                      left=ri.ForceEnd((np.array([0.0, 5e-5, 1e-4]), np.array([0.0, -1e3, 0.0]))))
+    res = ri.simulate(ri.System([ri.Rod([ri.Cylinder(1.0, 0.05)])], [0.0],
+                                left=ri.ForceEnd((np.array([0.0, 5e-5, 1e-4]), np.array([0.0, -1e3, 0.0])))), steps=300,
+                      dt=1e-6)
     save(res, tmp_path / "one")
     back = load(tmp_path / "one")
     assert back.junction_force.shape == (0, 300) and back.snapshots is None

@@ -46,7 +46,8 @@ def test_a_stepped_table_simulates_like_the_same_rod_of_cylinders():
     bar = ri.Rod([ri.Cylinder(1.0, 0.05)])
     tabled = ri.loads_model(_table_model([0, 100, 100, 300], [40, 40, 60, 60])).system.rods[0]
     cylinders = ri.Rod([ri.Cylinder(0.1, 0.04), ri.Cylinder(0.2, 0.06)])
-    runs = [ri.simulate([s, bar], [5.0, 0.0], steps=400, dt=dt, right="nonreflecting") for s in (tabled, cylinders)]
+    runs = [ri.simulate(ri.System([s, bar], [5.0, 0.0], right="nonreflecting"), steps=400, dt=dt)
+            for s in (tabled, cylinders)]
     np.testing.assert_allclose(runs[0].lattice.impedance, runs[1].lattice.impedance, rtol=1e-13)   # rounding
     z = runs[0].lattice.impedance[:60]
     assert np.allclose(z[:20], ri.STEEL.impedance(math.pi / 4 * 0.04 ** 2), rtol=1e-12)

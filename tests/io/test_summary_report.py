@@ -23,8 +23,9 @@ def run():
     a node (500 mm)."""
     piston = ri.Rod([ri.Cylinder(0.3, 0.04)], name="piston")
     bar = ri.Rod([ri.Cylinder(1.0, 0.05)], name="bar")
-    return ri.simulate([piston, bar], [5.0, 0.0], steps=300, dt=DT, snapshot_every=10,
-                       probes=[ri.Probe("SG1", 1, 0.112), ri.Probe("SG2", "bar", 0.5)])
+    return ri.simulate([piston, bar], [5.0, 0.0], steps=300, dt=DT,
+                       outputs=ri.Outputs(probes=[ri.Probe("SG1", 1, 0.112), ri.Probe("SG2", "bar", 0.5)],
+                                          snapshot_every=10))
 
 
 def test_summary_gives_the_node_each_probe_read(run, tmp_path):
@@ -85,7 +86,8 @@ def plateau():
     -Z v / 2 from the first step for 2 x 0.3 m / c; the front reaches the gauge SG at 0.5 m (a node) after 100
     elements of 5 mm and holds the same plateau there."""
     rods = [ri.Rod([ri.Cylinder(0.3, 0.03)]), ri.Rod([ri.Cylinder(1.0, 0.03)])]
-    return ri.simulate(rods, [6.0, 0.0], steps=300, dt=DT, right="nonreflecting", probes=[ri.Probe("SG", 1, 0.5)])
+    return ri.simulate(ri.System(rods, [6.0, 0.0], right="nonreflecting"), steps=300, dt=DT,
+                       outputs=ri.Outputs(probes=[ri.Probe("SG", 1, 0.5)]))
 
 
 def test_plateau_peak_is_reported_where_the_plateau_begins(plateau):
@@ -102,7 +104,8 @@ def test_plateau_peak_is_reported_where_the_plateau_begins(plateau):
 
 def test_plateau_peak_time_with_a_recording_stride(plateau):
     rods = [ri.Rod([ri.Cylinder(0.3, 0.03)]), ri.Rod([ri.Cylinder(1.0, 0.03)])]
-    res = ri.simulate(rods, [6.0, 0.0], steps=300, dt=DT, right="nonreflecting", record_every=7)
+    res = ri.simulate(ri.System(rods, [6.0, 0.0], right="nonreflecting"), steps=300, dt=DT,
+                      outputs=ri.Outputs(record_every=7))
     assert summarize(res)["junctions"][0]["peak_time_s"] == 0.0
 
 

@@ -49,8 +49,8 @@ def _cone_errors(n_list, xp=0.5, length=1.0, d0=0.03, d1=0.06, v0=2.0):
     errs = []
     for n in n_list:
         dt = t_rod / n
-        res = ri.simulate([rod], velocities=[0.0], steps=int(1.8 * n), dt=dt, left=ri.VelocityEnd(-v0),
-                          probes=[ri.Probe("p", 0, xp)])
+        res = ri.simulate(ri.System([rod], [0.0], left=ri.VelocityEnd(-v0)), steps=int(1.8 * n), dt=dt,
+                          outputs=ri.Outputs(probes=[ri.Probe("p", 0, xp)]))
         t = res.time + 0.5 * dt
         exact_end = E * a0 * v0 * (1 / C + xi * t)
         tau = t - xp / C
@@ -73,11 +73,11 @@ def test_continuous_taper_converges_first_order():
 def test_time_step_from_elements_or_resolution():
     rod = ri.Rod([ri.Cylinder(0.5, 0.05)])
     striker = ri.Rod([ri.Cylinder(0.2, 0.04)])
-    res = ri.simulate([striker, rod], velocities=[1.0, 0.0], steps=5, elements=(1, 100))
+    res = ri.simulate(ri.Problem.of([striker, rod], [1.0, 0.0], steps=5, elements=(1, 100)))
     assert res.dt == pytest.approx(0.5 / C / 100, rel=1e-14)
     assert res.lattice.rods[1].n_elements == 100 and res.lattice.rods[0].n_elements == 40
-    res = ri.simulate([striker, rod], velocities=[1.0, 0.0], steps=5, resolution=2e-3)
+    res = ri.simulate(ri.Problem.of([striker, rod], [1.0, 0.0], steps=5, resolution=2e-3))
     assert res.dt == pytest.approx(2e-3 / C, rel=1e-14)
     assert np.max(res.lattice.element_length) <= 2e-3 * (1 + 1e-12)
     with pytest.raises(ValueError, match="give only one of"):
-        ri.simulate([rod], velocities=[1.0], steps=5, dt=1e-6, resolution=1e-3)
+        ri.simulate(ri.Problem.of([rod], [1.0], steps=5, dt=1e-6, resolution=1e-3))

@@ -48,7 +48,7 @@ def test_the_issue_case_is_an_error_naming_rod_error_and_a_good_dt():
 
 def test_allowing_the_error_runs_with_a_warning_in_python_and_from_model_files():
     with pytest.warns(UserWarning, match="rod 0: its travel time is represented with a 72.5 % error") as rec:
-        r = ri.simulate(_bars(), [5.0, 0.0], duration=1e-3, dt=100e-6, allow_discretization_error=True)
+        r = ri.simulate(ri.Problem.of(_bars(), [5.0, 0.0], duration=1e-3, dt=100e-6, allow_discretization_error=True))
     assert rec[0].filename == __file__
     assert any("72.5 %" in w for w in r.diagnostics["warnings"])
     text = """
@@ -71,7 +71,7 @@ dt = "100 us"
     with pytest.warns(UserWarning, match="72.5 % error"):
         model.simulate()
     with pytest.raises(TypeError, match="allow_discretization_error: must be True or False"):
-        ri.simulate(_bars(), [5.0, 0.0], duration=1e-3, allow_discretization_error="yes")
+        ri.simulate(ri.Problem.of(_bars(), [5.0, 0.0], duration=1e-3, allow_discretization_error="yes"))
 
 
 def test_a_segment_shorter_than_an_element_is_an_error():

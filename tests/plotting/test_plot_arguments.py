@@ -15,8 +15,8 @@ NOT_A_RESULT = r"result: must be a SimulationResult \(from rodimpact.simulate or
 @pytest.fixture(scope="module")
 def result():
     """0.1 ms, snapshots every 10 steps of 1 us: recorded at 0, 10, ..., 100 us."""
-    return ri.simulate([ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(0.5, 0.04)])], [1.0, 0.0],
-                       duration=1e-4, dt=1e-6, probes=[ri.Probe("SG", 1, 0.1)], snapshot_every=10)
+    return ri.simulate([ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(0.5, 0.04)])], [1.0, 0.0], duration=1e-4,
+                       dt=1e-6, outputs=ri.Outputs(probes=[ri.Probe("SG", 1, 0.1)], snapshot_every=10))
 
 
 @pytest.mark.parametrize("kwargs, error, match", [

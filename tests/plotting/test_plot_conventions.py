@@ -36,8 +36,8 @@ V = 5.0                      # striker velocity, m/s
 def result():
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04), ri.Cone(0.2, 0.04, 0.05)], name="striker"),
             ri.Rod([ri.Cylinder(1.0, 0.05)], name="bar")]
-    return ri.simulate(rods, [5.0, 0.0], duration=0.6e-3, dt=0.4 / C / 40, junctions=[ri.Contact()],
-                       probes=[ri.Probe("SG1", 1, 0.3), ri.Probe("SG2", 1, 0.6)], snapshot_every=20)
+    return ri.simulate(ri.System(rods, [5.0, 0.0], junctions=[ri.Contact()]), duration=0.6e-3, dt=0.4 / C / 40,
+                       outputs=ri.Outputs(probes=[ri.Probe("SG1", 1, 0.3), ri.Probe("SG2", 1, 0.6)], snapshot_every=20))
 
 
 @pytest.fixture(scope="module")

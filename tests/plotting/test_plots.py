@@ -20,8 +20,9 @@ C = ri.STEEL.wave_speed
 def result():
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04), ri.Cylinder(0.2, 0.05)], name="striker"),
             ri.Rod([ri.Cylinder(1.0, 0.05)], name="bar")]
-    return ri.simulate(rods, [5.0, 0.0], duration=0.8e-3, dt=0.4 / C / 80, junctions=[ri.Contact(0.01)],
-                       probes=[ri.Probe("SG1", 1, 0.1)], snapshot_times=[0.1e-3, 0.3e-3], snapshot_every=20)
+    return ri.simulate(ri.System(rods, [5.0, 0.0], junctions=[ri.Contact(0.01)]), duration=0.8e-3, dt=0.4 / C / 80,
+                       outputs=ri.Outputs(probes=[ri.Probe("SG1", 1, 0.1)], snapshot_times=[0.1e-3, 0.3e-3],
+                                          snapshot_every=20))
 
 
 def test_forces_plot_shows_contact_and_probe_forces_in_kN(result):
@@ -127,7 +128,7 @@ def test_plots_do_not_need_pyplot_or_a_display(tmp_path):
 import sys, rodimpact as ri
 from rodimpact.plotting import save_plots
 r = ri.simulate([ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(0.5, 0.04)])], [1.0, 0.0], steps=200,
-                dt=1e-6, snapshot_every=10)
+                dt=1e-6, outputs=ri.Outputs(snapshot_every=10))
 save_plots(r, {str(tmp_path)!r}, ["forces", "profile", "snapshots", "xt", "energy"])
 assert "matplotlib.pyplot" not in sys.modules, "pyplot was imported"
 """

@@ -20,7 +20,7 @@ def result():
     dt = 0.01 / C
     rods = [ri.Rod([ri.Cylinder(0.2, 0.02)], name="striker"), ri.Rod([ri.Cylinder(20.0, 0.02)], name="bar")]
     return ri.simulate(rods, [5.0, 0.0], steps=20, dt=dt,
-                       probes=[ri.Probe("SG1", 1, 0.819), ri.Probe("SG2", 1, 19.9)])
+                       outputs=ri.Outputs(probes=[ri.Probe("SG1", 1, 0.819), ri.Probe("SG2", 1, 19.9)]))
 
 
 @pytest.mark.parametrize("plot", [plot_forces, plot_strain])

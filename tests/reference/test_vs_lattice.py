@@ -22,7 +22,7 @@ C0 = ri.STEEL.wave_speed
 def lattice_force(striker_z, rod_z, n_steps, right="nonreflecting", velocity=V):
     """Contact force per step of impedance-level rods (each element = one dt)."""
     rods = [ri.Rod.from_impedance(striker_z, DT), ri.Rod.from_impedance(rod_z, DT)]
-    res = ri.simulate(rods, [velocity, 0.0], steps=n_steps, dt=DT, right=right)
+    res = ri.simulate(ri.System(rods, [velocity, 0.0], right=right), steps=n_steps, dt=DT)
     return res.time, res.contact_force
 
 
@@ -71,7 +71,8 @@ def test_two_finite_stepped_rods_with_contact_and_wave_trains():
     z1 = [2.0 * Z] * 6 + [0.7 * Z] * 4
     z2 = [Z] * 9 + [3.0 * Z] * 5 + [0.5 * Z] * 2
     rods = [ri.Rod.from_impedance(z1, DT), ri.Rod.from_impedance(z2, DT)]
-    res = ri.simulate(rods, [V, -1.0], steps=300, dt=DT, right="free", snapshot_times=[137 * DT, 261 * DT])
+    res = ri.simulate(ri.System(rods, [V, -1.0], right="free"), steps=300, dt=DT,
+                      outputs=ri.Outputs(snapshot_times=[137 * DT, 261 * DT]))
     piece = lambda zz, n: rr.UniformPiece(zz, n * DT)  # noqa: E731
     exact = rr.solve_wave_trains([piece(2 * Z, 6), piece(0.7 * Z, 4)], [piece(Z, 9), piece(3 * Z, 5), piece(0.5 * Z, 2)],
                                  V, 300 * DT, rod_velocity=-1.0, right="free")
@@ -117,7 +118,7 @@ def test_lundberg_lesser_striker_from_its_area_function():
     for n in ns:
         dt = theta_total / n
         rod = ri.Rod.from_impedance([zr] * 2, dt)
-        res = ri.simulate([striker, rod], [V, 0.0], steps=2 * n - 2, dt=dt, right="nonreflecting")
+        res = ri.simulate(ri.System([striker, rod], [V, 0.0], right="nonreflecting"), steps=2 * n - 2, dt=dt)
         f = res.contact_force
         np.testing.assert_allclose(f[0::2][: n - 1], f[1::2][: n - 1], rtol=1e-9)  # constant on windows
         t_mid = (2 * np.arange(n - 1) + 1) * dt
@@ -138,8 +139,8 @@ def setup3_lattice(n_per_rod):
     d = math.sqrt(4 * SETUP3.area / math.pi)
     rods = [ri.Rod([ri.Cylinder(1.0, d)]), ri.Rod([ri.ExponentialHorn(1.0, SETUP3.area, SETUP3.xi)])]
     dt = (1.0 / C0) / n_per_rod
-    return ri.simulate(rods, [V, 0.0], duration=0.44e-3, dt=dt, right="fixed", junctions=[ri.Bonded()],
-                       snapshot_times=list(TIMES)), dt
+    return ri.simulate(ri.System(rods, [V, 0.0], right="fixed", junctions=[ri.Bonded()]), duration=0.44e-3, dt=dt,
+                       outputs=ri.Outputs(snapshot_times=list(TIMES))), dt
 
 
 def far_from_fronts(x, t, distance):
@@ -224,8 +225,8 @@ def test_general_chain_of_table_2_1_pieces_vs_lattice():
     errors = []
     for n in (50, 100):
         dt = 0.1 / (C0 * n)  # every piece is a whole number of elements
-        res = ri.simulate([striker, rod], [V, 0.0], duration=0.36e-3, dt=dt, junctions=[ri.Bonded()], right="free",
-                          snapshot_times=[0.2e-3, 0.35e-3])
+        res = ri.simulate(ri.System([striker, rod], [V, 0.0], right="free", junctions=[ri.Bonded()]), duration=0.36e-3,
+                          dt=dt, outputs=ri.Outputs(snapshot_times=[0.2e-3, 0.35e-3]))
         snap = res.snapshots
         eu = ef = 0.0
         for k, t in enumerate(snap.time):

@@ -172,13 +172,14 @@ def test_the_default_limit_refuses_and_the_option_lifts_it():
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(2.0, 0.04)])]
     with pytest.raises(ValueError, match=r"duration: the run needs .* more than the limit of 1e\+11 \(roughly "
                                          r"22 min at 1e8 updates per second\)"):
-        ri.simulate(rods, [5.0, 0.0], steps=1_500_000_000, elements=(1, 80))
+        ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=1_500_000_000, elements=(1, 80)))
     with pytest.raises(ValueError, match=r"max_element_updates: must be a number > 0"):
         ri.simulate(rods, [5.0, 0.0], steps=10, max_element_updates=-1)
-    res = ri.simulate(rods, [5.0, 0.0], steps=40, elements=(1, 80), max_element_updates=88 * 40)   # exactly at it
+    res = ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=40, elements=(1, 80)),
+                      max_element_updates=88 * 40)   # exactly at it
     assert res.n_steps == 40
     with pytest.raises(ValueError, match=r"duration: the run needs 88 elements x 41 steps = 3\.61e\+03"):
-        ri.simulate(rods, [5.0, 0.0], steps=41, elements=(1, 80), max_element_updates=88 * 40)
+        ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=41, elements=(1, 80)), max_element_updates=88 * 40)
 
 
 def test_max_element_updates_on_the_command_line(tmp_path, capsys):
@@ -197,7 +198,7 @@ def test_max_element_updates_on_the_command_line(tmp_path, capsys):
 
 def test_long_runs_report_progress_without_a_terminal(capsys):
     rods = [ri.Rod([ri.Cylinder(0.2, 0.04)]), ri.Rod([ri.Cylinder(2.0, 0.04)])]
-    ri.simulate(rods, [5.0, 0.0], steps=1000, elements=(1, 80), progress=True)
+    ri.simulate(ri.Problem.of(rods, [5.0, 0.0], steps=1000, elements=(1, 80)), progress=True)
     lines = capsys.readouterr().err.splitlines()               # pytest's stderr is no terminal
     assert lines and lines[-1].startswith("simulate: 100% (1,000 of 1,000 steps, "), lines
     stream = io.StringIO()

@@ -80,8 +80,9 @@ def test_simulate_bit_identical_to_cylinder_by_cylinder(dt_factor):
     for build in (ri.Rod.from_impedance, _old_from_impedance):
         striker = build(z, dt)
         bar = ri.Rod.from_impedance(np.full(200, 9e4), dt)
-        runs[build] = ri.simulate([striker, bar], velocities=[6.0, 0.0], steps=600, dt=dt * dt_factor,
-                                  probes=[ri.Probe("s", 0, 0.3 * striker.length), ri.Probe("b", 1, 0.2)])
+        runs[build] = ri.simulate([striker, bar], [6.0, 0.0], steps=600, dt=dt * dt_factor,
+                                  outputs=ri.Outputs(probes=[ri.Probe("s", 0, 0.3 * striker.length),
+                                                             ri.Probe("b", 1, 0.2)]))
     a, b = runs.values()
     np.testing.assert_array_equal(a.contact_force, b.contact_force)
     assert np.any(a.contact_force != 0.0)
