@@ -25,7 +25,7 @@ import numpy as np
 
 import rodimpact as ri
 from rodimpact.design._adjoint import ImpactProblem
-from rodimpact.inverse.struck import as_struck_system, with_striker
+from rodimpact.inverse.struck import with_striker
 
 try:
     from _report import best_time as _best, write_section
@@ -38,7 +38,7 @@ DT = 1e-6
 def measure(n: int) -> dict:
     rng = np.random.default_rng(n)
     z_rod = 80e3
-    struck = as_struck_system(ri.Rod.from_impedance([z_rod] * (4 * n), dt=DT),
+    struck = ri.System.struck(ri.Rod.from_impedance([z_rod] * (4 * n), dt=DT),
                               far_end=ri.BitRockEnd(0.6 * z_rod / (n * DT), 2.4 * z_rod / (n * DT)))
     steps = 2 * (n + 4 * n)
     problem = ImpactProblem(struck, DT, n, steps)

@@ -56,7 +56,7 @@ import rodimpact as ri
 from rodimpact.inverse import ExponentialDecay, percussion_drilling_example, synthesize, synthesize_by_resimulation
 from rodimpact.inverse import _kernels as K, _schur as S
 from rodimpact.inverse._toeplitz import solve_lower_toeplitz
-from rodimpact.inverse.struck import (as_struck_system, at_rest, driven, linearized, locate, position_probe,
+from rodimpact.inverse.struck import (at_rest, driven, linearized, locate, position_probe,
                                       position_quantity)
 from rodimpact.rods.material import Material
 from rodimpact.rods.rod import ImpedanceProfile
@@ -88,7 +88,7 @@ def _best(fn, repeat: int) -> tuple[float, object]:
 def _case_a(n: int):
     dt = DURATION / n
     bar = ri.Rod.from_impedance([79.7e3] * 4, dt)
-    return lambda: synthesize(TARGET, bar, 6.0, n=n, dt=dt, far_end="nonreflecting")
+    return lambda: synthesize(TARGET, ri.System.struck(bar, far_end="nonreflecting"), 6.0, n=n, dt=dt)
 
 
 def _stepped(dt: float) -> ri.Rod:
@@ -98,7 +98,7 @@ def _stepped(dt: float) -> ri.Rod:
 def _case_b(n: int):
     dt = DURATION / n
     bar = _stepped(dt)
-    return lambda: synthesize(TARGET, bar, 6.0, n=n, dt=dt, far_end="nonreflecting")
+    return lambda: synthesize(TARGET, ri.System.struck(bar, far_end="nonreflecting"), 6.0, n=n, dt=dt)
 
 
 def _case_c(n: int):
@@ -109,9 +109,9 @@ def _case_c(n: int):
 def _reference(n: int, case: str):
     dt = DURATION / n
     if case == "A":
-        system = as_struck_system(ri.Rod.from_impedance([79.7e3] * 4, dt), far_end="nonreflecting")
+        system = ri.System.struck(ri.Rod.from_impedance([79.7e3] * 4, dt), far_end="nonreflecting")
     else:
-        system = as_struck_system(_stepped(dt), far_end="nonreflecting")
+        system = ri.System.struck(_stepped(dt), far_end="nonreflecting")
     x = TARGET(dt * (2 * np.arange(n) + 1.0))
     return lambda: synthesize_by_resimulation(x, system, 6.0, dt)
 
@@ -163,8 +163,8 @@ def bench_peeling(quad_sizes, fast_sizes, crossover_sizes, n_synth) -> list[str]
     bar = ri.Rod.from_impedance([79.7e3] * 4, dt)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ri.inverse.SynthesisWarning)
-        t_syn, res = _best(lambda: synthesize(ExponentialDecay(239.1e3, 0.383e-3), bar, 6.0, n=n_synth, dt=dt,
-                                              far_end="nonreflecting"), 2)
+        struck = ri.System.struck(bar, far_end="nonreflecting")
+        t_syn, res = _best(lambda: synthesize(ExponentialDecay(239.1e3, 0.383e-3), struck, 6.0, n=n_synth, dt=dt), 2)
     print(f"synthesize n={n_synth}: {t_syn:.3f} s ({res.diagnostics['peeling']}, {res.n_feasible} elements)")
     lines = ["### Peeling: O(n^2) loops vs superfast Schur recursion", "",
              "Face data of a smooth compressive target against a semi-infinite bar (closed form); best of 3 "
@@ -219,7 +219,7 @@ def transform_old(prob, n: int, dt: float, frozen: bool) -> np.ndarray:
     ``frozen``: with the solver's loop as it was before the speed work (``_old_loop.old_simulate``), else with
     today's ``simulate``."""
     o = prob.options
-    system = as_struck_system(prob.struck, far_end=o["far_end"])
+    system = prob.struck_system
     loc = locate(system, o["position"], dt)
     lin, _ = linearized(system)
     steps = loc.node + 2 * n - 1
@@ -239,12 +239,12 @@ def bench_transform(n: int) -> list[str]:
     dt = 0.5 / n / ri.STEEL.wave_speed      # the string scales with n (4n elements): the issue's n = 1e4 case
 
     def new():
-        return ri.inverse.transform_force(prob.target, prob.struck, o["position"], n=n, dt=dt,
-                                          quantity=o["quantity"], far_end=o["far_end"], rule=o["rule"])
+        return ri.inverse.transform_force(prob.target, prob.struck_system, o["position"], n=n, dt=dt,
+                                          quantity=o["quantity"], rule=o["rule"])
 
     small = percussion_drilling_example(50)
-    ri.inverse.transform_force(small.target, small.struck, o["position"], n=50, dt=small.dt,
-                               quantity=o["quantity"], far_end=o["far_end"], rule=o["rule"])   # warm-up
+    ri.inverse.transform_force(small.target, small.struck_system, o["position"], n=50, dt=small.dt,
+                               quantity=o["quantity"], rule=o["rule"])   # warm-up
     t_new, tr = _best(new, 3)
     t_old, x_old = _best(lambda: transform_old(prob, n, dt, frozen=True), 1)
     t_direct, x_direct = _best(lambda: transform_old(prob, n, dt, frozen=False), 3)

@@ -19,7 +19,7 @@ from .._version import __version__
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import BitRockEnd
 from ..rods.material import STEEL, Material
-from ..rods.system import InitialState
+from ..rods.system import InitialState, System
 from ..inverse.diagnosis import explain_bounds
 from ..inverse.recursive import synthesize
 from ..inverse.struck import as_struck_system, locate, window_count_check
@@ -121,7 +121,13 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     if max_steps is not None and (isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer))
                                   or max_steps < 1):
         raise ValueError(f"max_steps: must be an integer >= 1 (number of constant-impedance steps), got {max_steps!r}")
-    system = as_struck_system(struck, struck_velocity, far_end, junctions, loads, initial)
+    system = as_struck_system(struck)
+    if not isinstance(struck, System):
+        system = System.struck(system.rods, far_end, struck_velocity, junctions=junctions, loads=loads,
+                               initial=initial)
+    elif loads or junctions is not None or initial is not None:
+        raise ValueError("struck: a System already carries junctions, loads and initial state; do not pass "
+                         "junctions=, loads= or initial= as well")
     dt = _resolve_dt(system, dt)
     lat = build_lattice(system, dt)
     face_z = float(lat.impedance[0])

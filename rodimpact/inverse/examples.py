@@ -41,6 +41,7 @@ import numpy as np
 from ..rods.conditions import BitRockEnd
 from ..rods.material import STEEL
 from ..rods.rod import Rod
+from ..rods.system import System
 from .recursive import synthesize
 from .result import SynthesisResult
 from .targets import ExponentialDecay, ExponentialGrowth, LinearRamp
@@ -57,12 +58,18 @@ class SynthesisProblem:
     n: int
     dt: float
     options: dict[str, Any] = field(default_factory=dict)
+    far_end: Any = "free"
+
+    @property
+    def struck_system(self) -> System:
+        """The struck rod with the example's far end (:meth:`System.struck <rodimpact.rods.system.System.struck>`)."""
+        return System.struck(self.struck, self.far_end)
 
     def solve(self, **overrides: Any) -> SynthesisResult:
         """Run :func:`~rodimpact.synthesize` (keyword ``overrides`` replace the example's settings)."""
         kw: dict[str, Any] = dict(n=self.n, dt=self.dt, **self.options)
         kw.update(overrides)
-        return synthesize(self.target, self.struck, self.striker_velocity, **kw)
+        return synthesize(self.target, self.struck_system, self.striker_velocity, **kw)
 
 
 #: Tab. 4.2 as printed: struck impedance, peak force, time constant, time step, elements, striker velocity.
@@ -85,7 +92,7 @@ def academic_example(number: int, n: Optional[int] = None) -> SynthesisProblem:
     nn = p["n"] if n is None else n
     bar = Rod.from_impedance([p["struck_impedance"]] * 4, p["dt"], name="semi-infinite bar")
     return SynthesisProblem(f"academic example {number}", target, bar, p["striker_velocity"], nn, p["dt"],
-                            dict(far_end="nonreflecting", rule="start"))
+                            dict(rule="start"), far_end="nonreflecting")
 
 
 #: Tab. 4.5 impedances (N s/m) and the split of the struck system's n~ = 400 elements: (part, impedance at its
@@ -110,5 +117,4 @@ def percussion_drilling_example(n: int = 100) -> SynthesisProblem:
     dt = DRILLING_DT
     struck = drill_string()
     return SynthesisProblem("percussion drilling", ExponentialGrowth(187e3, 5.88e3), struck, 9.0, n, dt,
-                            dict(far_end=BitRockEnd(300e6), position=struck.length, quantity="incident",
-                                 rule="start"))
+                            dict(position=struck.length, quantity="incident", rule="start"), far_end=BitRockEnd(300e6))

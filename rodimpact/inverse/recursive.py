@@ -13,17 +13,17 @@ from __future__ import annotations
 
 import time as _time
 import warnings
-from typing import Any, Optional, Sequence
+from typing import Any, Optional
 
 import numpy as np
 
 from .._version import __version__
 from .._validate import caller_stacklevel, finite, positive
 from ..rods.material import STEEL, Material
-from ..rods.system import InitialState
 from . import _kernels as K
 from .result import ExistenceFailure, SynthesisResult
-from .struck import as_struck_system, face_response, locate
+from .._moved import moved
+from .struck import STRUCK_KEYWORDS, as_struck_system, face_response, locate
 from .targets import as_target
 from ._schur import chosen_method, peel
 from ._toeplitz import TOEPLITZ_METHODS
@@ -40,13 +40,11 @@ class SynthesisWarning(UserWarning):
     """The synthesized striker is shorter than requested or cannot be trusted to full precision."""
 
 
+@moved(STRUCK_KEYWORDS)
 def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[int] = None,
-               dt: Optional[float] = None, *, far_end: Any = "free", struck_velocity: Any = 0.0,
-               junctions: Optional[Sequence[Any]] = None, loads: Sequence[Any] = (),
-               initial: Optional[Sequence[Optional[InitialState]]] = None, position: Optional[float] = None,
-               quantity: str = "force", rule: str = "midpoint", material: Material = STEEL,
-               backend: str = "numba", toeplitz_method: str = "auto",
-               precision_warning: float = PRECISION_WARNING) -> SynthesisResult:
+               dt: Optional[float] = None, *, position: Optional[float] = None, quantity: str = "force",
+               rule: str = "midpoint", material: Material = STEEL, backend: str = "numba",
+               toeplitz_method: str = "auto", precision_warning: float = PRECISION_WARNING) -> SynthesisResult:
     """Find the striker impedance profile that produces a prescribed force history (recursive method,
     thesis chapter 4).
 
@@ -58,8 +56,10 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
         the impact (from the wavefront's arrival when ``position`` is set). See
         :mod:`rodimpact.inverse.targets` for how it becomes window values (``rule``).
     struck:
-        The struck system: a :class:`~rodimpact.Rod`, rods listed from the impact face outwards (bonded unless
-        ``junctions`` says otherwise) or a :class:`~rodimpact.System` whose left end is the impact face.
+        The struck system: a :class:`~rodimpact.Rod` or rods listed from the impact face outwards (bonded, at
+        rest, free far end), or a :class:`~rodimpact.System` whose left end is the impact face, best made by
+        :meth:`ri.System.struck(rods, far_end=..., velocity=..., junctions=..., loads=..., initial=...)
+        <rodimpact.rods.system.System.struck>`.
     striker_velocity:
         Initial velocity v_in of the striker, m/s (> 0: moving towards the struck system). The striker is
         stress-free, moves uniformly and carries no loads (the prerequisites of thesis Sec. 4.1).
@@ -68,9 +68,6 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
         covers).
     dt:
         Time step = travel time through one element, s (default: from impedance-level struck rods).
-    far_end, struck_velocity, junctions, loads, initial:
-        Far-end condition (default free), initial velocity (one value or one per rod, m/s), junctions between
-        struck rods, nodal loads (rod indices of the struck system) and initial state of the struck system.
     position:
         Distance from the impact face into the struck system (m) where the target is prescribed (thesis Sec.
         4.1.2); None: at the impact face.
@@ -105,7 +102,7 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
     precision_warning = positive("precision_warning", precision_warning)
     if not isinstance(material, Material):
         raise TypeError(f"material: must be a Material, got {type(material).__name__}")
-    system = as_struck_system(struck, struck_velocity, far_end, junctions, loads, initial)
+    system = as_struck_system(struck)
     dt = _resolve_dt(system, dt)
     tgt = as_target(target, rule)
     n = _resolve_n(tgt, n, dt)

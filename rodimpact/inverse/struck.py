@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any, Optional, Sequence
+from typing import Any, Optional
 
 import numpy as np
 
-from .._validate import finite, fits_in_memory, non_negative
+from .._validate import fits_in_memory, non_negative
 from ..direct.result import Probe
 from ..direct.problem import Problem
 from ..direct.recording import Outputs
@@ -23,45 +23,37 @@ from ..lattice.lattice import Lattice, build_lattice
 from ..rods.conditions import (BitRockEnd, Bonded, Contact, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
                                SpringEnd)
 from ..rods.rod import Rod
-from ..rods.system import InitialState, System
+from ..rods.system import System
 from ._rectangular import chain_response
 
 
-def as_struck_system(struck: Any, struck_velocity: Any = 0.0, far_end: Any = "free",
-                     junctions: Optional[Sequence[Any]] = None, loads: Sequence[Any] = (),
-                     initial: Optional[Sequence[Optional[InitialState]]] = None) -> System:
-    """Normalise the struck-system arguments of :func:`~rodimpact.synthesize` into a :class:`System` whose
-    left end is the (free) impact face.
-
-    ``struck`` is a :class:`Rod`, a sequence of rods listed from the impact face outwards, or a ready
-    :class:`System` (then the other arguments must keep their defaults). Parts given as a list are
-    :class:`Bonded` unless ``junctions`` says otherwise. ``struck_velocity`` is one number (all parts) or one
-    per part, m/s (positive towards the far end, i.e. in the striker's direction of motion).
-    """
+def as_struck_system(struck: Any) -> System:
+    """The struck system of :func:`~rodimpact.synthesize` and :func:`~rodimpact.design` as a :class:`System`
+    whose left end is the (free) impact face: a ready :class:`System` (see :meth:`System.struck
+    <rodimpact.rods.system.System.struck>`), or a :class:`Rod` or rods listed from the impact face outwards,
+    bonded, at rest, with a free far end."""
     if isinstance(struck, System):
         if not isinstance(struck.left, FreeEnd):
             raise ValueError("struck.left: the left end of the struck system is the impact face; give left='free' "
                              f"(it is driven by the contact force), got {struck.left!r}")
-        if loads or junctions is not None or initial is not None:
-            raise ValueError("struck: a System already carries junctions, loads and initial state; do not pass "
-                             "junctions=, loads= or initial= as well")
         return struck
-    rods = [struck] if isinstance(struck, Rod) else list(struck) if isinstance(struck, (list, tuple)) else None
-    if rods is None or not rods:
-        raise TypeError(f"struck: must be a Rod, a list of Rods (from the impact face outwards) or a System, "
-                        f"got {type(struck).__name__}")
-    for i, r in enumerate(rods):
-        if not isinstance(r, Rod):
-            raise TypeError(f"struck[{i}]: must be a Rod, got {type(r).__name__}")
-    if np.ndim(struck_velocity) == 0:
-        vel = [finite("struck_velocity", struck_velocity, "m/s")] * len(rods)
-    else:
-        vel = [finite(f"struck_velocity[{i}]", v, "m/s") for i, v in enumerate(struck_velocity)]
-        if len(vel) != len(rods):
-            raise ValueError(f"struck_velocity: need one value per struck rod ({len(rods)}), got {len(vel)}")
-    if junctions is None:
-        junctions = [Bonded()] * (len(rods) - 1)
-    return System(rods, vel, junctions, "free", far_end, tuple(loads), initial)
+    if isinstance(struck, Rod) or (isinstance(struck, (list, tuple)) and struck):
+        for i, r in enumerate([struck] if isinstance(struck, Rod) else struck):
+            if not isinstance(r, Rod):
+                raise TypeError(f"struck[{i}]: must be a Rod, got {type(r).__name__}")
+        return System.struck(struck)
+    raise TypeError(f"struck: must be a Rod, a list of Rods (from the impact face outwards) or a System such as "
+                    f"ri.System.struck(rods, far_end=...), got {type(struck).__name__}")
+
+
+#: where the struck-system keywords of synthesize, transform_force and design went (rodimpact._moved)
+STRUCK_KEYWORDS = {
+    "far_end": "far_end: give the struck system as one System: ri.System.struck(rods, far_end=...)",
+    "struck_velocity": "struck_velocity: give the struck system as one System: ri.System.struck(rods, velocity=...)",
+    "junctions": "junctions: give the struck system as one System: ri.System.struck(rods, junctions=...)",
+    "loads": "loads: give the struck system as one System: ri.System.struck(rods, loads=...)",
+    "initial": "initial: give the struck system as one System: ri.System.struck(rods, initial=...)",
+}
 
 
 def driven(system: System, force_windows: np.ndarray, dt: float) -> System:

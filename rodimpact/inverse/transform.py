@@ -23,19 +23,20 @@ reported by :meth:`~rodimpact.inverse.result.SynthesisResult.verify`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Optional, Sequence
+from typing import Any, Optional
 
 import numpy as np
 
+from .._moved import moved
 from .._validate import positive
 from ..direct.problem import Problem
 from ..direct.recording import Outputs
 from ..direct.simulate import simulate
-from ..rods.system import InitialState, System
+from ..rods.system import System
 from ._rectangular import rectangular_response
 from ._toeplitz import solve_lower_toeplitz
-from .struck import (Location, as_struck_system, at_rest, driven, has_free_motion, linearized, locate,
-                     position_probe, position_quantity, window_count_check)
+from .struck import (STRUCK_KEYWORDS, Location, as_struck_system, at_rest, driven, has_free_motion, linearized,
+                     locate, position_probe, position_quantity, window_count_check)
 from .targets import as_target
 
 QUANTITIES = ("force", "incident")
@@ -139,10 +140,9 @@ def transform_windows(system: System, location: Location, target: np.ndarray, dt
     return ForceTransformation(x, y, g, free, dt, location, quantity, tuple(notes))
 
 
+@moved(STRUCK_KEYWORDS)
 def transform_force(target: Any, struck: Any, position: float, n: Optional[int] = None,
-                    dt: Optional[float] = None, *, quantity: str = "force", struck_velocity: Any = 0.0,
-                    far_end: Any = "free", junctions: Optional[Sequence[Any]] = None, loads: Sequence[Any] = (),
-                    initial: Optional[Sequence[Optional[InitialState]]] = None, rule: str = "midpoint",
+                    dt: Optional[float] = None, *, quantity: str = "force", rule: str = "midpoint",
                     method: str = "auto", backend: str = "numba") -> ForceTransformation:
     """Transform a force history prescribed at ``position`` (m from the impact face into the struck system)
     into the impact-force window values that produce it (thesis Sec. 4.1.2, eqs. 4.10-4.17).
@@ -150,11 +150,12 @@ def transform_force(target: Any, struck: Any, position: float, n: Optional[int] 
     ``target`` is a callable f(t), samples (t, F) or window values (see :mod:`rodimpact.inverse.targets`);
     its time is measured from the arrival of the wavefront at the position. ``quantity`` is ``"force"`` (the
     normal force at the node) or ``"incident"`` (the force wave arriving from the impact side, as in the
-    thesis's percussion-drilling example). The struck-system arguments are those of
-    :func:`~rodimpact.synthesize`. ``method`` selects the triangular Toeplitz solver ("auto", "substitution",
+    thesis's percussion-drilling example). ``struck`` is as in :func:`~rodimpact.synthesize` (a rod, rods
+    from the impact face outwards, or a ``ri.System.struck(rods, far_end=...)``). ``method`` selects the triangular
+    Toeplitz solver ("auto", "substitution",
     "fft").
     """
-    system = as_struck_system(struck, struck_velocity, far_end, junctions, loads, initial)
+    system = as_struck_system(struck)
     dt = _resolve_dt(system, dt)
     tgt = as_target(target, rule)
     n = _resolve_n(tgt, n, dt)

@@ -336,8 +336,8 @@ import rodimpact as ri
 
 dt = 1e-6
 bar = ri.Rod.from_impedance(np.full(300, 79.7e3), dt=dt, name="bar")
-res = ri.synthesize(lambda t: -200e3 * np.exp(-t / 0.1e-3), struck=bar, striker_velocity=6.0, n=60, dt=dt,
-                    far_end="nonreflecting")
+res = ri.synthesize(lambda t: -200e3 * np.exp(-t / 0.1e-3), ri.System.struck(bar, far_end="nonreflecting"),
+                    striker_velocity=6.0, n=60, dt=dt)
 res.shape().to_csv("striker.csv")           # the file rodimpact synthesize writes
 
 with open("striker-on-bar.toml", "w") as fh:

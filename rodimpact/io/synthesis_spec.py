@@ -167,9 +167,11 @@ class SynthesisSpec:
     def _synthesize(self):
         from ..inverse import synthesize
 
-        return synthesize(self.target, list(self.struck), self.striker_velocity, self.n, self.dt,
-                          far_end=self.far_end, struck_velocity=list(self.struck_velocity),
-                          junctions=self.junctions, loads=self.loads, initial=self.initial, position=self.position,
+        from ..rods.system import System
+
+        struck = System.struck(list(self.struck), self.far_end, list(self.struck_velocity), junctions=self.junctions,
+                               loads=self.loads, initial=self.initial)
+        return synthesize(self.target, struck, self.striker_velocity, self.n, self.dt, position=self.position,
                           quantity=self.quantity, rule=self.rule, material=self.material, backend=self.backend)
 
 
@@ -330,8 +332,9 @@ def format_summary(summary: dict[str, Any], spec: SynthesisSpec) -> str:
     m, n = summary["n_feasible"], summary["n_requested"]
     span = f"0 <= t < {summary['exact_span_s']:.4g} s"
     if not summary["feasible"]:
-        lines.append(f"NO EXACT STRIKER: the target cannot be produced over the requested {summary['requested_span_s']:.4g} "
-                     f"s; only elements 1..{m} of {n} exist (target produced for {span})" if m else
+        lines.append(f"NO EXACT STRIKER: the target cannot be produced over the requested "
+                     f"{summary['requested_span_s']:.4g} s; only elements 1..{m} of {n} exist "
+                     f"(target produced for {span})" if m else
                      f"NO EXACT STRIKER: the target cannot be produced at all (not even element 1 of {n} exists)")
     if spec.title:
         lines.append(spec.title)

@@ -9,7 +9,7 @@ import numpy as np
 
 from .._units import array_to_si
 from .._validate import finite
-from .conditions import Contact, EndCondition, Junction, as_end_condition, as_junction
+from .conditions import Bonded, Contact, EndCondition, Junction, as_end_condition, as_junction
 from .loads import Bearings, NodalForce
 from .plausibility import check_strikers
 from .rod import Rod
@@ -113,6 +113,36 @@ class System:
         object.__setattr__(self, "loads", loads)
         object.__setattr__(self, "initial", tuple(initial))
         check_strikers(self.rods, self.velocities)
+
+    @classmethod
+    def struck(cls, rods: Rod | Sequence[Rod], far_end: EndCondition | str = "free",
+               velocity: float | Sequence[float] = 0.0, *, junctions: Optional[Sequence[Junction | str]] = None,
+               loads: Sequence[NodalForce | Bearings] = (),
+               initial: Optional[Sequence[Optional[InitialState]]] = None) -> System:
+        """The system a striker hits, as :func:`~rodimpact.synthesize` and :func:`~rodimpact.design` take it: the
+        ``rods`` listed from the impact face outwards (the free left end is the impact face), joined by
+        :class:`~rodimpact.Bonded` joints unless ``junctions`` says otherwise, with the ``far_end`` condition on
+        the right and the initial ``velocity`` (m/s, positive towards the far end: one value for all rods or one
+        per rod).
+
+        >>> import rodimpact as ri
+        >>> bar = ri.Rod.from_impedance([79.7e3] * 100, dt=1e-6)
+        >>> ri.System.struck(bar, far_end="nonreflecting").right
+        NonReflectingEnd(impedance=None)
+        """
+        parts = [rods] if isinstance(rods, Rod) else list(rods) if isinstance(rods, (list, tuple)) else None
+        if parts is None or not parts:
+            raise TypeError(f"rods: must be a Rod or a list of Rods (from the impact face outwards), "
+                            f"got {type(rods).__name__}")
+        if np.ndim(velocity) == 0:
+            velocities = [finite("velocity", velocity, "m/s")] * len(parts)
+        else:
+            velocities = [finite(f"velocity[{i}]", v, "m/s") for i, v in enumerate(velocity)]
+            if len(velocities) != len(parts):
+                raise ValueError(f"velocity: need one value per struck rod ({len(parts)}), got {len(velocities)}")
+        if junctions is None:
+            junctions = [Bonded()] * (len(parts) - 1)
+        return cls(parts, velocities, junctions, "free", far_end, tuple(loads), initial)
 
     @property
     def n_rods(self) -> int:

@@ -7,7 +7,7 @@ import pytest
 
 import rodimpact as ri
 from rodimpact.design._adjoint import ImpactProblem
-from rodimpact.inverse.struck import as_struck_system, locate, position_probe, position_quantity, with_striker
+from rodimpact.inverse.struck import locate, position_probe, position_quantity, with_striker
 
 DT = 1e-6
 
@@ -36,13 +36,13 @@ def two_part_struck(rng, right, loads=True):
         extra["loads"] = [ri.NodalForce(0, a.length / 3, lambda t: -2e3 * np.sin(2e5 * t)),
                           ri.Bearings(1, [(0.0, b.length)], friction_coefficient=0.3, normal_load=4e3)]
         extra["initial"] = [ri.InitialState(force=-1e3), None]
-    return as_struck_system([a, b], struck_velocity=[0.4, 0.4], far_end=right, **extra)
+    return ri.System.struck([a, b], right, [0.4, 0.4], **extra)
 
 
 CASES = {
-    "bitrock": lambda rng: as_struck_system(ri.Rod.from_impedance(rng.uniform(2e4, 6e4, size=25), dt=DT),
+    "bitrock": lambda rng: ri.System.struck(ri.Rod.from_impedance(rng.uniform(2e4, 6e4, size=25), dt=DT),
                                             far_end=ri.BitRockEnd(4e9, 2e10)),
-    "nonreflecting": lambda rng: as_struck_system(ri.Rod.from_impedance(rng.uniform(2e4, 6e4, size=25), dt=DT),
+    "nonreflecting": lambda rng: ri.System.struck(ri.Rod.from_impedance(rng.uniform(2e4, 6e4, size=25), dt=DT),
                                                   far_end="nonreflecting"),
     "nonreflecting_own_impedance": lambda rng: two_part_struck(rng, ri.NonReflectingEnd(impedance=3.3e4)),
     "spring_loads_friction": lambda rng: two_part_struck(rng, ri.SpringEnd(3e9, 20.0)),
@@ -115,7 +115,7 @@ def test_repeated_calls_do_not_share_state():
 # ---------------------------------------------------------------------------------------------- bad input
 @pytest.fixture(scope="module")
 def problem():
-    struck = as_struck_system(ri.Rod.from_impedance(np.full(10, 3e4), dt=DT), far_end="nonreflecting")
+    struck = ri.System.struck(ri.Rod.from_impedance(np.full(10, 3e4), dt=DT), far_end="nonreflecting")
     return ImpactProblem(struck, DT, 4, 50)
 
 

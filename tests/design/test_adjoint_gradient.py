@@ -8,7 +8,7 @@ from hypothesis import assume, given, settings, strategies as st
 
 import rodimpact as ri
 from rodimpact.design._adjoint import ImpactProblem
-from rodimpact.inverse.struck import as_struck_system, locate
+from rodimpact.inverse.struck import locate
 
 DT = 1e-6
 H = 1e-5            # relative finite-difference step
@@ -38,8 +38,8 @@ def random_case(seed, end_kind, observe, loads=False):
                           ri.Bearings(len(parts) - 1, [(0.0, parts[-1].length)], friction_coefficient=0.3,
                                       normal_load=2e3)]
     junctions = [ri.Contact() if rng.uniform() < 0.5 else ri.Bonded()] * (len(parts) - 1)
-    struck = as_struck_system(parts, struck_velocity=float(rng.uniform(-0.5, 0.5)),
-                              far_end=make_end(end_kind, rng), junctions=junctions, **extra)
+    struck = ri.System.struck(parts, make_end(end_kind, rng), float(rng.uniform(-0.5, 0.5)), junctions=junctions,
+                              **extra)
     n = int(rng.integers(3, 9))
     z = rng.uniform(1e4, 6e4, size=n)
     z[int(rng.integers(1, n)):] *= rng.uniform(2.0, 6.0)
@@ -153,7 +153,7 @@ def test_efficiency_gradient_equals_finite_differences(seed, observe, loads):
 def test_gradient_through_separation_and_recontact():
     """A thin striker face before a heavy rear part against a long bar: the face separates and the rear hits
     again (two contact periods)."""
-    struck = as_struck_system(ri.Rod.from_impedance(np.linspace(2e4, 3e4, 10), dt=DT), far_end="nonreflecting")
+    struck = ri.System.struck(ri.Rod.from_impedance(np.linspace(2e4, 3e4, 10), dt=DT), far_end="nonreflecting")
     z = np.array([3e4, 3e4, 1.2e5, 1.2e5, 1.2e5, 1.2e5])
     problem = ImpactProblem(struck, DT, z.size, 120)
     fw = problem.forward(z, 5.0)
@@ -225,8 +225,7 @@ def test_gradient_is_linear_in_the_seeds():
 def test_long_run_gradient_equals_finite_differences():
     """700 steps: simulate's compiled calls end every 3 steps (the forward repeats the (N, v) round trip there)
     and the default checkpoints split the run into 27 segments; waves reflect many times in a short rod."""
-    struck = as_struck_system(ri.Rod.from_impedance(np.linspace(3e4, 5e4, 6), dt=DT),
-                              far_end=ri.BitRockEnd(2e10, 6e10))
+    struck = ri.System.struck(ri.Rod.from_impedance(np.linspace(3e4, 5e4, 6), dt=DT), far_end=ri.BitRockEnd(2e10, 6e10))
     rng = np.random.default_rng(21)
     z = rng.uniform(2e4, 6e4, size=5)
     problem = ImpactProblem(struck, DT, z.size, 700)

@@ -19,7 +19,7 @@ def _exact(problem):
 def _design_of(problem, **kw):
     o = dict(problem.options)
     return ri.design(problem.target, struck=problem.struck, striker_velocity=problem.striker_velocity, n=problem.n,
-                     dt=problem.dt, far_end=o.pop("far_end"), rule=o.pop("rule"), **o, **kw)
+                     dt=problem.dt, far_end=problem.far_end, rule=o.pop("rule"), **o, **kw)
 
 
 def _check(d, ref):
@@ -50,7 +50,7 @@ def test_lundberg_lesser_random_parameters(seed):
     target = ri.ExponentialDecay(peak, t0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ri.SynthesisWarning)
-        ref = ri.synthesize(target, bar, v, n, dt, far_end="nonreflecting")
+        ref = ri.synthesize(target, ri.System.struck(bar, far_end="nonreflecting"), v, n, dt)
     d = ri.design(target, struck=bar, striker_velocity=v, n=n, dt=dt, far_end="nonreflecting",
                   impedance_bounds=(1.0, 1e9))
     _check(d, ref)

@@ -13,7 +13,6 @@ from scipy.optimize import minimize_scalar
 import rodimpact as ri
 from rodimpact.design._adjoint import ImpactProblem
 from rodimpact.design.objectives import EfficiencyObjective
-from rodimpact.inverse.struck import as_struck_system
 
 
 def eta_closed_form(x):
@@ -31,7 +30,7 @@ def _lattice_eta(n, x, z=50e3, v=10.0, dt=1e-6):
     """A uniform piston of n elements on a long rod of the same impedance ending on BitRockEnd(k, 1e6 k): run
     until the incident wave has passed into the rock (before any reflection returns)."""
     k = x * z / (2 * n * dt)
-    s = as_struck_system(ri.Rod.from_impedance([z] * (4 * n), dt), far_end=ri.BitRockEnd(k, 1e6 * k))
+    s = ri.System.struck(ri.Rod.from_impedance([z] * (4 * n), dt), far_end=ri.BitRockEnd(k, 1e6 * k))
     steps = 8 * n
     fw = ImpactProblem(s, dt, n, steps).forward(np.full(n, z), v)
     return EfficiencyObjective(dt, steps).efficiency(fw, np.full(n, z), v)

@@ -12,7 +12,6 @@ from rodimpact.design._adjoint import ImpactProblem
 from rodimpact.design.constraints import build_constraints
 from rodimpact.design.objectives import EfficiencyObjective, MatchObjective
 from rodimpact.design.screening import POOL_SIZE, candidate_pool, screen
-from rodimpact.inverse.struck import as_struck_system
 
 DT = 1e-6
 
@@ -31,7 +30,7 @@ def _independent_values(problem, objective, strikers, v):
 def test_face_match_values_equal_the_design_forward_runs():
     """Non-uniform two-rod struck system with a non-reflecting end; the target starts at 0 N (infeasible)."""
     n = 12
-    struck = as_struck_system([ri.Rod.from_impedance([3e4] * 10 + [6e4] * 15, DT),
+    struck = ri.System.struck([ri.Rod.from_impedance([3e4] * 10 + [6e4] * 15, DT),
                                ri.Rod.from_impedance([5e4] * 20, DT)], far_end="nonreflecting")
     windows = -6e4 * np.sin(np.pi * (np.arange(n) + 0.5) / n)
     obj = MatchObjective.build(windows, None, None, DT)
@@ -47,7 +46,7 @@ def test_face_match_values_equal_the_design_forward_runs():
 def test_efficiency_values_equal_the_design_forward_runs():
     """Drill rod on a bit-rock end (loading and unloading stiffness): -eta of each striker."""
     n = 10
-    struck = as_struck_system(ri.Rod.from_impedance([4e4] * 40, DT), far_end=ri.BitRockEnd(2e9, 2e10))
+    struck = ri.System.struck(ri.Rod.from_impedance([4e4] * 40, DT), far_end=ri.BitRockEnd(2e9, 2e10))
     steps = 2 * n + 6 * 40
     obj = EfficiencyObjective(DT, steps)
     strikers = _strikers(n, 5, seed=8)
@@ -59,7 +58,7 @@ def test_efficiency_values_equal_the_design_forward_runs():
 
 def test_the_smoothness_penalty_is_added_as_in_the_optimiser():
     n = 8
-    struck = as_struck_system(ri.Rod.from_impedance([4e4] * 20, DT), far_end="nonreflecting")
+    struck = ri.System.struck(ri.Rod.from_impedance([4e4] * 20, DT), far_end="nonreflecting")
     obj = MatchObjective.build(np.full(n // 2, -5e4), None, None, DT)
     z = np.linspace(2e4, 6e4, n)
     plain = screen(struck, DT, obj.steps, obj, [("ramp", z)], 5.0, 0.0, 1.0).values[0]

@@ -57,8 +57,8 @@ def test_simulation_html_shows_the_key_numbers():
 def synthesis():
     dt = 1.93e-6
     bar = ri.Rod.from_impedance(np.full(200, 79.7e3), dt=dt)
-    return ri.synthesize(lambda t: -239.1e3 * np.exp(-t / 0.383e-3), struck=bar, striker_velocity=6.0,
-                         n=60, dt=dt, far_end="nonreflecting")
+    return ri.synthesize(lambda t: -239.1e3 * np.exp(-t / 0.383e-3), struck=ri.System.struck(bar, far_end="nonreflecting"), striker_velocity=6.0,
+                         n=60, dt=dt)
 
 
 def test_synthesis_dataframe_is_the_per_element_table(synthesis):

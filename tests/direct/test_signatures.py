@@ -14,7 +14,7 @@ from rodimpact.direct import simulate as simulate_module
 DT = 1e-6
 
 #: most parameters each public solver function may take (the catch of moved keywords adds none)
-LIMITS = {"simulate": 9, "simulate_batch": 9}
+LIMITS = {"simulate": 9, "simulate_batch": 9, "synthesize": 12, "transform_force": 9}
 
 
 def bars():

@@ -23,7 +23,7 @@ def _bar():
 def _synth(windows, v=V):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ri.SynthesisWarning)
-        return ri.synthesize(np.asarray(windows), _bar(), v, len(windows), DT, far_end="nonreflecting")
+        return ri.synthesize(np.asarray(windows), ri.System.struck(_bar(), far_end="nonreflecting"), v, len(windows), DT)
 
 
 def _numbers_kn(text):

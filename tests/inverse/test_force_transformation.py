@@ -7,7 +7,7 @@ from scipy.linalg import solve_triangular, toeplitz
 import rodimpact as ri
 from rodimpact.inverse import transform_force
 from rodimpact.inverse._toeplitz import solve_lower_toeplitz
-from rodimpact.inverse.struck import as_struck_system, driven
+from rodimpact.inverse.struck import driven
 
 DT = 1e-6
 C = ri.STEEL.wave_speed
@@ -59,16 +59,16 @@ def test_round_trip_through_the_struck_system(quantity, moving):
     rng = np.random.default_rng(2)
     n = 40
     x = -1e5 * (1 + 0.3 * rng.random(n))
-    kw = dict(far_end=ri.SpringEnd(4e8), struck_velocity=0.0)
+    kw = dict(far_end=ri.SpringEnd(4e8), velocity=0.0)
     if moving:
-        kw.update(far_end="fixed", struck_velocity=[0.3, -0.2],
+        kw.update(far_end="fixed", velocity=[0.3, -0.2],
                   loads=[ri.NodalForce(1, 4 * C * DT, lambda t: -3e4 * (t > 5e-6))])
-    system = as_struck_system(_stepped_struck(), **kw)
+    system = ri.System.struck(_stepped_struck(), **kw)
     p_node = 14                                      # node 4 of rod 1: 14 elements from the impact face
     loc = (1, 4 * C * DT, 13)
     q = _forward(system, x, loc, p_node + 2 * n, quantity)
     y = q[p_node + 2 * np.arange(n)]
-    tr = transform_force(y, _stepped_struck(), position=14 * C * DT, dt=DT, quantity=quantity, **kw)
+    tr = transform_force(y, system, position=14 * C * DT, dt=DT, quantity=quantity)
     assert tr.location.node == p_node and tr.dead_time == pytest.approx(14 * DT)
     np.testing.assert_allclose(tr.impact_force, x, rtol=1e-11)
     assert tr.residual < 1e-13

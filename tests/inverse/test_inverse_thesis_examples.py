@@ -49,7 +49,7 @@ def _rows(target_cls, zt, peak, t0, dt, v):
     bar = ri.Rod.from_impedance([zt] * 4, dt)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SynthesisWarning)
-        res = synthesize(target_cls(peak, t0), bar, v, n=101, dt=dt, far_end="nonreflecting", rule="start")
+        res = synthesize(target_cls(peak, t0), ri.System.struck(bar, far_end="nonreflecting"), v, n=101, dt=dt, rule="start")
     return {r["q"]: r for r in res.table()}
 
 

@@ -8,7 +8,7 @@ import numpy as np
 
 import rodimpact as ri
 from rodimpact.inverse import percussion_drilling_example
-from rodimpact.inverse.struck import as_struck_system, locate, position_probe
+from rodimpact.inverse.struck import locate, position_probe
 
 
 def test_the_far_end_node_is_inside_the_rod_and_can_be_probed():
@@ -17,7 +17,7 @@ def test_the_far_end_node_is_inside_the_rod_and_can_be_probed():
     dt = 0.5 / n / ri.STEEL.wave_speed                   # a time step that smears the 5 mm segments
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        system = as_struck_system(ex.struck, far_end=ex.options["far_end"])
+        system = ex.struck_system
         loc = locate(system, ex.options["position"], dt)
         length = system.rods[loc.rod].length
         assert loc.local <= length

@@ -15,7 +15,7 @@ def _max_error(peak, n, rule, offset):
     element q is compared with Z_exact(theta = (q - 1 + offset) dt)."""
     dt = DT100 * 100 / n
     bar = ri.Rod.from_impedance([ZT] * 4, dt)
-    res = synthesize(ExponentialDecay(peak, T0), bar, V_IN, n=n, dt=dt, far_end="nonreflecting", rule=rule)
+    res = synthesize(ExponentialDecay(peak, T0), ri.System.struck(bar, far_end="nonreflecting"), V_IN, n=n, dt=dt, rule=rule)
     assert res.feasible and res.diagnostics["face_response"] == "analytic"
     exact = lundberg_lesser_impedance(dt * (np.arange(n) + offset), peak, T0, ZT, V_IN)
     return float(np.max(np.abs(res.impedance / exact - 1)))

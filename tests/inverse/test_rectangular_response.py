@@ -10,7 +10,7 @@ import rodimpact as ri
 from rodimpact.inverse import SynthesisWarning, percussion_drilling_example, transform_force
 from rodimpact.inverse._rectangular import rectangular_response
 from rodimpact.inverse._toeplitz import solve_lower_toeplitz
-from rodimpact.inverse.struck import (as_struck_system, at_rest, driven, face_response, linearized, locate,
+from rodimpact.inverse.struck import (at_rest, driven, face_response, linearized, locate,
                                       position_probe, position_quantity)
 from rodimpact.inverse.transform import _rectangular
 
@@ -29,7 +29,7 @@ def _direct(system, loc, dt, steps, quantity, backend="numba"):
 def _chain(far_end):
     rods = [ri.Rod.from_impedance([6e4] * 30 + [1.1e5] * 20, DT),
             ri.Rod.from_impedance(np.linspace(8e4, 1.6e5, 60), DT), ri.Rod.from_impedance([9e4] * 40, DT)]
-    return at_rest(as_struck_system(rods, far_end=far_end))
+    return at_rest(ri.System.struck(rods, far_end=far_end))
 
 
 FAR_ENDS = ["free", "fixed", "nonreflecting", ri.NonReflectingEnd(1.3e5), ri.SpringEnd(4e8),
@@ -64,9 +64,9 @@ def test_drill_string_transformation_equals_the_old_computation():
     prob = percussion_drilling_example(n)
     o = prob.options
     dt = 0.5 / n / C
-    tr = transform_force(prob.target, prob.struck, o["position"], n=n, dt=dt, quantity=o["quantity"],
-                         far_end=o["far_end"], rule=o["rule"])
-    system = as_struck_system(prob.struck, far_end=o["far_end"])
+    tr = transform_force(prob.target, prob.struck_system, o["position"], n=n, dt=dt, quantity=o["quantity"],
+                         rule=o["rule"])
+    system = prob.struck_system
     loc = locate(system, o["position"], dt)
     lin, _ = linearized(system)
     steps = loc.node + 2 * n - 1
@@ -102,15 +102,14 @@ def test_transform_of_a_moving_loaded_system_round_trip():
     """A moving, loaded struck system: its free response still comes from the direct solver, the rectangular
     response (of the same system at rest) from the band sweep; round trip X -> simulate -> transform -> X."""
     rods = [ri.Rod.from_impedance([6e4] * 6 + [1.1e5] * 4, DT), ri.Rod.from_impedance([8e4] * 12, DT)]
-    kw = dict(far_end="fixed", struck_velocity=[0.3, -0.2], loads=[ri.NodalForce(1, 4 * C * DT, -3e4)])
-    system = as_struck_system(rods, **kw)
+    system = ri.System.struck(rods, far_end="fixed", velocity=[0.3, -0.2], loads=[ri.NodalForce(1, 4 * C * DT, -3e4)])
     x = -1e5 * (1 + 0.3 * np.sin(np.arange(20)))
     sim = ri.simulate(driven(system, x, DT), steps=14 + 40, dt=DT,
                       outputs=ri.Outputs(probes=[ri.Probe("p", 1, 4 * C * DT)]))
     y = sim.probe("p").force[14 + 2 * np.arange(20)]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SynthesisWarning)
-        tr = transform_force(y, rods, position=14 * C * DT, dt=DT, **kw)
+        tr = transform_force(y, system, position=14 * C * DT, dt=DT)
     np.testing.assert_allclose(tr.impact_force, x, rtol=1e-11)
 
 

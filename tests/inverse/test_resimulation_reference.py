@@ -18,13 +18,14 @@ def _target(t):
 
 
 CASES = {
-    "semi-infinite uniform bar": dict(struck=ri.Rod.from_impedance([8e4] * 4, DT), far_end="nonreflecting"),
-    "stepped rods, free far end": dict(
-        struck=[ri.Rod.from_impedance([6e4] * 6, DT), ri.Rod.from_impedance([1.2e5] * 10 + [5e4] * 8, DT)],
-        far_end="free"),
-    "moving, fixed end, nodal load": dict(
-        struck=ri.Rod.from_impedance([9e4] * 8 + [7e4] * 14, DT), far_end="fixed", struck_velocity=0.5,
-        loads=[ri.NodalForce(0, 12 * ri.STEEL.wave_speed * DT, -2e4)]),
+    "semi-infinite uniform bar": dict(struck=ri.System.struck(ri.Rod.from_impedance([8e4] * 4, DT),
+                                                             far_end="nonreflecting")),
+    "stepped rods, free far end": dict(struck=ri.System.struck(
+        [ri.Rod.from_impedance([6e4] * 6, DT), ri.Rod.from_impedance([1.2e5] * 10 + [5e4] * 8, DT)],
+        far_end="free")),
+    "moving, fixed end, nodal load": dict(struck=ri.System.struck(
+        ri.Rod.from_impedance([9e4] * 8 + [7e4] * 14, DT), far_end="fixed", velocity=0.5,
+        loads=[ri.NodalForce(0, 12 * ri.STEEL.wave_speed * DT, -2e4)])),
 }
 
 
@@ -52,7 +53,7 @@ def test_reference_stops_where_the_fast_path_stops():
     bar = ri.Rod.from_impedance([8e4] * 4, DT)
     x = -2e5 * (1 + 0.08 * np.arange(30))           # steep ramp: eq. 4.20 fails after a few elements
     with pytest.warns(SynthesisWarning):
-        res = synthesize(x, bar, 6.0, dt=DT, far_end="nonreflecting")
+        res = synthesize(x, ri.System.struck(bar, far_end="nonreflecting"), 6.0, dt=DT)
     ref = synthesize_by_resimulation(x, res.struck, 6.0, DT)
     assert 1 < res.n_feasible < 30
     assert ref.n_feasible == res.n_feasible
@@ -64,12 +65,12 @@ def test_closed_form_face_response_only_when_valid():
     jump 6 elements deep arrives after 6 steps (< 2n = 10), so the direct solver must be used."""
     x = -5e4 * np.ones(5)
     rods = [ri.Rod.from_impedance([3e4] * 6, DT), ri.Rod.from_impedance([3e4] * 2, DT)]
-    res = synthesize(x, rods, 2.7, dt=DT, far_end="free", struck_velocity=[0.0, 1.0])
+    res = synthesize(x, ri.System.struck(rods, far_end="free", velocity=[0.0, 1.0]), 2.7, dt=DT)
     assert res.diagnostics["face_response"] == "simulated"
     assert res.verify().max_deviation < 1e-13
-    same = synthesize(x, rods, 2.7, dt=DT, far_end="free", struck_velocity=[0.5, 0.5])
+    same = synthesize(x, ri.System.struck(rods, far_end="free", velocity=[0.5, 0.5]), 2.7, dt=DT)
     assert same.diagnostics["face_response"] == "analytic"
     assert same.verify().max_deviation < 1e-13
-    moving_fixed = synthesize(x, rods, 2.7, dt=DT, far_end="fixed", struck_velocity=0.5)
+    moving_fixed = synthesize(x, ri.System.struck(rods, far_end="fixed", velocity=0.5), 2.7, dt=DT)
     assert moving_fixed.diagnostics["face_response"] == "simulated"     # the fixed end stops a moving bar
     assert moving_fixed.verify().max_deviation < 1e-13

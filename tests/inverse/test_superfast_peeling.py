@@ -95,7 +95,7 @@ def test_synthesize_on_a_struck_system_same_with_both_paths(monkeypatch, n):
         monkeypatch.setattr(S, "LEAF", leaf)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", SynthesisWarning)
-            runs[crossover] = synthesize(target, _stepped_bar(dt), 8.0, n=n, dt=dt, far_end="nonreflecting")
+            runs[crossover] = synthesize(target, ri.System.struck(_stepped_bar(dt), far_end="nonreflecting"), 8.0, n=n, dt=dt)
     a, b = runs[10**9], runs[1]
     assert a.diagnostics["peeling"] == "quadratic" and b.diagnostics["peeling"] == "superfast"
     assert a.diagnostics["face_response"] == "simulated"

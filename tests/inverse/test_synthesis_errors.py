@@ -12,7 +12,7 @@ BAR = ri.Rod.from_impedance([79.7e3] * 4, DT)
 
 
 def _syn(target, **kw):
-    args = dict(struck=BAR, striker_velocity=6.0, n=20, dt=DT, far_end="nonreflecting")
+    args = dict(struck=ri.System.struck(BAR, far_end="nonreflecting"), striker_velocity=6.0, n=20, dt=DT)
     args.update(kw)
     return synthesize(target, **args)
 
@@ -65,8 +65,11 @@ def test_other_bad_arguments():
         _syn(-1e5 * np.ones(20), backend="cuda")
     with pytest.raises(TypeError, match="struck: must be a Rod"):
         _syn(-1e5 * np.ones(20), struck="steel bar")
-    with pytest.raises(ValueError, match="struck_velocity: need one value per struck rod"):
-        _syn(-1e5 * np.ones(20), struck=[BAR, BAR], struck_velocity=[0.0])
+    with pytest.raises(ValueError, match="velocity: need one value per struck rod"):
+        _syn(-1e5 * np.ones(20), struck=ri.System.struck([BAR, BAR], velocity=[0.0]))
+    with pytest.raises(TypeError, match=r"far_end: give the struck system as one System: ri.System.struck\(rods, "
+                                        r"far_end=...\)"):
+        _syn(-1e5 * np.ones(20), struck=BAR, far_end="fixed")
     with pytest.raises(TypeError, match="striker_velocity: must be a real number"):
         _syn(-1e5 * np.ones(20), striker_velocity="fast")
     with pytest.raises(ValueError, match="rule: must be one of"):
@@ -96,7 +99,8 @@ def test_tensile_impact_force_required_at_a_position():
     bar = ri.Rod.from_impedance([79.7e3] * 30, DT)
     y = np.r_[[-1e5] * 6, [3e4] * 14]          # the force at 10 elements depth turns tensile in window 7
     with pytest.warns(SynthesisWarning, match="is not compressive; the striker would have to pull"):
-        res = synthesize(y, bar, 6.0, dt=DT, far_end="nonreflecting", position=10 * ri.STEEL.wave_speed * DT)
+        res = synthesize(y, ri.System.struck(bar, far_end="nonreflecting"), 6.0, dt=DT,
+                         position=10 * ri.STEEL.wave_speed * DT)
     assert res.n_feasible == 6 and res.failure.reason == "tension" and res.failure.element == 7
     assert res.verify().max_deviation < 1e-13
 
@@ -108,5 +112,6 @@ def test_struck_given_as_a_system():
     np.testing.assert_array_equal(a.impedance, b.impedance)
     with pytest.raises(ValueError, match="struck.left: the left end of the struck system is the impact face"):
         synthesize(-1e5 * np.ones(10), ri.System([BAR], [0.0], left="fixed"), 6.0, dt=DT)
-    with pytest.raises(ValueError, match="do not pass junctions=, loads= or initial= as well"):
+    with pytest.raises(TypeError, match=r"loads: give the struck system as one System: ri.System.struck\(rods, "
+                                        r"loads=...\)"):
         synthesize(-1e5 * np.ones(10), sys_, 6.0, dt=DT, loads=[ri.NodalForce(0, 0.01, 1.0)])

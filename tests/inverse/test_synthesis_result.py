@@ -65,7 +65,7 @@ def test_precision_warning_on_an_ill_conditioned_striker():
     x = sim.contact_force[0::2]
     with warnings.catch_warnings(record=True) as rec:
         warnings.simplefilter("always")
-        res = synthesize(x, bar, 5.0, dt=dt, far_end="nonreflecting")
+        res = synthesize(x, ri.System.struck(bar, far_end="nonreflecting"), 5.0, dt=dt)
     msgs = [str(w.message) for w in rec if issubclass(w.category, SynthesisWarning)]
     flagged = [m for m in msgs if "peeled wave amplitudes grew" in m]
     assert flagged
@@ -87,7 +87,7 @@ def test_odd_step_content_warning():
     dt = 1e-6
     struck = [ri.Rod.from_impedance([8e4] * 3, dt), ri.Rod.from_impedance([8e4] * 20, dt)]
     with pytest.warns(SynthesisWarning, match="changes within force windows"):
-        res = synthesize(-1e5 * np.ones(10), struck, 6.0, dt=dt, struck_velocity=[0.0, 1.0])
+        res = synthesize(-1e5 * np.ones(10), ri.System.struck(struck, velocity=[0.0, 1.0]), 6.0, dt=dt)
     assert res.diagnostics["odd_step_content"] > 1e-3
     assert res.verify().max_deviation > 1e-3
 

@@ -53,7 +53,7 @@ def _rows(target, peak, dt, n):
     bar = ri.Rod.from_impedance([ZT] * 4, dt)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SynthesisWarning)      # example 2 stops at its existence limit
-        res = synthesize(target(peak, T0), bar, V_IN, n=n, dt=dt, far_end="nonreflecting", rule="start")
+        res = synthesize(target(peak, T0), ri.System.struck(bar, far_end="nonreflecting"), V_IN, n=n, dt=dt, rule="start")
     return res, {r["q"]: r for r in res.table()}
 
 
@@ -117,7 +117,7 @@ def test_at_the_printed_parameters_row_77_of_tab_4_4_is_far_off():
 
 def _lundberg_lesser_error(peak, dt):
     bar = ri.Rod.from_impedance([ZT] * 4, dt)
-    res = synthesize(ExponentialDecay(peak, T0), bar, V_IN, n=100, dt=dt, far_end="nonreflecting", rule="start")
+    res = synthesize(ExponentialDecay(peak, T0), ri.System.struck(bar, far_end="nonreflecting"), V_IN, n=100, dt=dt, rule="start")
     exact = lundberg_lesser_impedance(dt * np.arange(100), peak, T0, ZT, V_IN)       # theta_q = (q - 1) dt
     return float(np.max(np.abs(res.impedance / exact - 1))) * 100                   # percent
 

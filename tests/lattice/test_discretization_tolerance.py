@@ -130,7 +130,7 @@ def test_synthesis_at_a_coarse_dt_warns_instead_of_failing():
     assert _error(0.5, dt) > 0.05
     with pytest.warns(UserWarning, match=r"rod \d: its travel time is represented with a 9.09 % error.*"
                                          r"represents every rod within 1%") as rec:
-        res = ri.synthesize(lambda t: np.full(np.shape(t), -2e4), struck, 5.0, n=4, dt=dt, far_end="free")
+        res = ri.synthesize(lambda t: np.full(np.shape(t), -2e4), ri.System.struck(struck, far_end="free"), 5.0, n=4, dt=dt)
     assert res.n_feasible >= 1 and res.diagnostics["face_response"] == "simulated"
     assert all("allow_discretization_error" not in str(w.message) for w in rec)
 
