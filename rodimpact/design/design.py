@@ -16,6 +16,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .. import __version__
+from .._validate import non_negative
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import BitRockEnd
 from ..rods.material import STEEL, Material
@@ -116,8 +117,11 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         raise ValueError(f"starts: must be an integer >= 1, got {starts!r}")
     if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 1:
         raise ValueError(f"max_iterations: must be an integer >= 1, got {max_iterations!r}")
-    if not (isinstance(smoothness, (int, float)) and np.isfinite(smoothness) and smoothness >= 0):
-        raise ValueError(f"smoothness: must be a finite number >= 0, got {smoothness!r}")
+    smoothness = _real("smoothness", smoothness, "a finite number >= 0 (weight of the total-variation penalty)",
+                       lambda x: x >= 0.0)
+    tolerance = _real("tolerance", tolerance, "a finite number with 0 < tolerance < 1 (L-BFGS-B's relative "
+                      "reduction ftol of the objective per iteration)", lambda x: 0.0 < x < 1.0)
+    non_negative("bore", bore, "m")
     if max_steps is not None and (isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer))
                                   or max_steps < 1):
         raise ValueError(f"max_steps: must be an integer >= 1 (number of constant-impedance steps), got {max_steps!r}")
@@ -253,6 +257,18 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                                     float(np.sqrt(free_value)) if objective == "match" else -free_value}
         diag["breakpoints"] = st.breaks.tolist()
     return finish(z, v, fw, iterations, runs)
+
+
+def _real(name: str, value: Any, valid: str, ok: Any) -> float:
+    """``value`` as a float if it is a real number (int or float, not bool, no string or sequence coerced),
+    finite and ``ok``; otherwise a TypeError (wrong type) or ValueError (wrong value) naming ``name`` and saying
+    what is ``valid``."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name}: must be {valid}, got {type(value).__name__} {value!r}")
+    x = float(value)
+    if not (np.isfinite(x) and ok(x)):
+        raise ValueError(f"{name}: must be {valid}, got {value!r}")
+    return x
 
 
 def _distinct(profiles: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.ndarray]]:
