@@ -31,8 +31,18 @@ def plot_design_force(result: Any, ax: Optional[Any] = None):
         ax.plot(t[k], result.target / 1e3, "k.", ms=3, label=f"target (misfit {result.misfit:.3g})")
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("force [kN]")
+    ax.set_title(design_force_title(result))
     ax.legend(loc="best")
     return ax
+
+
+def design_force_title(result: Any) -> str:
+    """Title of :func:`plot_design_force`: what is drawn and how good the design is."""
+    if result.objective == "match":
+        where = ("contact force" if result.location is None
+                 else f"{result.quantity} at {result.location.used:.4g} m")
+        return f"Designed striker: {where} vs target (misfit {result.misfit:.3g})"
+    return f"Efficiency design: incident wave at the bit (efficiency {result.efficiency:.4g})"
 
 
 def plot_design_profile(result: Any, ax: Optional[Any] = None, log: Optional[bool] = None):
@@ -95,5 +105,6 @@ def plot_incident_wave(result: Any, loading_stiffness: float, rod_impedance: flo
             label=r"$f_0\,e^{k t / Z}$ (no reflection)")
     ax.set_xlabel("time from arrival at the bit [ms]")
     ax.set_ylabel("force [kN]")
+    ax.set_title(f"Incident wave at the bit vs the reflection-free exponential (efficiency {result.efficiency:.4g})")
     ax.legend(loc="best")
     return ax
