@@ -146,6 +146,10 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         "numba" or "numpy" (forward and adjoint runs).
     """
     wall0 = _time.perf_counter()
+    if objective == "efficiency" and isinstance(n, (tuple, list)):
+        args = dict(locals())
+        del args["wall0"]
+        return _design_lengths(args, wall0)
     if objective not in OBJECTIVES:
         raise ValueError(f"objective: must be one of {OBJECTIVES}, got {objective!r}")
     if backend not in ("numba", "numpy"):
@@ -246,6 +250,9 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                     convergence=[r.history for r in runs], start_values=[r.value for r in runs])
         if objective == "match":
             diag["weights"] = obj.weights
+        else:
+            diag["uniform_reference"] = uniform_reference(system, dt, cons.mass_of(z), v, cons, n, reloading,
+                                                          steps, duration, location.node)
         value = obj.evaluate(fw, z, v)[0]
         return DesignResult(
             impedance=z, striker_velocity=float(v), dt=dt, objective=objective, time=dt * np.arange(run_steps),
@@ -299,7 +306,8 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                              float(smoothness), z_ref)
         # the recursive method's striker (or prefix) stays first: it is the theory's guess, often in the basin
         # of the best optimum even when its value is not the lowest; the best diverse candidates follow
-        warm = [(name, z) for name, z in named if name.startswith("recursive")]
+        # (for the efficiency the uniform piston stays first: the design then never ends below it)
+        warm = [(name, z) for name, z in named if name.startswith("recursive") or name == "uniform"]
         profiles = diverse(warm + [(name, z) for name, z in zip(ranked.names, ranked.impedance)
                                    if not any(np.allclose(z, w, rtol=1e-12, atol=0.0) for _, w in warm)], starts)
         diag["screened"] = {"candidates": len(ranked.names), "best_values": ranked.values[:starts].tolist()}
@@ -411,6 +419,88 @@ def _efficiency_steps(n: int, n_struck: int, dt: float, steps: Optional[int], du
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
         raise ValueError(f"steps: must be an integer >= 1, got {steps!r}")
     return int(steps)
+
+
+#: element counts scanned for the best uniform piston of the same mass (all up to this many, else log-spaced)
+UNIFORM_SCAN = 200
+
+
+def uniform_reference(system: Any, dt: float, mass: float, v: float, cons: Constraints, n: int, reloading: bool,
+                      steps: Optional[int], duration: Optional[float], arrival: int) -> dict[str, Any]:
+    """The best uniform piston of mass ``mass`` (kg) among 1..n elements of travel time dt: element count m,
+    impedance Z = mass / (m dt) (inside the extreme impedance bounds), and its efficiency by the same definition
+    (run length for m elements; first pass only where m fits), each simulated by :func:`rodimpact.simulate`.
+    Returns {"elements", "impedance", "efficiency", "length_m" (steel-independent: travel time m dt),
+    "by_elements": {m: efficiency}}; "elements" None when no count is admissible."""
+    from ..direct.simulate import simulate
+    from ..inverse.struck import with_striker
+    from ..rods.rod import Rod
+
+    lo, hi = float(np.min(cons.lower)), float(np.max(cons.upper))
+    counts = np.arange(1, n + 1) if n <= UNIFORM_SCAN else np.unique(np.geomspace(1, n, UNIFORM_SCAN).round())
+    by: dict[int, float] = {}
+    n_struck = build_lattice(system, dt).n_elements
+    for m in counts.astype(int):
+        z = mass / (m * dt)
+        if not lo * (1 - 1e-12) <= z <= hi * (1 + 1e-12):
+            continue
+        if reloading:
+            k = _efficiency_steps(m, n_struck, dt, steps, duration)
+        elif m <= arrival:
+            k = 3 * arrival
+        else:
+            continue
+        sim = simulate(with_striker(system, Rod.from_impedance(np.full(m, z), dt), v), steps=k, dt=dt)
+        work = -dt * float(np.dot(sim.end_force["right"], sim.end_velocity["right"]))
+        by[int(m)] = work / (0.5 * mass * v * v)
+    if not by:
+        return {"elements": None, "impedance": None, "efficiency": None, "by_elements": by}
+    m_best = max(by, key=lambda m: by[m])
+    return {"elements": m_best, "impedance": mass / (m_best * dt), "efficiency": by[m_best],
+            "travel_time_s": m_best * dt, "by_elements": by}
+
+
+def _design_lengths(args: dict[str, Any], wall0: float) -> DesignResult:
+    """Efficiency design over a range ``n = (n_lo, n_hi)`` of element counts (the piston's length varies, its
+    mass as given): the best uniform piston of the same mass is found over the range first; full designs run
+    at its count and at the two neighbouring counts inside the range and at n_hi; the best is returned, with
+    ``diagnostics["lengths"]`` = {count: efficiency} of every count designed."""
+    n = args["n"]
+    if (len(n) != 2 or any(isinstance(x, bool) or not isinstance(x, (int, np.integer)) for x in n)
+            or not 1 <= n[0] <= n[1]):
+        raise ValueError(f"n: give a number of elements or, for objective='efficiency', a range (lo, hi) of "
+                         f"integers with 1 <= lo <= hi; got {n!r}")
+    lo_n, hi_n = int(n[0]), int(n[1])
+    if args["mass"] is None or isinstance(args["mass"], (tuple, list)):
+        raise ValueError("mass: a range of element counts n = (lo, hi) needs a prescribed striker mass (kg): "
+                         "the pistons of different lengths are compared at the same mass")
+    for key in ("impedance_bounds", "diameter_bounds"):
+        b = args[key]
+        if b is not None and isinstance(b, (tuple, list)) and any(np.ndim(x) > 0 for x in b):
+            raise ValueError(f"{key}: with a range of element counts give one (lower, upper) pair for all "
+                             f"elements, not one per element")
+    results: dict[int, DesignResult] = {}
+
+    def run(m: int) -> DesignResult:
+        if m not in results:
+            results[m] = design(**{**args, "n": m})
+        return results[m]
+
+    first = run(hi_n)
+    ref = first.diagnostics["uniform_reference"]
+    counts = {hi_n}
+    if ref["elements"] is not None:
+        m0 = int(ref["elements"])
+        counts |= {m for m in (m0 - 1, m0, m0 + 1) if lo_n <= m <= hi_n}
+    for m in sorted(counts):
+        run(m)
+    best = max(results.values(), key=lambda r: r.efficiency)
+    diag = dict(best.diagnostics)
+    diag["lengths"] = {m: r.efficiency for m, r in sorted(results.items())}
+    diag["uniform_reference"] = ref
+    import dataclasses
+    return dataclasses.replace(best, diagnostics=diag, wall_time=_time.perf_counter() - wall0,
+                               iterations=sum(r.iterations for r in results.values()))
 
 
 def _first_pass_steps(n: int, arrival: int, steps: Optional[int], duration: Optional[float]) -> int:
