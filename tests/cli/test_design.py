@@ -136,3 +136,15 @@ def test_efficiency_spec_first_pass_length_range_and_uniform_reference(tmp_path)
     assert "best uniform piston of the same mass" in text_summary
     assert s["efficiency"] >= s["uniform_reference"]["efficiency"] - 1e-9
     json.dumps(s)
+
+
+def test_progress_flag_prints_progress_lines_to_stderr(tmp_path, capsys, monkeypatch):
+    """Issue 20, item 5: `--progress` asks for the progress lines even when stderr is not a terminal; without it
+    a captured (non-terminal) stderr gets none."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "s.toml").write_text(SMALL)
+    assert cli.main(["design", "s.toml", "-o", "a", "--no-plots", "--progress"]) == 0
+    err = capsys.readouterr().err
+    assert "design: start 1" in err and "best so far" in err
+    assert cli.main(["design", "s.toml", "-o", "b", "--no-plots"]) == 0
+    assert "best so far" not in capsys.readouterr().err
