@@ -219,14 +219,15 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
     iterations = 0
     message = ""
     stalled: dict[str, bool] = {}
+    outer_start = {"at": 0}         # the criterion looks at the iterations of the current outer (mass) iteration
 
     def callback(xk: np.ndarray) -> None:
         j = last.get("j", np.nan)
         history.append(j)
         if progress is not None:
             progress.update(label, len(history), j)
-        if improvement > 0.0 and len(history) > IMPROVEMENT_WINDOW:
-            h = np.asarray(history, dtype=float)
+        if improvement > 0.0 and len(history) - outer_start["at"] > IMPROVEMENT_WINDOW:
+            h = np.asarray(history[outer_start["at"]:], dtype=float)
             before = float(np.nanmin(h[:-IMPROVEMENT_WINDOW])) if np.any(np.isfinite(h[:-IMPROVEMENT_WINDOW])) \
                 else np.inf
             now = float(np.nanmin(h)) if np.any(np.isfinite(h)) else np.inf
@@ -235,6 +236,8 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
                 raise StopIteration
 
     for outer in range(1 if c.mass is None else 8):
+        outer_start["at"] = len(history)
+        stalled.clear()
         res = minimize(fun, x, jac=True, method="L-BFGS-B", bounds=bounds, callback=callback,
                        options={"maxiter": max_iterations, "ftol": tolerance, "gtol": 1e-14, "maxcor": 20})
         x = res.x
