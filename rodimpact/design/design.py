@@ -194,6 +194,9 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         if steps is not None or duration is not None:
             raise ValueError("steps, duration: the 'match' run covers the target's span; give them only for "
                              "objective='efficiency'")
+        if not reloading:
+            raise ValueError("reloading: chooses the definition of the efficiency; give reloading=False only for "
+                             "objective='efficiency'")
         tgt = as_target(target, rule)
         n = _resolve_n(tgt, n, dt)
         avail = tgt.available_windows(dt)

@@ -76,6 +76,8 @@ def test_small_spec_options(tmp_path):
     (('objective = "match"', 'objective = "efficiency"'), "target: the objective 'efficiency' takes no [target]"),
     (('objective = "match"', 'objective = "speed"'), "design.objective"),
     (('elements = 6', 'element = 6'), "design.element: unknown key"),
+    (('max_iterations = 3', 'max_iterations = 3\nimprovement = 2'), "design.improvement: must be"),
+    (('max_iterations = 3', 'max_iterations = 3\nreloading = false'), "design.reloading: chooses the definition of the efficiency"),
     (('force = "-80e3 * sin(pi * t / 24e-6)"', 'force = "-80e3 / (t - 6e-6)"'),
      "target.force: the expression '-80e3 / (t - 6e-6)' gives -inf at t = 6e-06; it must be finite"),
 ])
