@@ -4,7 +4,8 @@ Case: a half-sine pulse of 100 us and 80 kN peak at the impact face of a 20 mm s
 end; steel striker of 5-60 mm diameter at 12 m/s; n = 50 and 200 elements (dt = 100 us / 2n). The exact
 recursive method gives 1 element (a force cannot start at 0 N).
 
-* ``design``: rodimpact.design with its defaults (adjoint gradients, warm start, three starts).
+* ``design``: rodimpact.design with its defaults (adjoint gradients, warm start, screened pool, 16 starts continued
+  coarse to fine; the "design" section of docs/performance.md was measured with the former 3 starts).
 * baseline: scipy L-BFGS-B over the element impedances (scaled, same bounds) with finite-difference gradients
   ('2-point', n + 1 runs per gradient) through rodimpact.simulate, three starts (uniform strikers of 10, 20 and
   40 mm), at most ``BASELINE_ITERATIONS`` iterations each; same misfit definition (every step of the target's
