@@ -306,12 +306,15 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     return _run_spec(args, synthesis_spec)
 
 
-def _run_spec(args: argparse.Namespace, module: Any) -> int:
-    """Load a spec with ``module.load_spec``, ``run`` it, ``save`` the folder and report (synthesize, design)."""
+def _run_spec(args: argparse.Namespace, module: Any, prepare: Any = None) -> int:
+    """Load a spec with ``module.load_spec``, ``run`` it, ``save`` the folder and report (synthesize, design);
+    ``prepare(spec)``, if given, adjusts the loaded spec from command-line flags."""
     spec_path = Path(args.spec)
     out = _output(args, spec_path.stem)
     with _claim_out(out, args.force):
         spec = _input_phase(lambda: module.load_spec(spec_path, _overrides(args)))
+        if prepare is not None:
+            prepare(spec)
         result = _input_phase(lambda: module.run(spec))
         summary = (module.summarize_run(result, spec) if out is None
                    else module.save(result, spec, out, overwrite=args.force, plots=not args.no_plots))
@@ -324,7 +327,13 @@ def _run_spec(args: argparse.Namespace, module: Any) -> int:
 def cmd_design(args: argparse.Namespace) -> int:
     from .io import design_spec
 
-    return _run_spec(args, design_spec)
+    def prepare(spec: Any) -> None:
+        # progress lines on stderr: --progress always, --no-progress (or --quiet) never, else on a terminal
+        progress = args.progress if args.progress is not None else (False if getattr(args, "quiet", False)
+                                                                     else None)
+        spec.kwargs["progress"] = progress
+
+    return _run_spec(args, design_spec, prepare)
 
 
 # ============================================================================================ docs
@@ -442,6 +451,11 @@ def build_parser() -> argparse.ArgumentParser:
                                    "template): best match to a target force or best drilling efficiency inside "
                                    "diameter, mass and step limits; writes the profile, plots and a summary.")
     g.add_argument("spec", metavar="SPEC.toml", help="design specification")
+    g.add_argument("--progress", dest="progress", action="store_const", const=True, default=None,
+                   help="print progress lines (run, iteration, objective, best so far) to stderr; default: only "
+                        "when stderr is a terminal")
+    g.add_argument("--no-progress", dest="progress", action="store_const", const=False,
+                   help="never print progress lines")
     output_flags(g, "SPEC-NAME")
     set_flag(g, "spec")
     g.set_defaults(func=cmd_design)

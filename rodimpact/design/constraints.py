@@ -110,8 +110,18 @@ def _pair(name: str, value: Any, unit: str) -> tuple[Any, Any]:
     return value[0], value[1]
 
 
+def real_array(name: str, value: Any, unit: str) -> np.ndarray:
+    """``value`` (a number or a sequence of numbers) as a float array; strings, booleans and other objects are
+    refused with a TypeError naming ``name`` (no coercion of "5" into 5)."""
+    a = np.asarray(value)
+    if a.dtype.kind not in "iuf":
+        raise TypeError(f"{name}: must be real numbers in {unit} (a number or one per element), got "
+                        f"{type(value).__name__} {value!r}")
+    return a.astype(float)
+
+
 def _bound_array(name: str, value: Any, n: int, unit: str) -> np.ndarray:
-    a = np.asarray(value, dtype=float)
+    a = real_array(name, value, unit)
     if a.ndim == 0:
         a = np.full(n, float(a))
     if a.shape != (n,):

@@ -9,6 +9,7 @@ and scipy's L-BFGS-B (:mod:`rodimpact.design.optimize`). The method is described
 
 from __future__ import annotations
 
+import sys
 import time as _time
 import warnings
 from typing import Any, Optional, Sequence
@@ -16,6 +17,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .._version import __version__
+from .._validate import non_negative
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import BitRockEnd
 from ..rods.material import STEEL, Material
@@ -28,9 +30,9 @@ from ..inverse.transform import _check_quantity, _resolve_dt, _resolve_n
 from ._adjoint import ImpactProblem
 from .constraints import Constraints, build_constraints, velocity_start
 from .objectives import EfficiencyObjective, MatchObjective
-from .optimize import Evaluator, Levels, Run, best_of, minimise
+from .optimize import Evaluator, Levels, Progress, Run, best_of, minimise
 from .result import DesignResult
-from .screening import candidate_pool, screen as screen_pool
+from .screening import POOL_SIZE, candidate_pool, diverse, screen as screen_pool
 from .stepped import stepped_design
 
 OBJECTIVES = ("match", "efficiency")
@@ -42,6 +44,26 @@ EXACT_MISFIT = 1e-9
 #: several starts: each runs for max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) iterations, then the best
 #: CONTINUED of them continue up to max_iterations
 SCREEN_MIN, SCREEN_FRACTION, CONTINUED = 10, 10, 2
+#: coarse stages of every start: profiles of n / COARSE_DIVISORS[i] levels (only those with at least 2 elements
+#: per level and at least 2 levels), each run for the screening iterations before the free profile
+COARSE_DIVISORS = (6, 3)
+#: basin hopping: relative amplitude (in log Z) of the smooth random perturbation, and the seed of its draws
+HOP_AMPLITUDE, HOP_SEED = 0.3, 1
+
+
+def coarse_levels(n: int) -> list[int]:
+    """Level counts of the coarse-to-fine continuation for n elements (coarsest first)."""
+    out: list[int] = []
+    for d in COARSE_DIVISORS:
+        k = int(round(n / d))
+        if 2 <= k <= n // 2 and k not in out:
+            out.append(k)
+    return out
+
+
+def _even_breaks(n: int, k: int) -> np.ndarray:
+    """Boundaries [0, ..., n] of k groups of (nearly) equal size."""
+    return np.unique(np.linspace(0, n, k + 1).round().astype(int))
 
 
 def design(target: Any = None, struck: Any = None, striker_velocity: Optional[float] = None,
@@ -52,8 +74,10 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
            weights: Any = None, impedance_bounds: Any = None, diameter_bounds: Any = None,
            material: Material = STEEL, bore: float = 0.0, mass: Any = None, velocity_bounds: Any = None,
            max_steps: Optional[int] = None, smoothness: float = 0.0, steps: Optional[int] = None,
-           duration: Optional[float] = None, starts: int = 3, max_iterations: int = 300,
-           tolerance: float = 1e-14, warm_start: bool = True, backend: str = "numba") -> DesignResult:
+           duration: Optional[float] = None, starts: int = 16, max_iterations: int = 300,
+           tolerance: float = 1e-14, improvement: float = 1e-6, pool: int = POOL_SIZE, hops: int = 0,
+           reloading: bool = True,
+           progress: Optional[bool] = None, warm_start: bool = True, backend: str = "numba") -> DesignResult:
     """Find the striker impedance profile that minimises an objective under constraints.
 
     Parameters
@@ -91,20 +115,41 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     smoothness:
         Weight of a smoothed total-variation penalty sum |Z_{q+1} - Z_q| / Z_ref (0: none).
     steps, duration:
-        Length of the efficiency run (default: the pulse 2 n dt plus ``EFFICIENCY_ROUND_TRIPS`` round trips
-        through the struck system).
-    starts, max_iterations, tolerance:
-        Number of starting profiles (each screened for max(10, max_iterations / 10) iterations, the best two
-        continued), L-BFGS-B iterations per stage, and its relative ``ftol``. Where the objective is observed
-        at the impact face or is the efficiency, the starts are the best of a pool of
-        :data:`~rodimpact.design.screening.POOL_SIZE` candidates simulated together by
-        :func:`rodimpact.simulate_batch` (:mod:`rodimpact.design.screening`); otherwise the named starts.
+        Length of the efficiency run with ``reloading`` (default: the pulse 2 n dt plus
+        ``EFFICIENCY_ROUND_TRIPS`` round trips through the struck system).
+    reloading:
+        Efficiency only. True (default): the work done on the rock over the whole run, so that waves reflected
+        at the bit come back and load the rock again. False: Lundberg's classical efficiency of the first
+        pass: the run ends when the first wave reflected at the bit could be back there (3 travel times from
+        the impact face to the bit), so only the striker's incident wave loads the rock; the striker's pulse
+        (2 n dt) must then fit inside the round trip of the struck system.
+    starts, max_iterations, tolerance, improvement, pool:
+        Number of starting profiles; L-BFGS-B iterations per stage; its relative ``ftol``; and the
+        relative-improvement stopping criterion: a run stops when its best objective has improved by less than
+        the fraction ``improvement`` over the last 10 iterations (0: never). Where the objective is observed
+        at the impact face or is the efficiency, the starts are the best, mutually different candidates of a
+        pool of ``pool`` profiles simulated together by :func:`rodimpact.simulate_batch`
+        (:mod:`rodimpact.design.screening`); otherwise the named starts. With several starts, each start is
+        continued from a coarse profile (n/6, then n/3 levels) to the free one, max(10, max_iterations / 10)
+        iterations per stage, and the best two free profiles continue for up to ``max_iterations``; every stage
+        is a *run* of the convergence history (so there are more runs than starts).
+    hops:
+        Basin-hopping rounds after the starts (with several starts): the best profile, perturbed (a smooth
+        random factor, or a thin tail from a random element on), runs again and replaces the best if it ends
+        better. ``diagnostics["local_optima"]`` lists the objective at the end of every start and hop.
+    progress:
+        Print progress lines (run, iteration, objective, best so far) to stderr: True always, False never,
+        None (default) when stderr is a terminal.
     warm_start:
         Try the exact recursive method first (match only).
     backend:
         "numba" or "numpy" (forward and adjoint runs).
     """
     wall0 = _time.perf_counter()
+    if objective == "efficiency" and isinstance(n, (tuple, list)):
+        args = dict(locals())
+        del args["wall0"]
+        return _design_lengths(args, wall0)
     if objective not in OBJECTIVES:
         raise ValueError(f"objective: must be one of {OBJECTIVES}, got {objective!r}")
     if backend not in ("numba", "numpy"):
@@ -116,8 +161,24 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         raise ValueError(f"starts: must be an integer >= 1, got {starts!r}")
     if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 1:
         raise ValueError(f"max_iterations: must be an integer >= 1, got {max_iterations!r}")
-    if not (isinstance(smoothness, (int, float)) and np.isfinite(smoothness) and smoothness >= 0):
-        raise ValueError(f"smoothness: must be a finite number >= 0, got {smoothness!r}")
+    smoothness = _real("smoothness", smoothness, "a finite number >= 0 (weight of the total-variation penalty)",
+                       lambda x: x >= 0.0)
+    tolerance = _real("tolerance", tolerance, "a finite number with 0 < tolerance < 1 (L-BFGS-B's relative "
+                      "reduction ftol of the objective per iteration)", lambda x: 0.0 < x < 1.0)
+    non_negative("bore", bore, "m")
+    improvement = _real("improvement", improvement, "a finite number with 0 <= improvement < 1 (relative "
+                        "improvement of the best objective over 10 iterations below which a run stops)",
+                        lambda x: 0.0 <= x < 1.0)
+    if isinstance(hops, bool) or not isinstance(hops, (int, np.integer)) or hops < 0:
+        raise ValueError(f"hops: must be an integer >= 0 (basin-hopping rounds after the starts), got {hops!r}")
+    if isinstance(pool, bool) or not isinstance(pool, (int, np.integer)) or pool < 1:
+        raise ValueError(f"pool: must be an integer >= 1 (candidates screened by simulate_batch), got {pool!r}")
+    if not isinstance(reloading, (bool, np.bool_)):
+        raise TypeError(f"reloading: must be True (count the reloading of the rock by reflected waves) or False "
+                        f"(first pass only, Lundberg's classical efficiency), got {reloading!r}")
+    if progress is not None and not isinstance(progress, (bool, np.bool_)):
+        raise TypeError(f"progress: must be True, False or None (when stderr is a terminal), got {progress!r}")
+    show_progress = bool(progress) if progress is not None else _stderr_is_a_terminal()
     if max_steps is not None and (isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer))
                                   or max_steps < 1):
         raise ValueError(f"max_steps: must be an integer >= 1 (number of constant-impedance steps), got {max_steps!r}")
@@ -138,6 +199,9 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
             raise ValueError("target: the 'match' objective needs a target force history")
         if steps is not None or duration is not None:
             raise ValueError("steps, duration: the 'match' run covers the target's span; give them only for "
+                             "objective='efficiency'")
+        if not reloading:
+            raise ValueError("reloading: chooses the definition of the efficiency; give reloading=False only for "
                              "objective='efficiency'")
         tgt = as_target(target, rule)
         n = _resolve_n(tgt, n, dt)
@@ -166,8 +230,16 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         n = window_count_check(n)
         if position is not None:
             raise ValueError("position: the 'efficiency' objective observes the bit-rock interface; omit position")
-        run_steps = _efficiency_steps(n, lat.n_elements, dt, steps, duration)
         location = locate(system, sum(r.length for r in system.rods), dt)
+        if reloading:
+            run_steps = _efficiency_steps(n, lat.n_elements, dt, steps, duration)
+        else:
+            run_steps = _first_pass_steps(n, location.node, steps, duration)
+        diag["efficiency_definition"] = (
+            f"with reloading: work on the rock over {run_steps} steps, reflected waves load the rock again"
+            if reloading else
+            f"first pass only (Lundberg's classical efficiency): work on the rock over {run_steps} steps, before "
+            f"the first wave reflected at the bit returns")
         obs_quantity = "incident"       # the incident wave at the bit, for the report and plots
         windows = np.zeros(0)
         obj = EfficiencyObjective(dt, run_steps)
@@ -187,6 +259,9 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                     convergence=[r.history for r in runs], start_values=[r.value for r in runs])
         if objective == "match":
             diag["weights"] = obj.weights
+        else:
+            diag["uniform_reference"] = uniform_reference(system, dt, cons.mass_of(z), v, cons, n, reloading,
+                                                          steps, duration, location.node)
         value = obj.evaluate(fw, z, v)[0]
         return DesignResult(
             impedance=z, striker_velocity=float(v), dt=dt, objective=objective, time=dt * np.arange(run_steps),
@@ -221,29 +296,86 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                              ("falling taper", np.linspace(2.0, 0.5, n) * face_z)]
     free = Levels.free(cons)
     named = _distinct([(name, cons.project(z0)) for name, z0 in initial_profiles])
+    if objective == "match":
+        progress_bar = Progress(show_progress, "misfit", lambda j: float(np.sqrt(max(j, 0.0))), True)
+    else:
+        progress_bar = Progress(show_progress, "efficiency", lambda j: -j, False)
+    runs: list[Run] = []
+    labels: list[str] = []
+
+    def local(lv: Levels, u0: np.ndarray, v_start: float, iters: int, label: str) -> Run:
+        run = minimise(ev, cons, lv, u0, v_start, max_iterations=iters, tolerance=tolerance,
+                       improvement=improvement, progress=progress_bar, label=label)
+        runs.append(run)
+        labels.append(label)
+        return run
+
     if objective == "efficiency" or location is None:     # observed by simulate_batch: screen a pool first
-        ranked = screen_pool(system, dt, run_steps, obj, candidate_pool(named, cons), v0, float(smoothness), z_ref)
+        ranked = screen_pool(system, dt, run_steps, obj, candidate_pool(named, cons, size=pool), v0,
+                             float(smoothness), z_ref)
         # the recursive method's striker (or prefix) stays first: it is the theory's guess, often in the basin
-        # of the best optimum even when its value is not the lowest; the best screened candidates follow
-        warm = [(name, z) for name, z in named if name.startswith("recursive")]
-        profiles = _distinct(warm + list(zip(ranked.names, ranked.impedance)))[:starts]
+        # of the best optimum even when its value is not the lowest; the best diverse candidates follow
+        # (for the efficiency the uniform piston stays first: the design then never ends below it)
+        warm = [(name, z) for name, z in named if name.startswith("recursive") or name == "uniform"]
+        profiles = diverse(warm + [(name, z) for name, z in zip(ranked.names, ranked.impedance)
+                                   if not any(np.allclose(z, w, rtol=1e-12, atol=0.0) for _, w in warm)], starts)
         diag["screened"] = {"candidates": len(ranked.names), "best_values": ranked.values[:starts].tolist()}
     else:
         profiles = named[:starts]
     diag["starts"] = [name for name, _ in profiles]
-    # screen every start briefly, then continue the best two (the tail of the convergence is slow and alike)
+    # each start: continuation from a coarse profile (few levels) to the free one, a short run per stage; then
+    # the best CONTINUED go on (the tail of the convergence is slow and alike for all starts)
     screen = max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) if len(profiles) > 1 else max_iterations
-    runs = [minimise(ev, cons, free, z0, v0, max_iterations=min(screen, max_iterations), tolerance=tolerance)
-            for _, z0 in profiles]
-    best = best_of(runs)
+    screen = min(screen, max_iterations)
+    stages = coarse_levels(n) if len(profiles) > 1 else []
+    ends: list[Run] = []
+    for s_i, (_, z0) in enumerate(profiles):
+        z_stage = z0
+        for k in stages:
+            try:
+                lv = Levels.stepped(cons, _even_breaks(n, k))
+            except ValueError:          # per-element bounds that no level of k can meet: skip this stage
+                continue
+            u0 = lv.project(np.add.reduceat(z_stage, lv.starts) / lv.counts, cons)
+            z_stage = lv.expand(local(lv, u0, v0, screen, f"start {s_i + 1}, {k} levels").levels)
+        ends.append(local(free, cons.project(z_stage), v0, screen, f"start {s_i + 1}, free profile"))
+    best = best_of(ends)
+    finals = list(ends)
     if max_iterations > screen:
-        # the best CONTINUED starts go on (a start that leads after the screen is not always the one that
-        # ends best); a start that has converged already is not continued
-        ranked = sorted(runs, key=lambda r: r.value if np.isfinite(r.value) else np.inf)[:CONTINUED]
-        more = [minimise(ev, cons, free, r.levels, r.velocity, max_iterations=max_iterations - screen,
-                         tolerance=tolerance) for r in ranked if r.message.startswith("STOP")]
-        runs += more
+        # a start that leads after its stages is not always the one that ends best; a start whose run has
+        # converged already is not continued
+        ranked_runs = sorted(range(len(ends)), key=lambda i: ends[i].value if np.isfinite(ends[i].value) else np.inf)
+        more = []
+        for i in ranked_runs[:CONTINUED]:
+            if ends[i].message.startswith("STOP"):
+                r = local(free, ends[i].levels, ends[i].velocity, max_iterations, f"start {i + 1}, continued")
+                more.append(r)
+                finals[i] = r if r.value <= ends[i].value else ends[i]
         best = best_of([best, *more])
+    # basin hopping from the best optimum: a perturbed copy (a smooth random factor on Z, or the elements from a
+    # random cut to the end set to their thin bound) runs for the screening iterations; if it ends better, it
+    # continues and becomes the best
+    rng = np.random.default_rng(HOP_SEED)
+    x_el = (np.arange(n) + 0.5) / n
+    modes = np.arange(1, 6)
+    shapes = np.cos(np.pi * modes[:, None] * x_el[None, :])
+    for h in range(hops if len(profiles) > 1 else 0):
+        z_best = free.expand(best.levels)
+        if h % 2 == 0:
+            z_try = z_best * np.exp(HOP_AMPLITUDE * (rng.normal(0.0, 1.0, modes.size) / modes) @ shapes)
+        else:
+            cut = int(rng.integers(n // 2, n)) if n > 1 else 0
+            z_try = z_best.copy()
+            z_try[cut:] = cons.lower[cut:]
+        r = local(free, cons.project(z_try), best.velocity, screen, f"basin hop {h + 1}")
+        if r.value < best.value and r.message.startswith("STOP"):
+            r = local(free, r.levels, r.velocity, max_iterations, f"basin hop {h + 1}, continued")
+        finals.append(r)
+        if r.value < best.value:
+            best = r
+    diag["run_labels"] = labels
+    shown = [progress_bar.show(r.value) for r in finals if np.isfinite(r.value)]
+    diag["local_optima"] = {"name": progress_bar.name, "values": sorted(shown, reverse=objective != "match")}
     iterations = sum(r.iterations for r in runs)
     z, v, fw = free.expand(best.levels), best.velocity, best.fw
     diag["optimizer_message"] = best.message
@@ -252,6 +384,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         free_value = best.value
         st = stepped_design(ev, cons, z, v, max_steps, max_iterations=max_iterations, tolerance=tolerance)
         runs.append(st.run)
+        labels.append(f"stepped striker, {max_steps} steps at most")
         iterations += st.run.iterations
         z, v, fw = st.impedance, st.run.velocity, st.run.fw
         diag["free_profile"] = {"impedance": best.levels.copy(), "velocity": best.velocity,
@@ -259,6 +392,18 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                                     float(np.sqrt(free_value)) if objective == "match" else -free_value}
         diag["breakpoints"] = st.breaks.tolist()
     return finish(z, v, fw, iterations, runs)
+
+
+def _real(name: str, value: Any, valid: str, ok: Any) -> float:
+    """``value`` as a float if it is a real number (int or float, not bool, no string or sequence coerced),
+    finite and ``ok``; otherwise a TypeError (wrong type) or ValueError (wrong value) naming ``name`` and saying
+    what is ``valid``."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name}: must be {valid}, got {type(value).__name__} {value!r}")
+    x = float(value)
+    if not (np.isfinite(x) and ok(x)):
+        raise ValueError(f"{name}: must be {valid}, got {value!r}")
+    return x
 
 
 def _distinct(profiles: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.ndarray]]:
@@ -283,6 +428,110 @@ def _efficiency_steps(n: int, n_struck: int, dt: float, steps: Optional[int], du
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
         raise ValueError(f"steps: must be an integer >= 1, got {steps!r}")
     return int(steps)
+
+
+#: element counts scanned for the best uniform piston of the same mass (all up to this many, else log-spaced)
+UNIFORM_SCAN = 200
+
+
+def uniform_reference(system: Any, dt: float, mass: float, v: float, cons: Constraints, n: int, reloading: bool,
+                      steps: Optional[int], duration: Optional[float], arrival: int) -> dict[str, Any]:
+    """The best uniform piston of mass ``mass`` (kg) among 1..n elements of travel time dt: element count m,
+    impedance Z = mass / (m dt) (inside the extreme impedance bounds), and its efficiency by the same definition
+    (run length for m elements; first pass only where m fits), each simulated by :func:`rodimpact.simulate`.
+    Returns {"elements", "impedance", "efficiency", "length_m" (steel-independent: travel time m dt),
+    "by_elements": {m: efficiency}}; "elements" None when no count is admissible."""
+    from ..direct.simulate import simulate
+    from ..inverse.struck import with_striker
+    from ..rods.rod import Rod
+
+    lo, hi = float(np.min(cons.lower)), float(np.max(cons.upper))
+    counts = np.arange(1, n + 1) if n <= UNIFORM_SCAN else np.unique(np.geomspace(1, n, UNIFORM_SCAN).round())
+    by: dict[int, float] = {}
+    n_struck = build_lattice(system, dt).n_elements
+    for m in counts.astype(int):
+        z = mass / (m * dt)
+        if not lo * (1 - 1e-12) <= z <= hi * (1 + 1e-12):
+            continue
+        if reloading:
+            k = _efficiency_steps(m, n_struck, dt, steps, duration)
+        elif m <= arrival:
+            k = 3 * arrival
+        else:
+            continue
+        sim = simulate(with_striker(system, Rod.from_impedance(np.full(m, z), dt), v), steps=k, dt=dt)
+        work = -dt * float(np.dot(sim.end_force["right"], sim.end_velocity["right"]))
+        by[int(m)] = work / (0.5 * mass * v * v)
+    if not by:
+        return {"elements": None, "impedance": None, "efficiency": None, "by_elements": by}
+    m_best = max(by, key=lambda m: by[m])
+    return {"elements": m_best, "impedance": mass / (m_best * dt), "efficiency": by[m_best],
+            "travel_time_s": m_best * dt, "by_elements": by}
+
+
+def _design_lengths(args: dict[str, Any], wall0: float) -> DesignResult:
+    """Efficiency design over a range ``n = (n_lo, n_hi)`` of element counts (the piston's length varies, its
+    mass as given): the best uniform piston of the same mass is found over the range first; full designs run
+    at its count and at the two neighbouring counts inside the range and at n_hi; the best is returned, with
+    ``diagnostics["lengths"]`` = {count: efficiency} of every count designed."""
+    n = args["n"]
+    if (len(n) != 2 or any(isinstance(x, bool) or not isinstance(x, (int, np.integer)) for x in n)
+            or not 1 <= n[0] <= n[1]):
+        raise ValueError(f"n: give a number of elements or, for objective='efficiency', a range (lo, hi) of "
+                         f"integers with 1 <= lo <= hi; got {n!r}")
+    lo_n, hi_n = int(n[0]), int(n[1])
+    if args["mass"] is None or isinstance(args["mass"], (tuple, list)):
+        raise ValueError("mass: a range of element counts n = (lo, hi) needs a prescribed striker mass (kg): "
+                         "the pistons of different lengths are compared at the same mass")
+    for key in ("impedance_bounds", "diameter_bounds"):
+        b = args[key]
+        if b is not None and isinstance(b, (tuple, list)) and any(np.ndim(x) > 0 for x in b):
+            raise ValueError(f"{key}: with a range of element counts give one (lower, upper) pair for all "
+                             f"elements, not one per element")
+    results: dict[int, DesignResult] = {}
+
+    def run(m: int) -> DesignResult:
+        if m not in results:
+            results[m] = design(**{**args, "n": m})
+        return results[m]
+
+    first = run(hi_n)
+    ref = first.diagnostics["uniform_reference"]
+    counts = {hi_n}
+    if ref["elements"] is not None:
+        m0 = int(ref["elements"])
+        counts |= {m for m in (m0 - 1, m0, m0 + 1) if lo_n <= m <= hi_n}
+    for m in sorted(counts):
+        run(m)
+    best = max(results.values(), key=lambda r: r.efficiency)
+    diag = dict(best.diagnostics)
+    diag["lengths"] = {m: r.efficiency for m, r in sorted(results.items())}
+    diag["uniform_reference"] = ref
+    import dataclasses
+    return dataclasses.replace(best, diagnostics=diag, wall_time=_time.perf_counter() - wall0,
+                               iterations=sum(r.iterations for r in results.values()))
+
+
+def _first_pass_steps(n: int, arrival: int, steps: Optional[int], duration: Optional[float]) -> int:
+    """Steps of the first-pass efficiency run: 3 ``arrival`` (the wavefront reaches the bit after ``arrival``
+    steps; the wave it reflects there is back at the impact face after 2 arrival and, reflected there, at the
+    bit after 3 arrival). The striker's pulse of 2 n steps must arrive at the bit before that."""
+    if steps is not None or duration is not None:
+        raise ValueError("steps, duration: the first-pass efficiency (reloading=False) runs until the first "
+                         "reflected wave returns to the bit; omit them, or use reloading=True")
+    if 2 * n > 2 * arrival:
+        raise ValueError(f"reloading: the first pass cannot be separated from the reloading here: the striker's "
+                         f"pulse (2 n = {2 * n} steps) outlasts the round trip through the struck system "
+                         f"({2 * arrival} steps), so reflected waves return while it still arrives; use "
+                         f"reloading=True, fewer elements or a longer struck system")
+    return 3 * arrival
+
+
+def _stderr_is_a_terminal() -> bool:
+    try:
+        return bool(sys.stderr.isatty())
+    except (AttributeError, ValueError):       # replaced or closed stderr
+        return False
 
 
 def _impedance_for_force(level: float, face_z: float, v: float, c: Constraints) -> float:

@@ -110,7 +110,11 @@ def per_step_weights(weights: Optional[Any], n_windows: int, dt: float) -> np.nd
             raise ValueError(f"weights: calling the weight function with an array of times failed ({exc}); it "
                              f"must accept a numpy array t (s) and return one weight per time") from exc
     else:
-        w = np.asarray(weights, dtype=float)
+        w = np.asarray(weights)
+        if w.dtype.kind not in "iuf":
+            raise TypeError(f"weights: must be real numbers (one per window or per step) or a function w(t), got "
+                            f"{type(weights).__name__} {weights!r}")
+        w = w.astype(float)
         if w.ndim != 1 or w.size not in (n_windows, m):
             raise ValueError(f"weights: give {n_windows} values (one per window) or {m} (one per step), or a "
                              f"function w(t); got shape {w.shape}")

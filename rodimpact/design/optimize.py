@@ -11,8 +11,10 @@ iteration beyond the forward and adjoint runs, and one linear constraint is hand
 
 from __future__ import annotations
 
+import sys
+import time as _time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable, Optional, TextIO
 
 import numpy as np
 from scipy.optimize import minimize
@@ -24,6 +26,47 @@ from .constraints import Constraints, project_shift_clip
 MU_START = 100.0
 #: relative mass violation at which the outer loop stops; the final shift-and-clip projection makes it exact
 MASS_TOLERANCE = 1e-6
+#: the relative-improvement stopping criterion compares the best objective now with the best this many
+#: iterations ago
+IMPROVEMENT_WINDOW = 10
+#: least time between two progress lines, s
+PROGRESS_INTERVAL = 0.5
+
+
+class Progress:
+    """Progress lines on ``stream`` (default stderr): run, iteration, objective and best so far.
+
+    ``show(J)`` turns the internal objective J into the reported one (the misfit sqrt(J), or the efficiency
+    -J); ``better(a, b)`` orders reported values. Lines are throttled to one per :data:`PROGRESS_INTERVAL`
+    seconds, plus the last line of every run."""
+
+    def __init__(self, enabled: bool, name: str, show: Callable[[float], float], lower_is_better: bool,
+                 stream: Optional[TextIO] = None) -> None:
+        self.enabled = enabled
+        self.name = name
+        self.show = show
+        self.lower_is_better = lower_is_better
+        self.stream = stream
+        self.best = np.nan
+        self.last_print = -np.inf
+        self.lines = 0
+
+    def update(self, label: str, iteration: int, j: float, final: bool = False) -> None:
+        if not np.isfinite(j):
+            return
+        y = self.show(j)
+        if not np.isfinite(self.best) or (y < self.best if self.lower_is_better else y > self.best):
+            self.best = y
+        if not self.enabled:
+            return
+        now = _time.perf_counter()
+        if final or now - self.last_print >= PROGRESS_INTERVAL:
+            self.last_print = now
+            stream = self.stream if self.stream is not None else sys.stderr
+            end = " (end of run)" if final else ""
+            print(f"design: {label}, iteration {iteration}: {self.name} {y:.6g}, best so far {self.best:.6g}{end}",
+                  file=stream, flush=True)
+            self.lines += 1
 
 
 @dataclass
@@ -100,6 +143,11 @@ class Levels:
                              f"uniform inside the impedance bounds of its elements; allow more steps")
         return cls(counts, lo, hi)
 
+    @property
+    def starts(self) -> np.ndarray:
+        """First element of every level."""
+        return np.concatenate([[0], np.cumsum(self.counts)[:-1]]).astype(int)
+
     def expand(self, u: np.ndarray) -> np.ndarray:
         return np.repeat(u, self.counts)
 
@@ -126,8 +174,14 @@ class Run:
 
 
 def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: float, *, max_iterations: int,
-             tolerance: float) -> Run:
-    """Minimise J over the levels (and the velocity when free) inside the bounds and the mass range."""
+             tolerance: float, improvement: float = 0.0, progress: Optional[Progress] = None,
+             label: str = "run") -> Run:
+    """Minimise J over the levels (and the velocity when free) inside the bounds and the mass range.
+
+    Stops at ``max_iterations`` L-BFGS-B iterations (per outer mass iteration), at L-BFGS-B's own relative
+    reduction ``tolerance`` (ftol), or when the best J has improved by less than the fraction ``improvement``
+    of |J| over the last :data:`IMPROVEMENT_WINDOW` iterations (0: never). ``progress`` reports every
+    iteration under ``label``."""
     zr = ev.z_ref
     vr = max(v0, 1e-12)
     free_v = c.free_velocity
@@ -164,13 +218,34 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
     x = np.append(u0 / zr, v0 / vr) if free_v else u0 / zr
     iterations = 0
     message = ""
+    stalled: dict[str, bool] = {}
+    outer_start = {"at": 0}         # the criterion looks at the iterations of the current outer (mass) iteration
+
+    def callback(xk: np.ndarray) -> None:
+        j = last.get("j", np.nan)
+        history.append(j)
+        if progress is not None:
+            progress.update(label, len(history), j)
+        if improvement > 0.0 and len(history) - outer_start["at"] > IMPROVEMENT_WINDOW:
+            h = np.asarray(history[outer_start["at"]:], dtype=float)
+            before = float(np.nanmin(h[:-IMPROVEMENT_WINDOW])) if np.any(np.isfinite(h[:-IMPROVEMENT_WINDOW])) \
+                else np.inf
+            now = float(np.nanmin(h)) if np.any(np.isfinite(h)) else np.inf
+            if np.isfinite(before) and before - now <= improvement * max(abs(before), 1e-300):
+                stalled["yes"] = True
+                raise StopIteration
+
     for outer in range(1 if c.mass is None else 8):
-        res = minimize(fun, x, jac=True, method="L-BFGS-B", bounds=bounds,
-                       callback=lambda xk: history.append(last.get("j", np.nan)),
+        outer_start["at"] = len(history)
+        stalled.clear()
+        res = minimize(fun, x, jac=True, method="L-BFGS-B", bounds=bounds, callback=callback,
                        options={"maxiter": max_iterations, "ftol": tolerance, "gtol": 1e-14, "maxcor": 20})
         x = res.x
-        iterations += int(res.nit)
+        iterations += int(res.get("nit", 0))     # absent when every variable is fixed by its bounds
         message = str(res.message)
+        if stalled:
+            message = (f"CONVERGED: the best objective improved by less than {improvement:.3g} (relative) over the "
+                       f"last {IMPROVEMENT_WINDOW} iterations")
         if c.mass is None:
             break
         u, _ = split(x)
@@ -188,6 +263,8 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
     u = lv.project(u, c)
     value, fw = ev.value(lv.expand(u), v)
     viol = 0.0 if c.mass is None else max(c.mass[0] - m_before, m_before - c.mass[1], 0.0) / c.mass[1]
+    if progress is not None:
+        progress.update(label, len(history), value, final=True)
     return Run(u, v, value, fw, iterations, history, viol, message)
 
 

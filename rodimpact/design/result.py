@@ -118,6 +118,13 @@ class DesignResult:
         return 1 + int(np.count_nonzero(np.diff(self.impedance)))
 
     @property
+    def uniform_reference(self) -> Optional[dict[str, Any]]:
+        """Efficiency designs: the best uniform piston of the same mass over 1..n elements (``elements``,
+        ``impedance`` N s/m, ``efficiency``, ``travel_time_s``, ``by_elements``), to see the gain of the design;
+        None for match designs."""
+        return self.diagnostics.get("uniform_reference")
+
+    @property
     def convergence(self) -> list[list[float]]:
         """Objective value after every iteration, one list per start/stage."""
         return self.diagnostics.get("convergence", [])

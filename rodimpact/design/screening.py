@@ -32,10 +32,12 @@ from .constraints import Constraints
 from .objectives import EfficiencyObjective, MatchObjective
 from .optimize import TV_EPSILON, total_variation
 
-#: candidates simulated per design (named starts, a ladder of uniform strikers, random smooth variations)
-POOL_SIZE = 64
+#: candidates simulated per design (named starts, a ladder of uniform strikers, four families of random profiles)
+POOL_SIZE = 4096
 #: uniform strikers in the pool; cosine modes and relative amplitude of the random variations of a named start
 LADDER, MODES, AMPLITUDE = 8, 4, 0.3
+#: standard deviation of the first cosine mode of log Z in the log-smooth family (mode k: / k)
+LOG_AMPLITUDE = 1.0
 
 
 @dataclass(frozen=True)
@@ -50,15 +52,26 @@ class Screened:
 def candidate_pool(named: list[tuple[str, np.ndarray]], cons: Constraints, size: int = POOL_SIZE,
                    seed: int = 0) -> list[tuple[str, np.ndarray]]:
     """The named starts, uniform strikers at impedances spaced evenly in log between the bounds' extremes, and
-    smooth random variations Z (1 + sum_k a_k cos(k pi x)), |a_k| <= AMPLITUDE / k, of the named starts; all
-    projected onto the constraints and different from each other (a projection can map two candidates onto
-    one, e.g. uniform strikers onto the mass bound), ``size`` in all where that many can be drawn. The random
-    draws come from a fixed seed, so a design is reproducible."""
+    four families of random profiles in equal numbers (x = (q - 1/2) / n from the impact face, Z_lo and Z_hi the
+    extreme bounds, a peak Z_p drawn log-uniformly between them):
+
+    * *varied*: smooth variations Z (1 + sum_k a_k cos(k pi x)), |a_k| <= AMPLITUDE / k, of the named starts;
+    * *log-smooth*: Z_p exp(sum_k a_k cos(k pi x)), a_k normal with deviation LOG_AMPLITUDE / k, k = 1..5;
+    * *bump*: Z_lo + (Z_p - Z_lo) sin(pi min(x / L, 1))^p: a hump over a fraction L of the striker, the rest at
+      the thin bound (good optima of a force that rises from and falls to 0 N look like this);
+    * *ramp*: a linear rise from Z_lo over [0, a), a plateau at Z_p up to L, the thin bound after.
+
+    All are projected onto the constraints and different from each other (a projection can map two candidates
+    onto one, e.g. uniform strikers onto the mass bound), ``size`` in all where that many can be drawn. The
+    random draws come from a fixed seed, so a design is reproducible."""
     pool: list[tuple[str, np.ndarray]] = []
+    seen: set[bytes] = set()
 
     def add(name: str, z: np.ndarray) -> None:
         z = cons.project(z)
-        if len(pool) < size and not any(np.allclose(z, o, rtol=1e-9, atol=0.0) for _, o in pool):
+        key = np.round(np.log(np.maximum(z, 1e-300)), 9).tobytes()    # equal to ~1e-9 relative: a duplicate
+        if len(pool) < size and key not in seen:
+            seen.add(key)
             pool.append((name, z))
 
     for name, z in named:
@@ -71,13 +84,49 @@ def candidate_pool(named: list[tuple[str, np.ndarray]], cons: Constraints, size:
     x = (np.arange(n) + 0.5) / n
     k = np.arange(1, MODES + 1)
     shapes = np.cos(np.pi * k[:, None] * x[None, :])
-    for i in range(4 * size if named else 0):
-        if len(pool) == size:
+    k5 = np.arange(1, 6)
+    shapes5 = np.cos(np.pi * k5[:, None] * x[None, :])
+    for i in range(4 * size):
+        if len(pool) >= size:
             break
-        name, z = named[i % len(named)]
-        a = rng.uniform(-AMPLITUDE, AMPLITUDE, MODES) / k
-        add(f"{name}, varied", z * np.maximum(1.0 + a @ shapes, 0.05))
+        family = i % 4 if named else 1 + i % 3
+        peak = float(np.exp(rng.uniform(np.log(lo), np.log(hi))))
+        length = rng.uniform(0.2, 1.0)
+        if family == 0:
+            name, z = named[(i // 4) % len(named)]
+            a = rng.uniform(-AMPLITUDE, AMPLITUDE, MODES) / k
+            add(f"{name}, varied", z * np.maximum(1.0 + a @ shapes, 0.05))
+        elif family == 1:
+            a = rng.normal(0.0, LOG_AMPLITUDE, k5.size) / k5
+            add("log-smooth random", peak * np.exp(a @ shapes5))
+        elif family == 2:
+            p = rng.uniform(0.3, 3.0)
+            add("bump, thin tail", lo + (peak - lo) * np.sin(np.pi * np.minimum(x / length, 1.0)) ** p)
+        else:
+            a = rng.uniform(0.0, length)
+            z = np.where(x < a, lo + (peak - lo) * x / max(a, 1e-12), peak)
+            add("ramp and plateau, thin tail", np.where(x < length, z, lo))
     return pool
+
+
+def diverse(profiles: list[tuple[str, np.ndarray]], count: int, distance: float = 0.02) -> list[tuple[str, np.ndarray]]:
+    """The first ``count`` of ``profiles`` (ranked) that differ from every one taken before by more than
+    ``distance`` in root-mean-square log impedance, filled up with the next ranked ones if too few differ."""
+    out: list[tuple[str, np.ndarray]] = []
+    logs: list[np.ndarray] = []
+    for name, z in profiles:
+        if len(out) == count:
+            break
+        lz = np.log(z)
+        if all(np.sqrt(np.mean((lz - o) ** 2)) > distance for o in logs):
+            out.append((name, z))
+            logs.append(lz)
+    for name, z in profiles:
+        if len(out) == count:
+            break
+        if not any(z is o for _, o in out):
+            out.append((name, z))
+    return out
 
 
 def screen(struck: Any, dt: float, steps: int, objective: MatchObjective | EfficiencyObjective,

@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, Optional
 
+import numpy as np
+
 
 from ..rods.material import STEEL
 from .dimensions import Parameters
@@ -53,8 +55,19 @@ DESIGN = Table("design", "What to optimise and how.", (
        required=False, default=0.0),
     _q("duration", "time", "Length of the efficiency run (default: pulse + 3 round trips of the struck system).",
        required=False),
-    Field("starts", "integer", "Number of starting profiles.", default=3, minimum=1),
+    Field("elements_min", "integer", "Objective `efficiency` with a `striker.mass`: let the piston's length vary "
+                                      "from this many elements up to `elements` (default: the length is fixed).",
+          minimum=1),
+    Field("reloading", "boolean", "Objective `efficiency`: `true` counts the reloading of the rock by reflected "
+                                  "waves (run: pulse + 3 round trips, or `duration`); `false` only the first pass, "
+                                  "Lundberg's classical efficiency.", default=True),
+    Field("starts", "integer", "Number of starting profiles (each continued from coarse to fine).", default=16,
+          minimum=1),
     Field("max_iterations", "integer", "L-BFGS-B iterations per start and stage.", default=300, minimum=1),
+    _q("improvement", "dimensionless", "Stop a run when its best objective improved by less than this fraction "
+                                       "over the last 10 iterations (0: never).", sign="non_negative",
+       required=False, default=1e-6),
+    Field("hops", "integer", "Basin-hopping rounds after the starts.", default=0, minimum=0),
     Field("backend", "string", "`numba` or `numpy`.", default="numba", choices=("numba", "numpy")),
 ))
 
@@ -170,7 +183,16 @@ def _spec(raw: dict, base: Path, text: str) -> DesignSpec:
         rule="midpoint" if t is None else t["rule"], impedance_bounds=zb, diameter_bounds=db, material=mat,
         bore=st["bore"], mass=st["mass"] if st["mass"] is not None else mb, velocity_bounds=vb,
         max_steps=ds["max_steps"], smoothness=ds["smoothness"], duration=ds["duration"], starts=ds["starts"],
-        max_iterations=ds["max_iterations"], backend=ds["backend"])
+        max_iterations=ds["max_iterations"], improvement=ds["improvement"], hops=ds["hops"],
+        reloading=ds["reloading"], backend=ds["backend"])
+    if ds["elements_min"] is not None:
+        if ds["objective"] != "efficiency" or ds["elements"] is None:
+            raise ModelError("design.elements_min: give it only with objective = \"efficiency\" and "
+                             "design.elements (the longest piston)")
+        if ds["elements_min"] > ds["elements"]:
+            raise ModelError(f"design.elements_min: must not exceed design.elements ({ds['elements']}), got "
+                             f"{ds['elements_min']}")
+        kwargs["n"] = (ds["elements_min"], ds["elements"])
     out = d["output"] or {"plots": True}
     return DesignSpec(kwargs, mat, st["bore"], out["plots"], d["title"] or "", text)
 
@@ -211,11 +233,22 @@ def summarize_run(r: DesignRun, spec: DesignSpec) -> dict[str, Any]:
         "warm_start": diag.get("warm_start"), "existence": diag.get("existence"),
         "bounds_diagnosis": diag.get("bounds_diagnosis", []),
         "free_profile_misfit": (diag.get("free_profile") or {}).get("misfit"),
+        "efficiency_definition": diag.get("efficiency_definition"),
+        "uniform_reference": _jsonable(diag.get("uniform_reference")),
+        "lengths": _jsonable(diag.get("lengths")),
+        "local_optima": diag.get("local_optima"),
         "verification": None if r.verification is None else {
             "max_deviation": r.verification.max_deviation, "misfit": r.verification.misfit,
             "efficiency": r.verification.efficiency},
         "warnings": list(r.warnings)}
     return out
+
+
+def _jsonable(d: Any) -> Any:
+    """Dictionaries with integer keys (element counts) as JSON-ready dictionaries with string keys."""
+    if isinstance(d, dict):
+        return {str(k) if isinstance(k, (int, np.integer)) else k: _jsonable(v) for k, v in d.items()}
+    return d
 
 
 def format_summary(s: dict[str, Any], spec: DesignSpec) -> str:
@@ -224,6 +257,21 @@ def format_summary(s: dict[str, Any], spec: DesignSpec) -> str:
     what = (f"misfit {s['misfit']:.4g} (relative L2)" if s["objective"] == "match"
             else f"efficiency {s['efficiency']:.4g} (work on the rock / striker kinetic energy)")
     lines.append(f"design ({s['objective']}): {what}, {s['elements']} elements, {s['steps']} step(s)")
+    if s.get("efficiency_definition"):
+        lines.append(f"efficiency definition: {s['efficiency_definition']}")
+    ref = s.get("uniform_reference")
+    if ref and ref.get("elements") is not None:
+        lines.append(f"best uniform piston of the same mass: {ref['elements']} elements, impedance "
+                     f"{ref['impedance'] / 1e3:.4g} kN s/m, efficiency {ref['efficiency']:.4g} (the design: "
+                     f"{s['efficiency']:.4g}, {s['elements']} elements)")
+    if s.get("lengths"):
+        lines.append("piston lengths designed: " + ", ".join(f"{m} elements -> {e:.4g}"
+                                                             for m, e in s["lengths"].items()))
+    opt = s.get("local_optima")
+    if opt and len(opt["values"]) > 1:
+        v = opt["values"]
+        lines.append(f"local optima from {len(v)} starts and hops: {opt['name']} {v[0]:.4g} (best) .. {v[-1]:.4g}, "
+                     f"median {float(np.median(v)):.4g}")
     if s["free_profile_misfit"] is not None:
         lines.append(f"free (unstepped) profile: misfit {s['free_profile_misfit']:.4g}")
     lines.append(f"striker: length {s['length_m']:.4g} m, mass {s['mass_kg']:.4g} kg, impedance "
@@ -307,8 +355,11 @@ elements = 25                  # n striker elements of travel time dt (a window 
 dt = "2 us"
 # max_steps = 3                # a stepped striker with at most 3 cylinders
 # smoothness = 0.01            # total-variation penalty
-starts = 2                     # starting profiles (recursive-method prefix, uniform strikers)
+starts = 2                     # starting profiles, each continued from a coarse to the free profile
 max_iterations = 50            # L-BFGS-B iterations per start
+# improvement = 1e-6           # stop a run when it improves by less than this fraction over 10 iterations
+# reloading = false            # efficiency: first pass only (Lundberg's classical efficiency)
+# elements_min = 10            # efficiency with a striker mass: the piston may be 10..elements long
 
 [striker]
 velocity = "12 m/s"

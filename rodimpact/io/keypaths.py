@@ -65,4 +65,5 @@ DESIGN_KEYS: dict[str, Rule] = {
     "diameter_bounds": "striker.diameter_min", "impedance_bounds": "striker.impedance_min",
     "velocity_bounds": "striker.velocity_min", "mass": "striker.mass", "bore": "striker.bore",
     "impedance": "striker.impedance_min",
+    "improvement": "design.improvement", "hops": "design.hops", "reloading": "design.reloading",
 }

@@ -31,8 +31,18 @@ def plot_design_force(result: Any, ax: Optional[Any] = None):
         ax.plot(t[k], result.target / 1e3, "k.", ms=3, label=f"target (misfit {result.misfit:.3g})")
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("force [kN]")
+    ax.set_title(design_force_title(result))
     ax.legend(loc="best")
     return ax
+
+
+def design_force_title(result: Any) -> str:
+    """Title of :func:`plot_design_force`: what is drawn and how good the design is."""
+    if result.objective == "match":
+        where = ("contact force" if result.location is None
+                 else f"{result.quantity} at {result.location.used:.4g} m")
+        return f"Designed striker: {where} vs target (misfit {result.misfit:.3g})"
+    return f"Efficiency design: incident wave at the bit (efficiency {result.efficiency:.4g})"
 
 
 def plot_design_profile(result: Any, ax: Optional[Any] = None, log: Optional[bool] = None):
@@ -58,20 +68,32 @@ def plot_design_profile(result: Any, ax: Optional[Any] = None, log: Optional[boo
 
 
 def plot_convergence(result: Any, ax: Optional[Any] = None):
-    """Objective (squared misfit, or -efficiency) after every L-BFGS-B iteration, one line per start/stage."""
+    """Misfit (or efficiency) after every L-BFGS-B iteration, one line per run, labelled with what the run was.
+
+    There are more runs than starts: each start is continued from a coarse profile (few constant levels) to
+    the free one, one run per stage; the best starts then continue in a run of their own; basin hops and the
+    re-optimisation of a stepped striker add runs too. The title says so."""
     _check(result)
     _, ax = new_axes(ax)
+    labels = result.diagnostics.get("run_labels") or []
     for i, h in enumerate(result.convergence):
         if h:
             y = np.asarray(h)
+            label = labels[i] if i < len(labels) else f"run {i + 1}"
             if result.objective == "match":
-                ax.semilogy(np.arange(1, y.size + 1), np.sqrt(np.maximum(y, 1e-300)), label=f"run {i + 1}")
+                ax.semilogy(np.arange(1, y.size + 1), np.sqrt(np.maximum(y, 1e-300)), label=label)
             else:
-                ax.plot(np.arange(1, y.size + 1), -y, label=f"run {i + 1}")
+                ax.plot(np.arange(1, y.size + 1), -y, label=label)
     ax.set_xlabel("iteration")
     ax.set_ylabel("misfit [-]" if result.objective == "match" else "efficiency [-]")
+    runs, starts = len(result.convergence), len(result.diagnostics.get("starts") or [])
+    if runs > starts > 0:
+        ax.set_title(f"{runs} runs from {starts} starts: each start runs coarse to fine (one run per stage),\n"
+                     f"the best continue in new runs", fontsize="medium")
+    elif runs:
+        ax.set_title(f"{runs} run(s)", fontsize="medium")
     if any(result.convergence):
-        ax.legend(loc="best")
+        ax.legend(loc="best", fontsize="x-small", ncol=2 if runs > 8 else 1)
     else:
         ax.text(0.5, 0.5, "no iterations (exact striker)", transform=ax.transAxes, ha="center")
     return ax
@@ -95,5 +117,6 @@ def plot_incident_wave(result: Any, loading_stiffness: float, rod_impedance: flo
             label=r"$f_0\,e^{k t / Z}$ (no reflection)")
     ax.set_xlabel("time from arrival at the bit [ms]")
     ax.set_ylabel("force [kN]")
+    ax.set_title(f"Incident wave at the bit vs the reflection-free exponential (efficiency {result.efficiency:.4g})")
     ax.legend(loc="best")
     return ax

@@ -76,6 +76,8 @@ def test_small_spec_options(tmp_path):
     (('objective = "match"', 'objective = "efficiency"'), "target: the objective 'efficiency' takes no [target]"),
     (('objective = "match"', 'objective = "speed"'), "design.objective"),
     (('elements = 6', 'element = 6'), "design.element: unknown key"),
+    (('max_iterations = 3', 'max_iterations = 3\nimprovement = 2'), "design.improvement: must be"),
+    (('max_iterations = 3', 'max_iterations = 3\nreloading = false'), "design.reloading: chooses the definition of the efficiency"),
     (('force = "-80e3 * sin(pi * t / 24e-6)"', 'force = "-80e3 / (t - 6e-6)"'),
      "target.force: the expression '-80e3 / (t - 6e-6)' gives -inf at t = 6e-06; it must be finite"),
 ])
@@ -113,3 +115,38 @@ def test_docs_list_the_design_spec_keys():
     generated = spec_reference_markdown().replace("### ", "#### ").replace("#### Top level",
                                                                            "#### Design spec, top level")
     assert generated in page, "docs/cli.md: regenerate the design spec reference section"
+
+
+def test_efficiency_spec_first_pass_length_range_and_uniform_reference(tmp_path):
+    """Issue 20, items 3 and 6 from a file: `reloading = false` and `elements_min` reach design, and the summary
+    says which efficiency was computed, which lengths were designed and the best uniform piston of the mass."""
+    from rodimpact.io.design_spec import format_summary, run, summarize_run
+
+    text = SMALL.replace('objective = "match"', 'objective = "efficiency"\nreloading = false\nelements_min = 3')
+    text = text[:text.index("\n[target]\n")] + text[text.index("\n[[struck]]"):]
+    text = text.replace('far_end = "nonreflecting"',
+                        'far_end = { type = "bit-rock", loading_stiffness = "300 MN/m", '
+                        'unloading_stiffness = "900 MN/m" }')
+    text = text.replace('bore = "0 mm"', 'bore = "0 mm"\nmass = "0.02 kg"')
+    spec = loads_spec(text)
+    assert spec.kwargs["reloading"] is False and spec.kwargs["n"] == (3, 6)
+    r = run(spec)
+    s = summarize_run(r, spec)
+    text_summary = format_summary(s, spec)
+    assert "first pass only" in s["efficiency_definition"] and "first pass only" in text_summary
+    assert s["uniform_reference"]["elements"] is not None
+    assert "best uniform piston of the same mass" in text_summary
+    assert s["efficiency"] >= s["uniform_reference"]["efficiency"] - 1e-9
+    json.dumps(s)
+
+
+def test_progress_flag_prints_progress_lines_to_stderr(tmp_path, capsys, monkeypatch):
+    """Issue 20, item 5: `--progress` asks for the progress lines even when stderr is not a terminal; without it
+    a captured (non-terminal) stderr gets none."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "s.toml").write_text(SMALL)
+    assert cli.main(["design", "s.toml", "-o", "a", "--no-plots", "--progress"]) == 0
+    err = capsys.readouterr().err
+    assert "design: start 1" in err and "best so far" in err
+    assert cli.main(["design", "s.toml", "-o", "b", "--no-plots"]) == 0
+    assert "best so far" not in capsys.readouterr().err

@@ -106,3 +106,20 @@ def test_bad_weights(weights, match):
     with pytest.raises(ValueError, match=match):
         ri.design(-np.linspace(1e4, 2e4, 10), struck=bar, striker_velocity=12.0, dt=DT, far_end="nonreflecting",
                   weights=weights)
+
+
+@pytest.mark.parametrize("key, value, error", [
+    ("tolerance", "5", TypeError), ("tolerance", [1, 2], TypeError), ("tolerance", float("nan"), ValueError),
+    ("tolerance", True, TypeError), ("tolerance", 0.0, ValueError), ("tolerance", 2.0, ValueError),
+    ("smoothness", True, TypeError), ("smoothness", "1", TypeError), ("smoothness", float("inf"), ValueError),
+    ("bore", "0", TypeError), ("impedance_bounds", ("1e3", "1e6"), TypeError),
+    ("impedance_bounds", (["1e3"] * 10, 1e6), TypeError), ("weights", ["1"] * 10, TypeError),
+    ("weights", [True] * 10, TypeError),
+])
+def test_numeric_arguments_of_design_are_refused_not_coerced(key, value, error):
+    """Issue 20, item 12: a string, a sequence, a bool or a non-finite number for a numeric argument of design is
+    refused with an error naming the argument (no coercion of "5" into 5)."""
+    bar = ri.Rod.from_impedance([1.27e4] * 4, DT)
+    with pytest.raises(error, match=f"^{key}"):
+        ri.design(-np.linspace(1e4, 2e4, 10), struck=bar, striker_velocity=12.0, dt=DT, far_end="nonreflecting",
+                  max_iterations=1, starts=1, **{key: value})

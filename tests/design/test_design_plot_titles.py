@@ -1,0 +1,24 @@
+"""Design force plots carry a title that says what is drawn and how good the design is (issue 20, item 14)."""
+
+import numpy as np
+
+import rodimpact as ri
+from rodimpact.plotting.design import plot_design_force, plot_incident_wave
+
+
+def test_match_force_plot_has_a_title_with_the_misfit():
+    bar = ri.Rod.from_impedance([1.27e4] * 4, 2e-6)
+    d = ri.design(-np.linspace(10e3, 30e3, 4), struck=bar, striker_velocity=12.0, dt=2e-6, far_end="nonreflecting",
+                  impedance_bounds=(500.0, 1e5), max_iterations=2, starts=1)
+    title = plot_design_force(d).get_title()
+    assert "contact force" in title and "target" in title and f"{d.misfit:.3g}" in title
+
+
+def test_efficiency_force_plots_have_titles_with_the_efficiency():
+    rod = ri.Rod.from_impedance([60e3] * 6, 2e-6)
+    k = 60e3 / (2 * 3 * 2e-6)
+    d = ri.design(None, objective="efficiency", struck=rod, far_end=ri.BitRockEnd(k), striker_velocity=10.0, n=3,
+                  dt=2e-6, impedance_bounds=(2e4, 2e5), max_iterations=1, starts=1)
+    for ax in (plot_design_force(d), plot_incident_wave(d, k, 60e3)):
+        title = ax.get_title()
+        assert "incident wave" in title.lower() and f"{d.efficiency:.4g}" in title

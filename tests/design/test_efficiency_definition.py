@@ -1,0 +1,58 @@
+"""The efficiency objective's two definitions (issue 20, item 3): Lundberg's classical first-pass efficiency
+(only the striker's incident wave loads the rock) and the efficiency with the reloading of the rock by reflected
+waves (the default)."""
+
+import numpy as np
+import pytest
+
+import rodimpact as ri
+
+
+def eta_closed_form(x):
+    """Rectangular incident wave of duration T into a loading-only rock spring k under a rod of impedance Z:
+    eta = 2 (1 - exp(-x))^2 / x, x = k T / Z (docs/design.md)."""
+    return 2.0 * (1.0 - np.exp(-x)) ** 2 / x
+
+
+def _uniform_piston(x, reloading, n=100, z=50e3, dt=1e-6, unloading=1e6, piston=1.0):
+    """A uniform piston of ``piston`` times the rod's impedance z (bounds lower = upper force it; x = k T / z with
+    T = 2 n dt), n elements, on a rod of 2 n
+    elements ending on a rock of loading stiffness k and unloading stiffness ``unloading`` k (1e6: loading
+    only)."""
+    k = x * z / (2 * n * dt)
+    rod = ri.Rod.from_impedance([z] * (2 * n), dt)
+    return ri.design(None, objective="efficiency", struck=rod, far_end=ri.BitRockEnd(k, unloading * k),
+                     striker_velocity=10.0, n=n, dt=dt, impedance_bounds=(piston * z, piston * z), max_iterations=1, starts=1,
+                     reloading=reloading)
+
+
+@pytest.mark.parametrize("x", [1.2564, 3.0])
+def test_first_pass_efficiency_is_lundbergs_classical_efficiency(x):
+    d = _uniform_piston(x, reloading=False)
+    assert d.efficiency == pytest.approx(eta_closed_form(x), abs=1e-2)
+    assert "first pass" in d.diagnostics["efficiency_definition"]
+    # the run ends when the first wave reflected at the bit is back there: 3 travel times of the 2 n = 200 rod
+    assert d.time.size == 3 * 200
+
+
+def test_reloading_counts_the_work_of_the_reflected_waves():
+    """A piston twice as stiff as the rod on a rock that unloads (k2 = 3 k): the piston stays in contact, waves
+    reflected at the bit come back, unload and load the rock again, so the efficiency with reloading differs
+    from the first pass, and its run is longer."""
+    first = _uniform_piston(1.0, reloading=False, unloading=3.0, piston=2.0)
+    again = _uniform_piston(1.0, reloading=True, unloading=3.0, piston=2.0)
+    assert abs(again.efficiency - first.efficiency) > 0.01, (first.efficiency, again.efficiency)
+    assert again.time.size > first.time.size
+    assert "reloading" in again.diagnostics["efficiency_definition"]
+
+
+def test_first_pass_refuses_a_pulse_longer_than_the_round_trip_and_a_run_length():
+    rod = ri.Rod.from_impedance([50e3] * 4, 1e-6)
+    kw = dict(objective="efficiency", struck=rod, far_end=ri.BitRockEnd(1e9), striker_velocity=10.0, dt=1e-6,
+              max_iterations=1, starts=1, reloading=False)
+    with pytest.raises(ValueError, match="reloading: the first pass"):
+        ri.design(None, n=6, **kw)
+    with pytest.raises(ValueError, match="steps, duration"):
+        ri.design(None, n=2, steps=50, **kw)
+    with pytest.raises(TypeError, match="reloading"):
+        ri.design(None, n=2, **{**kw, "reloading": "no"})
