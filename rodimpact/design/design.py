@@ -30,7 +30,7 @@ from ..inverse.transform import _check_quantity, _resolve_dt, _resolve_n
 from ._adjoint import ImpactProblem
 from .constraints import Constraints, build_constraints, velocity_start
 from .objectives import EfficiencyObjective, MatchObjective
-from .optimize import Evaluator, Levels, Progress, Run, best_of, minimise
+from .optimize import Evaluator, Levels, OptimisationProgress, Run, best_of, minimise
 from .result import DesignResult
 from .screening import POOL_SIZE, candidate_pool, diverse, screen as screen_pool
 from .stepped import stepped_design
@@ -297,9 +297,9 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     free = Levels.free(cons)
     named = _distinct([(name, cons.project(z0)) for name, z0 in initial_profiles])
     if objective == "match":
-        progress_bar = Progress(show_progress, "misfit", lambda j: float(np.sqrt(max(j, 0.0))), True)
+        progress_bar = OptimisationProgress(show_progress, "misfit", lambda j: float(np.sqrt(max(j, 0.0))), True)
     else:
-        progress_bar = Progress(show_progress, "efficiency", lambda j: -j, False)
+        progress_bar = OptimisationProgress(show_progress, "efficiency", lambda j: -j, False)
     runs: list[Run] = []
     labels: list[str] = []
 

@@ -33,8 +33,8 @@ IMPROVEMENT_WINDOW = 10
 PROGRESS_INTERVAL = 0.5
 
 
-class Progress:
-    """Progress lines on ``stream`` (default stderr): run, iteration, objective and best so far.
+class OptimisationProgress:
+    """OptimisationProgress lines on ``stream`` (default stderr): run, iteration, objective and best so far.
 
     ``show(J)`` turns the internal objective J into the reported one (the misfit sqrt(J), or the efficiency
     -J); ``better(a, b)`` orders reported values. Lines are throttled to one per :data:`PROGRESS_INTERVAL`
@@ -174,7 +174,7 @@ class Run:
 
 
 def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: float, *, max_iterations: int,
-             tolerance: float, improvement: float = 0.0, progress: Optional[Progress] = None,
+             tolerance: float, improvement: float = 0.0, progress: Optional[OptimisationProgress] = None,
              label: str = "run") -> Run:
     """Minimise J over the levels (and the velocity when free) inside the bounds and the mass range.
 

@@ -37,7 +37,7 @@ def test_an_active_lower_mass_bound_is_met_at_the_best_misfit():
 
     def misfit2(z_k):             # z in kN s/m, face first
         striker = ri.Rod.from_impedance(z_k[::-1] * 1e3, DT)
-        sim = ri.simulate([striker, bar], [v, 0.0], steps=2 * n, dt=DT, right="nonreflecting")
+        sim = ri.simulate(ri.System([striker, bar], [v, 0.0], right="nonreflecting"), steps=2 * n, dt=DT)
         return float(np.sum((sim.junction_force[0] - ref) ** 2) / np.sum(ref ** 2))
 
     best = min(minimize(misfit2, np.full(n, z0), method="SLSQP", bounds=[(0.5, 100.0)] * n,

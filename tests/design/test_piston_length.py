@@ -23,8 +23,8 @@ def _uniform_efficiencies(rod, end, mass, counts):
     out = {}
     for m in counts:
         z = mass / (m * DT)
-        sim = ri.simulate([ri.Rod.from_impedance([z] * m, DT), rod], [V, 0.0], steps=2 * m + 6 * 40, dt=DT,
-                          right=end)
+        sim = ri.simulate(ri.System([ri.Rod.from_impedance([z] * m, DT), rod], [V, 0.0], right=end),
+                          steps=2 * m + 6 * 40, dt=DT)
         out[m] = -DT * np.dot(sim.end_force["right"], sim.end_velocity["right"]) / (0.5 * mass * V * V)
     return out
 
