@@ -53,16 +53,17 @@ def test_momentum_balance_with_the_left_end_loaded(backend):
     right end, and a flipped sign of the left end's impulse survived). The end face's outward normal is -x, so the
     force on the rod is -N: a push N = -1 kN on a free rod at rest gives it the momentum 1 kN * t (Newton)."""
     bar = ri.Rod.from_impedance(np.linspace(30e3, 70e3, 60), dt=DT)
-    e = ri.simulate([bar], velocities=[0.0], steps=400, energy_every=7, left=ri.ForceEnd(-1e3),
+    every7 = ri.Outputs(energy_every=7)
+    e = ri.simulate(ri.System([bar], [0.0], left=ri.ForceEnd(-1e3)), steps=400, outputs=every7,
                     backend=backend).energy
     assert e.time[-1] > 0.3e-3
     np.testing.assert_allclose(e.impulse, 1e3 * e.time, rtol=0, atol=1e-12)
     np.testing.assert_allclose(e.momentum.sum(axis=0), 1e3 * e.time, rtol=0, atol=1e-12)
     # both ends loaded by varying forces, a striker on the bar
     striker = ri.Rod.from_impedance([45e3] * 40, dt=DT)
-    res = ri.simulate([striker, bar], velocities=[3.0, 0.0], steps=900, energy_every=7, backend=backend,
-                      left=ri.ForceEnd(lambda t: -4e3 * np.sin(1.3e4 * t) ** 2),
-                      right=ri.ForceEnd(lambda t: -2e3 * np.sin(2e4 * t)))
+    system = ri.System([striker, bar], [3.0, 0.0], left=ri.ForceEnd(lambda t: -4e3 * np.sin(1.3e4 * t) ** 2),
+                       right=ri.ForceEnd(lambda t: -2e3 * np.sin(2e4 * t)))
+    res = ri.simulate(system, steps=900, outputs=every7, backend=backend)
     p = res.energy.momentum.sum(axis=0)
     scale = 45e3 * 40 * DT * 3.0
     assert np.ptp(res.energy.impulse) > 0.1 * scale
