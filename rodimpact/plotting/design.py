@@ -25,10 +25,15 @@ def plot_design_force(result: Any, ax: Optional[Any] = None):
     _, ax = new_axes(ax)
     t = result.time * 1e3
     what = "contact force" if result.location is None else f"{result.quantity} at {result.location.used:.4g} m"
-    ax.step(t, result.achieved / 1e3, where="post", label=f"achieved ({what})")
     if result.target.size:
-        k = result.compared
-        ax.plot(t[k], result.target / 1e3, "k.", ms=3, label=f"target (misfit {result.misfit:.3g})")
+        # the target holds its window value over each window (2 dt): a wide, light step line under the achieved
+        # force, the last window drawn to its end
+        tk = t[result.compared]
+        last = tk[-1] + (tk[-1] - tk[-2] if tk.size > 1 else result.dt * 1e3)
+        values = result.target / 1e3
+        ax.step(np.append(tk, last), np.append(values, values[-1]), where="post", color="0.6", lw=4, alpha=0.7,
+                label=f"target (misfit {result.misfit:.3g})", zorder=1)
+    ax.step(t, result.achieved / 1e3, where="post", label=f"achieved ({what})", zorder=2)
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("force [kN]")
     ax.set_title(design_force_title(result))
