@@ -130,7 +130,8 @@ def global_phase(write: bool) -> None:
              f"{platform.processor() or platform.machine()}, numba backend, a machine shared with other jobs: "
              f"times are indicative). Defaults: {d.diagnostics['screened']['candidates']} candidates screened by "
              f"`simulate_batch`, {len(d.diagnostics['starts'])} diverse starts continued coarse to fine "
-             f"(n/6, n/3 levels, free), the best two continued.", "",
+             f"(n/6, n/3 levels, free), the best two continued, 8 basin hops; impedances optimised as "
+             f"log(Z / Z_ref).", "",
              "| case | result | reference | time / s |", "|---|---|---|---|",
              f"| half-sine, n = 50 (issue 20: 0.1286 before) | misfit {d.misfit:.4g} | best known {BEST_KNOWN} "
              f"({100 * gap:+.2f} %, goal within {100 * GOAL:g} %) | {t_d:.3g} |",

@@ -75,7 +75,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
            material: Material = STEEL, bore: float = 0.0, mass: Any = None, velocity_bounds: Any = None,
            max_steps: Optional[int] = None, smoothness: float = 0.0, steps: Optional[int] = None,
            duration: Optional[float] = None, starts: int = 16, max_iterations: int = 300,
-           tolerance: float = 1e-14, improvement: float = 1e-6, pool: int = POOL_SIZE, hops: int = 0,
+           tolerance: float = 1e-14, improvement: float = 1e-6, pool: int = POOL_SIZE, hops: int = 8,
            reloading: bool = True,
            progress: Optional[bool] = None, warm_start: bool = True, backend: str = "numba") -> DesignResult:
     """Find the striker impedance profile that minimises an objective under constraints.
@@ -136,7 +136,8 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     hops:
         Basin-hopping rounds after the starts (with several starts): the best profile, perturbed (a smooth
         random factor, or a thin tail from a random element on), runs again and replaces the best if it ends
-        better. ``diagnostics["local_optima"]`` lists the objective at the end of every start and hop.
+        better (default 8: on the half-sine of issue 20 they take the misfit from 0.1262 to 0.1260).
+        ``diagnostics["local_optima"]`` lists the objective at the end of every start and hop.
     progress:
         Print progress lines (run, iteration, objective, best so far) to stderr: True always, False never,
         None (default) when stderr is a terminal.

@@ -11,6 +11,7 @@ iteration beyond the forward and adjoint runs, and one linear constraint is hand
 
 from __future__ import annotations
 
+import math
 import sys
 import time as _time
 from dataclasses import dataclass, field
@@ -178,6 +179,11 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
              label: str = "run") -> Run:
     """Minimise J over the levels (and the velocity when free) inside the bounds and the mass range.
 
+    The levels are optimised as log(Z / Z_ref): an L-BFGS-B step is then a relative change of each impedance,
+    which suits bounds that span two orders of magnitude (a 5-60 mm steel striker: a factor 144). Measured on
+    the half-sine of issue 20 (n = 50): a descent from a uniform striker of 1621 N s/m ends at misfit 0.1268 in
+    log(Z), 0.1284 in Z; the whole design at 0.1260 instead of 0.1263. The velocity stays linear.
+
     Stops at ``max_iterations`` L-BFGS-B iterations (per outer mass iteration), at L-BFGS-B's own relative
     reduction ``tolerance`` (ftol), or when the best J has improved by less than the fraction ``improvement``
     of |J| over the last :data:`IMPROVEMENT_WINDOW` iterations (0: never). ``progress`` reports every
@@ -186,7 +192,7 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
     vr = max(v0, 1e-12)
     free_v = c.free_velocity
     m_scale = c.dt * zr * float(lv.counts.sum())
-    bounds = [(lo / zr, hi / zr) for lo, hi in zip(lv.lower, lv.upper)]
+    bounds = [(math.log(lo / zr), math.log(hi / zr)) for lo, hi in zip(lv.lower, lv.upper)]
     if free_v:
         bounds.append((c.velocity[0] / vr, c.velocity[1] / vr))
     history: list[float] = []
@@ -195,16 +201,18 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
 
     def split(x: np.ndarray) -> tuple[np.ndarray, float]:
         """Unscaled levels and velocity (the velocity clipped: x * v_ref may round past a bound)."""
-        return (x[:-1] * zr, float(np.clip(x[-1] * vr, *c.velocity))) if free_v else (x * zr, v0)
+        if free_v:
+            return np.exp(x[:-1]) * zr, float(np.clip(x[-1] * vr, *c.velocity))
+        return np.exp(x) * zr, v0
 
     def fun(x: np.ndarray) -> tuple[float, np.ndarray]:
         u, v = split(x)
         total, j, dz, dv = ev.value_and_gradient(lv.expand(u), v)
         last["j"] = j
-        g = lv.reduce(dz) * zr
+        g = lv.reduce(dz) * u          # dJ/d log(Z_l / Z_ref) = dJ/dZ_l Z_l
         if c.mass is not None:
             m = c.dt * float(lv.counts @ u) / m_scale
-            dm = c.dt * lv.counts * zr / m_scale
+            dm = c.dt * lv.counts * u / m_scale
             lo, hi = c.mass[0] / m_scale, c.mass[1] / m_scale
             mu = state["mu"]
             for key, gval, sign in (("lam_lo", lo - m, -1.0), ("lam_hi", m - hi, 1.0)):
@@ -215,7 +223,8 @@ def minimise(ev: Evaluator, c: Constraints, lv: Levels, u0: np.ndarray, v0: floa
             g = np.append(g, dv * vr)
         return total, g
 
-    x = np.append(u0 / zr, v0 / vr) if free_v else u0 / zr
+    x = np.log(u0 / zr)
+    x = np.append(x, v0 / vr) if free_v else x
     iterations = 0
     message = ""
     stalled: dict[str, bool] = {}

@@ -67,7 +67,7 @@ DESIGN = Table("design", "What to optimise and how.", (
     _q("improvement", "dimensionless", "Stop a run when its best objective improved by less than this fraction "
                                        "over the last 10 iterations (0: never).", sign="non_negative",
        required=False, default=1e-6),
-    Field("hops", "integer", "Basin-hopping rounds after the starts.", default=0, minimum=0),
+    Field("hops", "integer", "Basin-hopping rounds after the starts.", default=8, minimum=0),
     Field("backend", "string", "`numba` or `numpy`.", default="numba", choices=("numba", "numpy")),
 ))
 
