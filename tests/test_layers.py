@@ -210,3 +210,33 @@ def test_no_import_circles():
 def test_the_circle_check_sees_a_circle():
     assert circles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
     assert circles({"a": {"b"}, "b": set()}) == []
+
+
+def crosses_privately(source: str, target: str, names: tuple[str, ...]) -> bool:
+    """``source`` imports a private module (``rodimpact.direct._kernels``) or a private name (``_resolve_dt``) of
+    another layer. The private helper modules at the top of the package (``rodimpact._validate``, ...) serve
+    every layer and are not counted."""
+    parts = target.split(".")
+    if parts[0] != "rodimpact" or len(parts) < 2 or parts[1].startswith("_") or layer(source) == layer(target):
+        return False
+    return (any(p.startswith("_") for p in parts[2:])
+            or any(n.startswith("_") and not n.startswith("__") for n in names))
+
+
+def test_nothing_private_is_imported_across_layers():
+    """Private kernels, set-up functions and helpers stay inside their package (issue 21): what another layer
+    needs is public (``rodimpact.direct.boundary``, ``Problem.compile``, ``inverse.transform.window_count``)."""
+    wrong = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        source = module_name(path)
+        for target, names, line in static_imports(path):
+            if crosses_privately(source, target, names):
+                wrong.append(f"{path.relative_to(PACKAGE.parent)}:{line} imports {target} {names}")
+    assert not wrong, "private imports across layers:\n" + "\n".join(wrong)
+
+
+def test_the_private_import_check_sees_one():
+    assert crosses_privately("rodimpact.design._adjoint_kernels", "rodimpact.direct._kernels", ("end_solve",))
+    assert crosses_privately("rodimpact.design.design", "rodimpact.inverse.transform", ("_resolve_dt",))
+    assert not crosses_privately("rodimpact.direct.batch", "rodimpact.direct._kernels", ("run_numba",))
+    assert not crosses_privately("rodimpact.design.result", "rodimpact._result_files", ("write_new_file",))

@@ -26,7 +26,7 @@ from ..inverse.diagnosis import explain_bounds
 from ..inverse.recursive import synthesize
 from ..inverse.struck import as_struck_system, locate, window_count_check
 from ..inverse.targets import as_target
-from ..inverse.transform import _check_quantity, _resolve_dt, _resolve_n
+from ..inverse.transform import checked_quantity, struck_time_step, window_count
 from ._adjoint import ImpactProblem
 from .constraints import Constraints, build_constraints, velocity_start
 from .objectives import EfficiencyObjective, MatchObjective
@@ -155,7 +155,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         raise ValueError(f"objective: must be one of {OBJECTIVES}, got {objective!r}")
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
-    _check_quantity(quantity)
+    checked_quantity(quantity)
     if struck is None:
         raise ValueError("struck: give the struck system (a Rod, a list of Rods or a System)")
     if isinstance(starts, bool) or not isinstance(starts, (int, np.integer)) or starts < 1:
@@ -190,7 +190,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     elif loads or junctions is not None or initial is not None:
         raise ValueError("struck: a System already carries junctions, loads and initial state; do not pass "
                          "junctions=, loads= or initial= as well")
-    dt = _resolve_dt(system, dt)
+    dt = struck_time_step(system, dt)
     lat = build_lattice(system, dt)
     face_z = float(lat.impedance[0])
     diag: dict[str, Any] = {"version": __version__, "backend": backend}
@@ -205,7 +205,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
             raise ValueError("reloading: chooses the definition of the efficiency; give reloading=False only for "
                              "objective='efficiency'")
         tgt = as_target(target, rule)
-        n = _resolve_n(tgt, n, dt)
+        n = window_count(tgt, n, dt)
         avail = tgt.available_windows(dt)
         nw = n if avail is None else avail
         windows = tgt.window_values(nw, dt)

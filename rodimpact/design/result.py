@@ -9,7 +9,7 @@ from typing import Any, Optional
 import numpy as np
 
 from ..direct.result import SimulationResult
-from ..inverse._files import write_new_file
+from .._result_files import netcdf_engine, write_new_file
 from ..inverse.shape import MAX_DIAMETER_RATIO, StrikerShape
 from ..inverse.struck import Location, simulate_observed, with_striker
 from ..rods.material import STEEL, Material
@@ -199,6 +199,4 @@ class DesignResult:
 
     def save(self, path: str | Path, overwrite: bool = False) -> Path:
         """Write :meth:`to_xarray` to a netCDF file (refused if it exists unless ``overwrite``)."""
-        from ..inverse.result import _netcdf_engine
-
-        return write_new_file(path, lambda tmp: self.to_xarray().to_netcdf(tmp, engine=_netcdf_engine()), overwrite)
+        return write_new_file(path, lambda tmp: self.to_xarray().to_netcdf(tmp, engine=netcdf_engine()), overwrite)

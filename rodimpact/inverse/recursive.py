@@ -28,7 +28,7 @@ from .targets import as_target
 from ._schur import chosen_method, peel
 from ._toeplitz import TOEPLITZ_METHODS
 from .diagnosis import explain_failure
-from .transform import _check_quantity, _resolve_dt, _resolve_n, transform_windows
+from .transform import checked_quantity, struck_time_step, transform_windows, window_count
 
 #: Default threshold of the estimated relative error of Z_q above which a precision warning is issued.
 PRECISION_WARNING = 1e-6
@@ -96,16 +96,16 @@ def synthesize(target: Any, struck: Any, striker_velocity: float, n: Optional[in
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
     v_in = finite("striker_velocity", striker_velocity, "m/s")
-    _check_quantity(quantity)       # also without position, so that a typo does not pass unnoticed
+    checked_quantity(quantity)       # also without position, so that a typo does not pass unnoticed
     if toeplitz_method not in TOEPLITZ_METHODS:
         raise ValueError(f"toeplitz_method: must be one of {TOEPLITZ_METHODS}, got {toeplitz_method!r}")
     precision_warning = positive("precision_warning", precision_warning)
     if not isinstance(material, Material):
         raise TypeError(f"material: must be a Material, got {type(material).__name__}")
     system = as_struck_system(struck)
-    dt = _resolve_dt(system, dt)
+    dt = struck_time_step(system, dt)
     tgt = as_target(target, rule)
-    n = _resolve_n(tgt, n, dt)
+    n = window_count(tgt, n, dt)
     windows = tgt.window_values(n, dt)
     _check_finite(windows, "target")
     transformation = None

@@ -13,7 +13,7 @@ from ..direct.result import SimulationResult
 from ..direct.problem import Problem
 from ..direct.recording import Outputs
 from ..direct.simulate import simulate
-from ._files import write_new_file
+from .._result_files import netcdf_engine, write_new_file
 from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.system import System
@@ -21,17 +21,6 @@ from .shape import MAX_DIAMETER_RATIO, StrikerShape
 from .struck import Location, position_probe, position_quantity, with_striker
 from .tables import SynthesisTables
 from .transform import ForceTransformation
-
-
-def _netcdf_engine() -> str:
-    """An xarray netCDF engine that is installed: h5netcdf (needs h5py), netCDF4 or scipy (NetCDF3)."""
-    from importlib.util import find_spec
-
-    if find_spec("h5netcdf") and find_spec("h5py"):
-        return "h5netcdf"
-    if find_spec("netCDF4"):
-        return "netcdf4"
-    return "scipy"
 
 
 @dataclass(frozen=True)
@@ -368,7 +357,7 @@ class SynthesisResult(SynthesisTables):
     def save(self, path: str | Path, overwrite: bool = False) -> Path:
         """Write :meth:`to_xarray` to a netCDF file (engine h5netcdf when h5py is installed, else netCDF4, else
         scipy's NetCDF3 writer). An existing file is refused unless ``overwrite=True``; written atomically."""
-        return write_new_file(path, lambda tmp: self.to_xarray().to_netcdf(tmp, engine=_netcdf_engine()), overwrite)
+        return write_new_file(path, lambda tmp: self.to_xarray().to_netcdf(tmp, engine=netcdf_engine()), overwrite)
 
     @classmethod
     def load(cls, path: str | Path) -> "SynthesisResult":
@@ -384,7 +373,7 @@ class SynthesisResult(SynthesisTables):
         try:
             with open(p, "rb") as fh:
                 magic = fh.read(4)
-            engine = "scipy" if magic.startswith(b"CDF") else _netcdf_engine()
+            engine = "scipy" if magic.startswith(b"CDF") else netcdf_engine()
             ds = xr.load_dataset(p, engine=engine)
         except PermissionError:
             raise PermissionError(f"{p}: no permission to read it") from None

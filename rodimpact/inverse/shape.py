@@ -21,7 +21,7 @@ from .._validate import caller_stacklevel, non_negative, positive, positive_arra
 from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.segments import Cylinder, Tube
-from ._files import write_new_file
+from .._result_files import write_new_file
 
 #: Default limit of the outer-diameter ratio max/min above which a profile is reported as impractical.
 MAX_DIAMETER_RATIO = 10.0

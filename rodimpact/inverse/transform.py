@@ -77,7 +77,9 @@ class ForceTransformation:
         return float(np.max(np.abs(back - self.target)) / max(np.max(np.abs(self.target)), 1e-300))
 
 
-def _check_quantity(quantity: str) -> str:
+def checked_quantity(quantity: str) -> str:
+    """``quantity`` after checking it names what a target at a position prescribes: ``"force"`` (the normal force
+    at the node) or ``"incident"`` (the force wave arriving from the impact side)."""
     if quantity not in QUANTITIES:
         raise ValueError(f"quantity: must be one of {QUANTITIES} ('force' = normal force at the position, "
                          f"'incident' = force wave arriving from the impact side), got {quantity!r}")
@@ -117,7 +119,7 @@ def transform_windows(system: System, location: Location, target: np.ndarray, dt
     """Core of :func:`transform_force` on normalised input (``system`` from
     :func:`~rodimpact.inverse.struck.as_struck_system`, ``location`` from
     :func:`~rodimpact.inverse.struck.locate`, window values ``target``)."""
-    quantity = _check_quantity(quantity)
+    quantity = checked_quantity(quantity)
     if quantity == "incident" and location.element_left < 0:
         raise ValueError("position: the incident wave is defined at a node inside the struck system; "
                          "position = 0 is the impact face itself (prescribe the impact force there)")
@@ -156,14 +158,16 @@ def transform_force(target: Any, struck: Any, position: float, n: Optional[int] 
     "fft").
     """
     system = as_struck_system(struck)
-    dt = _resolve_dt(system, dt)
+    dt = struck_time_step(system, dt)
     tgt = as_target(target, rule)
-    n = _resolve_n(tgt, n, dt)
+    n = window_count(tgt, n, dt)
     y = tgt.window_values(n, dt)
     return transform_windows(system, locate(system, position, dt), y, dt, quantity, method, backend)
 
 
-def _resolve_dt(system: System, dt: Optional[float]) -> float:
+def struck_time_step(system: System, dt: Optional[float]) -> float:
+    """The element travel time of a synthesis or design, s: ``dt``, or, when it is ``None``, the smallest one of
+    the struck rods built with ``Rod.from_impedance``."""
     if dt is None:
         natives = [r.native.dt for r in system.rods if r.native is not None]
         if not natives:
@@ -173,7 +177,9 @@ def _resolve_dt(system: System, dt: Optional[float]) -> float:
     return positive("dt", dt, "s")
 
 
-def _resolve_n(target, n: Optional[int], dt: float) -> int:
+def window_count(target, n: Optional[int], dt: float) -> int:
+    """The number of striker elements (force windows of 2 dt): ``n``, or, when it is ``None``, as many windows as
+    the target's duration covers."""
     if n is None:
         avail = target.available_windows(dt)
         if avail is None:

@@ -423,7 +423,7 @@ def _plots(r: SynthesisRun, folder: Path) -> list[str]:
 
 def write_plots(folder: Path, jobs: list) -> list[str]:
     """Draw each ``(file name, draw(ax))`` job on its own pyplot-free figure (headless) into ``folder``."""
-    from ..plotting._common import new_axes
+    from ..plotting import new_axes
 
     written = []
     for name, draw in jobs:

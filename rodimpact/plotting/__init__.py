@@ -19,7 +19,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Optional, Sequence
 
-from ._common import check_dpi, check_figure_pixels, check_output_folder, check_result, check_snapshot_times
+from ._common import (check_dpi, check_figure_pixels, check_output_folder, check_result, check_snapshot_times,
+                      new_axes)
 from .animation import animate_force, pillow_available
 from .fields import plot_snapshots, plot_xt
 from .histories import plot_energy, plot_energy_comparison, plot_forces, plot_strain
@@ -32,7 +33,7 @@ __all__ = ["plot_forces", "plot_strain", "plot_energy", "plot_energy_comparison"
            "plot_xt", "animate_force", "pillow_available", "save_plots", "PLOT_FILES",
            "plot_impedance", "plot_force", "plot_existence", "plot_shape", "plot_synthesis", "plot_sweep",
            "plot_design_force", "plot_design_profile", "plot_convergence", "plot_incident_wave",
-           "plot_phase_speed"]
+           "plot_phase_speed", "new_axes"]
 
 
 def __getattr__(name: str) -> Any:

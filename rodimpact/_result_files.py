@@ -1,4 +1,5 @@
-"""Writing result files without ever clobbering what a user saved."""
+"""Writing result files without ever clobbering what a user saved, and the netCDF engine to write them with
+(shared by the synthesis and design results)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import tempfile
 from pathlib import Path
 from typing import Callable
 
-from .._permissions import normal_mode
+from ._permissions import normal_mode
 
 
 def write_new_file(path: str | Path, write: Callable[[Path], None], overwrite: bool = False) -> Path:
@@ -32,3 +33,14 @@ def write_new_file(path: str | Path, write: Callable[[Path], None], overwrite: b
         if os.path.exists(tmp):
             os.remove(tmp)
     return path
+
+
+def netcdf_engine() -> str:
+    """An xarray netCDF engine that is installed: h5netcdf (needs h5py), netCDF4 or scipy (NetCDF3)."""
+    from importlib.util import find_spec
+
+    if find_spec("h5netcdf") and find_spec("h5py"):
+        return "h5netcdf"
+    if find_spec("netCDF4"):
+        return "netcdf4"
+    return "scipy"
