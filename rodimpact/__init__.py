@@ -13,7 +13,7 @@ from .rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, Exp
 from .rods.rod import Rod
 from .rods.history import History
 from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd, Junction,
-                              NonReflectingEnd, SpringEnd, VelocityEnd)
+                              NonReflectingEnd, SpringDashpot, SpringEnd, VelocityEnd)
 from .rods.loads import Bearings, NodalForce
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
@@ -49,7 +49,7 @@ __all__ = [
     "CosHorn", "TabulatedProfile", "stepped_profile", "AreaFunction",
     "Rod", "History", "System", "InitialState",
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
-    "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
+    "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
     "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
     "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
