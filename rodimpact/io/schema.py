@@ -9,6 +9,7 @@ tables appear in the file: ``rods[1].segments[2].diameter: must be > 0, got -5 m
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import functools
 import math
@@ -18,6 +19,7 @@ from typing import Any, Optional
 
 from ..rods import conditions as _conditions, loads as _loads, segments as _segments  # noqa: F401  (registers)
 from ..rods.declared import ELEMENTS as ELEMENT_CLASSES, declarations, has_default, summary
+from ..rods.material import Material
 from . import _toml
 from .quantities import (DIMENSIONS, ModelError, check_sign, parse_quantity, pint_quantity, show_as_written,
                          si_magnitude)
@@ -196,8 +198,7 @@ ROD = Table("rods", "A rod, listed left to right (`[[rods]]`, one table per rod)
 
 MATERIAL = Table("materials", "Named materials (`[materials.NAME]`), used by `material = \"NAME\"`. Either "
                               "`youngs_modulus` and `density`, or a `base` material scaled by the factors.", (
-    _q("youngs_modulus", "pressure", "Young's modulus E.", required=False),
-    _q("density", "density", "Density rho.", required=False),
+    *(dataclasses.replace(f, required=False) for f in element_table("materials", Material).fields),
     Field("base", "string", "A preset or an earlier material to start from."),
     _q("youngs_factor", "dimensionless", "Factor on the base's E (thesis setup 3: 1.5).", required=False,
        default=1.0),
