@@ -165,35 +165,34 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
             junction_N[r, out] = nj
             junction_contact[r, out] = 1.0 if nj < 0.0 or junction_par[r, 2] == 0.0 else 0.0
             acc[8] += nj * (rod_VR[r] - rod_VL[r + 1]) * dt
-            gap[r] += (rod_VL[r + 1] - rod_VR[r]) * dt
-            continue
-        if code == CONTACT and junction_state[r] == 0:
-            # re-contact if the gap closes within the first half of the step, by more than rounding
-            if gap[r] + 0.5 * (vb_free - va_free) * dt <= -gap_tol[r]:
-                junction_state[r] = 1
-        touching = code == BONDED or junction_state[r] == 1
-        if touching:
-            vn = (N[b] - N[a] + za * v[a] + zb * v[b]) / (za + zb)
-            nj = N[a] + za * (vn - v[a])
-            # unilateral: only a compressive force keeps the rods together; a force that is zero to
-            # rounding (e.g. equal impedances after the pulse has passed) counts as separation
-            scale = abs(N[a]) + abs(N[b]) + za * abs(v[a]) + zb * abs(v[b])
-            if code == CONTACT and nj >= -1e-13 * scale:
-                junction_state[r] = 0
-                touching = False
-        if touching:
-            rod_NR[r] = nj
-            rod_NL[r + 1] = nj
-            rod_VR[r] = vn
-            rod_VL[r + 1] = vn
-            junction_N[r, out] = nj
         else:
-            rod_NR[r] = 0.0
-            rod_NL[r + 1] = 0.0
-            rod_VR[r] = va_free
-            rod_VL[r + 1] = vb_free
-            junction_N[r, out] = 0.0
-        junction_contact[r, out] = 1.0 if touching else 0.0
+            if code == CONTACT and junction_state[r] == 0:
+                # re-contact if the gap closes within the first half of the step, by more than rounding
+                if gap[r] + 0.5 * (vb_free - va_free) * dt <= -gap_tol[r]:
+                    junction_state[r] = 1
+            touching = code == BONDED or junction_state[r] == 1
+            if touching:
+                vn = (N[b] - N[a] + za * v[a] + zb * v[b]) / (za + zb)
+                nj = N[a] + za * (vn - v[a])
+                # unilateral: only a compressive force keeps the rods together; a force that is zero to
+                # rounding (e.g. equal impedances after the pulse has passed) counts as separation
+                scale = abs(N[a]) + abs(N[b]) + za * abs(v[a]) + zb * abs(v[b])
+                if code == CONTACT and nj >= -1e-13 * scale:
+                    junction_state[r] = 0
+                    touching = False
+            if touching:
+                rod_NR[r] = nj
+                rod_NL[r + 1] = nj
+                rod_VR[r] = vn
+                rod_VL[r + 1] = vn
+                junction_N[r, out] = nj
+            else:
+                rod_NR[r] = 0.0
+                rod_NL[r + 1] = 0.0
+                rod_VR[r] = va_free
+                rod_VL[r + 1] = vb_free
+                junction_N[r, out] = 0.0
+            junction_contact[r, out] = 1.0 if touching else 0.0
         gap[r] += (rod_VL[r + 1] - rod_VR[r]) * dt
     # ---- loaded and frictional interior nodes (Coulomb law solved exactly: stick if the driving force fits)
     for i in range(sp_elem.size):
