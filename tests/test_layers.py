@@ -1,7 +1,7 @@
 """Import direction between the package's layers (docs: architecture): a layer imports only the layers below it,
 so that there is no import circle (results know nothing about files or figures).
 
-Bottom to top: rods, lattice, direct, inverse, design, signals, testrig, plotting, io, examples, cli (signals, the
+Bottom to top: rods, lattice, direct, inverse, design, signals, testrig, shpb, plotting, io, examples, cli (signals, the
 measurement layer, does not import the solvers: the test rig that simulates sits above them); ``reference`` is
 independent of lattice and direct so that it can check them (inverse uses its closed form of eq. 4.26 as the
 target of Lundberg and Lesser's example: one copy of the formula). The private helper modules at the top of the package
@@ -29,12 +29,14 @@ BELOW = {
     "reference": {"rods"},
     "signals": {"rods", "lattice"},             # measurement only: no solver (the test rig sits above)
     "testrig": {"rods", "lattice", "direct", "signals"},
-    "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
-    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "plotting"},
-    "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "plotting",
-                 "io"},
-    "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "plotting", "io",
-            "examples"},
+    # the split-Hopkinson-bar application: composes the solvers and the measurement layer, below files and figures
+    "shpb": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
+    "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb"},
+    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "plotting"},
+    "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
+                 "plotting", "io"},
+    "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "plotting",
+            "io", "examples"},
 }
 
 
@@ -141,7 +143,8 @@ print(json.dumps(edges))
 
 @pytest.mark.parametrize("module", ["rodimpact.rods", "rodimpact.lattice", "rodimpact.direct.simulate",
                                     "rodimpact.direct.result", "rodimpact.inverse", "rodimpact.reference",
-                                    "rodimpact.signals", "rodimpact.testrig", "rodimpact.plotting", "rodimpact.io.results",
+                                    "rodimpact.signals", "rodimpact.testrig", "rodimpact.shpb", "rodimpact.plotting",
+                                    "rodimpact.io.results",
                                     "rodimpact.cli"])
 def test_importing_a_layer_in_a_fresh_interpreter_imports_downwards(module):
     out = subprocess.run([sys.executable, "-c", RECORDER, module], capture_output=True, text=True, check=True,
