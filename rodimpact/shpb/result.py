@@ -172,7 +172,7 @@ class ShpbReduction:
                                  "windows_given": ",".join(self.windows.given)}
         for role, bar in (("incident_bar", self.incident_bar), ("transmitted_bar", self.transmitted_bar)):
             attrs.update({f"{role}_youngs_modulus": bar.youngs_modulus, f"{role}_density": bar.material.density,
-                          f"{role}_area": bar.area, f"{role}_gauge_distance": bar.gauge_distance,
+                          f"{role}_material": bar.material.name, f"{role}_area": bar.area, f"{role}_gauge_distance": bar.gauge_distance,
                           f"{role}_name": bar.name})
             if bar.poisson_ratio is not None:
                 attrs[f"{role}_poisson_ratio"] = bar.poisson_ratio
@@ -192,7 +192,9 @@ class ShpbReduction:
         time = np.asarray(ds["time"].values, dtype=float)
         bars = []
         for role in ("incident_bar", "transmitted_bar"):
-            bars.append(Bar(material=Material(float(a[f"{role}_youngs_modulus"]), float(a[f"{role}_density"])),
+            material = Material(float(a[f"{role}_youngs_modulus"]), float(a[f"{role}_density"]),
+                                str(a[f"{role}_material"]))
+            bars.append(Bar(material=material,
                             area=float(a[f"{role}_area"]), gauge_distance=float(a[f"{role}_gauge_distance"]),
                             poisson_ratio=a.get(f"{role}_poisson_ratio"), name=str(a[f"{role}_name"])))
         given = tuple(g for g in str(a["windows_given"]).split(",") if g)

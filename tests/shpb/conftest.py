@@ -47,7 +47,7 @@ class Shot:
     start: int                   # gauge-record index of the incident pulse's first sample
 
 
-def build_shot(incident_bar, transmitted_bar, specimen, imbalance=None, start=100, hops=(1500, 1300)):
+def build_shot(incident_bar, transmitted_bar, specimen, imbalance=None, start=100, hops=(1500, 1300), tail=200):
     """A shot whose pulses follow from the 1-D bar relations at the specimen faces (docs/shpb.md):
 
     the specimen (law, prescribed strain history) carries F = -sigma A0 on its back face and F (1 + imbalance(k))
@@ -64,12 +64,12 @@ def build_shot(incident_bar, transmitted_bar, specimen, imbalance=None, start=10
     eps_i = 0.5 * (front / incident_bar.stiffness - v_front / incident_bar.wave_speed)
     eps_r = 0.5 * (front / incident_bar.stiffness + v_front / incident_bar.wave_speed)
     hop_i, hop_t = hops
-    n = start + 2 * hop_i + SAMPLES + 200
+    n = start + 2 * hop_i + SAMPLES + tail
     incident, transmitted = np.zeros(n), np.zeros(n)
     incident[start:start + SAMPLES] = eps_i
     incident[start + 2 * hop_i:start + 2 * hop_i + SAMPLES] = eps_r
     transmitted[start + hop_i + hop_t:start + hop_i + hop_t + SAMPLES] = eps_t
-    time = -20e-6 + DT * np.arange(n)
+    time = DT * (np.arange(n) - start) - 10e-6
     bars = [Bar(material=b.material, area=b.area, gauge_distance=h * DT * b.wave_speed, poisson_ratio=0.3,
                 name=b.name) for b, h in ((incident_bar, hop_i), (transmitted_bar, hop_t))]
     duration = (SAMPLES - 1) * DT
