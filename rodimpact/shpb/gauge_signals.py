@@ -9,6 +9,7 @@ for a specimen softer than the bar, a positive reflected one.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from collections.abc import Sequence
 from typing import Any, Optional, Union
 
 import numpy as np
@@ -21,6 +22,8 @@ __all__ = ["GaugeSignals", "onset"]
 
 #: Strain channels: a recording channel in one of these units is taken as strain, without a gauge.
 STRAIN_UNITS = ("", "-", "1", "strain", "m/m")
+#: One channel name, or the names of several channels of one bar (averaged).
+Channels = Union[str, Sequence[str]]
 
 
 @dataclass(frozen=True)
@@ -70,43 +73,49 @@ class GaugeSignals:
     @classmethod
     def from_recording(cls, recording: Recording, incident_gauge: Optional[GaugedBar] = None,
                        transmitted_gauge: Optional[GaugedBar] = None, *,
-                       channels: tuple[str, str] = ("incident", "transmitted"),
+                       channels: tuple[Channels, Channels] = ("incident", "transmitted"),
                        baseline: Union[str, tuple[Any, Any], None] = "auto") -> "GaugeSignals":
         """The strains of a :class:`~rodimpact.signals.Recording` (e.g. from :func:`rodimpact.io.read_lanl_raw`).
 
-        ``channels`` names the incident-bar and the transmitted-bar channel. A channel in volts is converted to
-        strain by its gauge (``incident_gauge``, ``transmitted_gauge``: :class:`~rodimpact.signals.GaugedBar`,
-        e.g. from :func:`rodimpact.io.hoppybar_bar`, which applies the bridge, gauge factor, excitation, gain
-        and polarity); a channel already in strain (unit ``""``) needs none. ``baseline``: the zero offset
+        ``channels`` names the incident-bar and the transmitted-bar channel; several channels of one bar (gauges
+        on opposite sides) are averaged after the conversion to strain, which cancels bending (thesis eq. 5.1,
+        :func:`rodimpact.signals.opposite_gauge_average`). A channel in volts is converted to strain by its bar's
+        gauge (``incident_gauge``, ``transmitted_gauge``: :class:`~rodimpact.signals.GaugedBar`, e.g. from
+        :func:`rodimpact.io.hoppybar_bar`, which applies the bridge, gauge factor, excitation, gain and
+        polarity); a channel already in strain (unit ``""``) needs none. ``baseline``: the zero offset
         subtracted from each channel, ``"auto"`` (the mean before the channel's first pulse: the samples before
         the first excursion beyond 10 % of the channel's peak deviation from its median, up to where that
-        excursion last crossed the median), a time
-        span ``(start, stop)`` in s to average over, or ``None`` (no offset removed).
+        excursion last crossed the median), a time span ``(start, stop)`` in s to average over, or ``None`` (no
+        offset removed).
         """
         if not isinstance(recording, Recording):
             raise TypeError(f"recording: must be a rodimpact.signals.Recording, got {type(recording).__name__}")
         if isinstance(channels, str) or len(channels) != 2:
-            raise ValueError(f"channels: give the names of the incident-bar and the transmitted-bar channel, got "
-                             f"{channels!r}")
+            raise ValueError(f"channels: give the incident-bar and the transmitted-bar channel(s), got {channels!r}")
         strains = []
-        for role, channel, gauge in (("incident_gauge", channels[0], incident_gauge),
-                                     ("transmitted_gauge", channels[1], transmitted_gauge)):
-            if channel not in recording:
-                raise ValueError(f"channels: no channel {channel!r} in the recording; channels: "
-                                 f"{recording.channel_names}")
-            values = recording[channel]
-            unit = recording.units.get(channel, "")
-            if gauge is not None:
-                if not isinstance(gauge, GaugedBar):
-                    raise TypeError(f"{role}: must be a rodimpact.signals.GaugedBar, got {type(gauge).__name__}")
-                values = gauge.strain(values - _offset(recording.time, values, baseline, channel))
-            elif unit in STRAIN_UNITS:
-                values = values - _offset(recording.time, values, baseline, channel)
-            else:
-                raise ValueError(f"{role}: channel {channel!r} is in {unit!r}; give the GaugedBar that converts it "
-                                 f"to strain (e.g. rodimpact.io.hoppybar_bar)")
-            strains.append(values)
+        for role, names, gauge in (("incident_gauge", channels[0], incident_gauge),
+                                   ("transmitted_gauge", channels[1], transmitted_gauge)):
+            if gauge is not None and not isinstance(gauge, GaugedBar):
+                raise TypeError(f"{role}: must be a rodimpact.signals.GaugedBar, got {type(gauge).__name__}")
+            names = [names] if isinstance(names, str) else list(names)
+            if not names:
+                raise ValueError(f"channels: no channel given for the {role.split('_')[0]} bar")
+            strains.append(np.mean([_strain(recording, name, gauge, role, baseline) for name in names], axis=0))
         return cls(recording.time, strains[0], strains[1], recording.source or "")
+
+
+def _strain(recording: Recording, channel: str, gauge: Optional[GaugedBar], role: str,
+            baseline: Union[str, tuple[Any, Any], None]) -> np.ndarray:
+    """One channel of ``recording`` as strain, offset removed (:meth:`GaugeSignals.from_recording`)."""
+    if channel not in recording:
+        raise ValueError(f"channels: no channel {channel!r} in the recording; channels: {recording.channel_names}")
+    values = recording[channel]
+    unit = recording.units.get(channel, "")
+    if gauge is None and unit not in STRAIN_UNITS:
+        raise ValueError(f"{role}: channel {channel!r} is in {unit!r}; give the GaugedBar that converts it to "
+                         f"strain (e.g. rodimpact.io.hoppybar_bar)")
+    values = values - _offset(recording.time, values, baseline, channel)
+    return values if gauge is None else gauge.strain(values)
 
 
 def onset(x: np.ndarray, level: float, foot: float) -> tuple[int, int]:

@@ -132,3 +132,25 @@ def test_bad_recordings():
     offset = GaugeSignals.from_recording(Recording(t, {"incident": pulse + 0.5, "transmitted": pulse - 0.25}))
     np.testing.assert_allclose(offset.incident, pulse, atol=1e-15)                    # the offsets are gone
     np.testing.assert_allclose(offset.transmitted, pulse, atol=1e-15)
+
+
+def test_opposite_gauges_are_averaged_and_volts_converted():
+    """Two gauges of one bar read axial strain plus and minus a bending strain: their mean is the axial strain
+    (thesis eq. 5.1). A channel in volts goes through its GaugedBar (quarter bridge: eps = 4 V_r / (GF (1 - 2 V_r)),
+    V_r = V / (V_exc gain))."""
+    from rodimpact.signals import GaugedBar
+
+    t = 1e-7 * np.arange(200)
+    axial = np.where((t > 5e-6) & (t < 8e-6), -1e-3, 0.0)
+    bending = 2e-4 * np.sin(t / 1e-6)
+    rec = Recording(t, {"a": axial + bending, "b": axial - bending, "t": axial})
+    signals = GaugeSignals.from_recording(rec, channels=(["a", "b"], "t"), baseline=None)
+    np.testing.assert_allclose(signals.incident, axial, atol=1e-18)
+    gauge = GaugedBar(youngs_modulus=110e9, density=4400.0, area=7e-5, gauge_factor=2.0, excitation_voltage=10.0,
+                      gain=100.0)
+    vr = 2.0 * axial / (4 + 2 * 2.0 * axial)                # the quarter bridge's output for that strain
+    volts = Recording(t, {"incident": vr * 1000.0, "transmitted": vr * 1000.0}, {"incident": "V", "transmitted": "V"})
+    converted = GaugeSignals.from_recording(volts, gauge, gauge)
+    np.testing.assert_allclose(converted.incident, axial, rtol=1e-12, atol=1e-18)
+    with pytest.raises(ValueError, match="channels: no channel given for the incident bar"):
+        GaugeSignals.from_recording(rec, channels=([], "t"))
