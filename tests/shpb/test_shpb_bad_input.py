@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from conftest import SPECIMEN, build_shot, ti_bar
+from shpb_synthetic import SPECIMEN, build_shot, ti_bar
 
 from rodimpact import TITANIUM_TI6AL4V
 from rodimpact.shpb import (Bar, GaugeSignals, PulseWindows, SpecimenGeometry, Window, find_windows,

@@ -1,10 +1,10 @@
-"""The reduction against a shot built in closed form from the 1-D bar relations (tests/shpb/conftest.py): a
+"""The reduction against a shot built in closed form from the 1-D bar relations (tests/shpb/shpb_synthetic.py): a
 specimen with an elastic-linear-hardening law, in exact force equilibrium, loaded at a strain rate that rises
 linearly and then stays constant. Every analysis must give back the law, the strain and the rate to rounding."""
 
 import numpy as np
 import pytest
-from conftest import DT, RATE, SAMPLES, SPECIMEN, build_shot, law, prescribed_rate, prescribed_strain
+from shpb_synthetic import DT, RATE, SAMPLES, SPECIMEN, build_shot, law, prescribed_rate, prescribed_strain
 
 from rodimpact.shpb import ANALYSES, find_windows, reduce_shot, specimen_responses
 
@@ -86,7 +86,7 @@ def test_windows_found_automatically_on_the_synthetic_shot(bars):
 
 
 def _equal_bars():
-    from conftest import ti_bar
+    from shpb_synthetic import ti_bar
 
     return ti_bar(), ti_bar("transmitted")
 

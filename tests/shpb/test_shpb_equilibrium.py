@@ -3,7 +3,7 @@ for a known imbalance, the bands and the time from which equilibrium holds."""
 
 import numpy as np
 import pytest
-from conftest import DT, SAMPLES, SPECIMEN, build_shot
+from shpb_synthetic import DT, SAMPLES, SPECIMEN, build_shot
 
 from rodimpact.shpb import PASS_LIMIT, REVIEW_LIMIT, check_equilibrium, reduce_shot
 

@@ -6,7 +6,7 @@ import csv
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import SPECIMEN, build_shot, ti_bar
+from shpb_synthetic import SPECIMEN, build_shot, ti_bar
 
 from rodimpact.shpb import ANALYSES, ShpbReduction, find_windows, reduce_shot
 

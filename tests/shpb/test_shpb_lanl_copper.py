@@ -1,9 +1,9 @@
 """The LANL copper shot (tests/data/hoppybar: annealed OFE Cu, 6.34 mm x 3.204 mm, Ti-6Al-4V bars d = 9.47 mm,
 gauges 381 mm from the specimen faces, 0 degC) reduced from its .raw file.
 
-Measured on this shot (docs/shpb.md): strain rate about 3000 1/s while the specimen flows, final strain 0.16,
-equilibrium (R <= 5 %) from 40 us after the pulse reached the specimen (strain 0.13), the review band
-(R <= 10 %) from 0.10.
+Measured on this shot (docs/shpb.md): strain rate 5300 1/s at its peak, 2300 1/s in equilibrium, final strain
+0.16, equilibrium (R <= 5 %) from 41 us after the pulse reached the specimen (strain 0.13), the review band
+(R <= 10 %) from strain 0.094.
 """
 
 import numpy as np
@@ -95,7 +95,7 @@ def test_flow_stress_at_ten_percent_is_that_of_annealed_copper(reduction, analys
     strain rate and the shot's 273 K: G. R. Johnson and W. H. Cook, Proc. 7th Int. Symp. Ballistics (1983)
     541-547 and Eng. Fract. Mech. 21 (1985) 31-48; F. J. Zerilli and R. W. Armstrong, J. Appl. Phys. 61 (1987)
     1816-1825. Plausible: from 15 % below the lower to 15 % above the higher of the two (the annealing state of
-    'annealed' copper and the fits' own scatter; 216 and 280 MPa at 3300 1/s give 183 to 322 MPa)."""
+    'annealed' copper and the fits' own scatter; 216 and 281 MPa at 3700 1/s give 184 to 323 MPa)."""
     r = reduction.response(analysis)
     eps_true = r.true_strain
     k = int(np.argmax(eps_true >= 0.1))
