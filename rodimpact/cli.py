@@ -1,8 +1,8 @@
 """The ``rodimpact`` command line: thin wrappers around the Python API.
 
 Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design]``,
-``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``docs [TOPIC]`` and
-``--version``; see docs/cli.md.
+``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``shpb reduce RECORDING...``,
+``docs [TOPIC]`` and ``--version``; see docs/cli.md.
 
 Python warnings raised while a command runs are printed once each, as ``warning: <message>`` on stderr (never with
 ``--quiet``), without the source location that Python's default display adds.
@@ -336,15 +336,73 @@ def cmd_design(args: argparse.Namespace) -> int:
     return _run_spec(args, design_spec, prepare)
 
 
+# ============================================================================================ shpb
+#: The plots of ``shpb reduce``: file name -> drawing function of :mod:`rodimpact.plotting.shpb`.
+SHPB_PLOTS = ("pulses", "stress_strain", "strain_rate", "equilibrium")
+
+
+def cmd_shpb_reduce(args: argparse.Namespace) -> int:
+    from .io import shpb_spec
+
+    overrides: dict[str, Any] = {}
+    for role in ("incident_bar", "transmitted_bar"):
+        if args.bridge is not None:
+            overrides[f"{role}.bridge"] = args.bridge
+        if args.polarity is not None:
+            overrides[f"{role}.polarity"] = args.polarity
+    if args.dispersion:
+        overrides["reduction.dispersion"] = True
+    overrides.update(_overrides(args))
+    named = args.recording[0] if args.recording else args.spec
+    out = _output(args, f"{Path(named).stem if named else 'shot'}-shpb")
+    with _claim_out(out, args.force):
+        spec = _input_phase(lambda: shpb_spec.load_spec(args.spec, overrides))
+        shot = _input_phase(lambda: shpb_spec.read_shot(spec, args.recording))
+        reduction = _input_phase(lambda: shpb_spec.run(spec, shot))
+        summary = shpb_spec.summarize_run(reduction, spec, shot)
+        if out is not None:
+            _write_shpb(out, reduction, spec, summary, args.force, spec.plots and not args.no_plots)
+    _report(summary, shpb_spec.format_summary(summary), args, f"results written to {out}" if out else "",
+            summary["warnings"])
+    return EXIT_OK
+
+
+def _write_shpb(out: Path, reduction: Any, spec: Any, summary: dict, force: bool, plots: bool) -> None:
+    """The output folder of ``shpb reduce``, written atomically: ``reduction.csv``, ``reduction.nc``, the spec as
+    it ran (``spec.toml``, when there was one or options set keys), ``plots/*.png`` and ``summary.json``."""
+    from .io.results import AtomicFolder, summary_json
+    from .plotting import new_axes
+    from .plotting import shpb as shpb_plots
+
+    with AtomicFolder(out, force) as tmp:
+        reduction.to_csv(tmp / "reduction.csv")
+        reduction.to_netcdf(tmp / "reduction.nc")
+        files = ["reduction.csv", "reduction.nc"]
+        if spec.text.strip():
+            (tmp / "spec.toml").write_text(spec.text, encoding="utf-8")
+            files.append("spec.toml")
+        if plots:
+            (tmp / "plots").mkdir()
+            for name in SHPB_PLOTS:
+                fig, ax = new_axes(None)
+                getattr(shpb_plots, f"plot_{name}")(reduction, ax=ax)
+                fig.savefig(tmp / "plots" / f"{name}.png", dpi=120)
+                files.append(f"plots/{name}.png")
+        summary["files"] = files + ["summary.json"]
+        (tmp / "summary.json").write_text(summary_json(summary), encoding="utf-8")
+
+
 # ============================================================================================ docs
 def _doc_topics() -> dict[str, tuple[str, Callable[[], str]]]:
     """Topic -> (description, function generating the page): the pages are generated from the schemas the
     files are validated with, so the installed package always has them, matching its own code."""
-    from .io import design_spec, schema, synthesis_spec
+    from .io import design_spec, schema, shpb_spec, synthesis_spec
 
     return {"model": ("every key of a model file (docs/model-reference.md)", schema.reference_markdown),
             "synthesis": ("every key of a synthesis spec (docs/cli.md)", synthesis_spec.spec_reference_markdown),
-            "design": ("every key of a design spec (docs/cli.md)", design_spec.spec_reference_markdown)}
+            "design": ("every key of a design spec (docs/cli.md)", design_spec.spec_reference_markdown),
+            "shpb": ("every key of a split-Hopkinson-bar reduction spec (docs/cli.md)",
+                     shpb_spec.spec_reference_markdown)}
 
 
 def cmd_docs(args: argparse.Namespace) -> int:
@@ -460,10 +518,36 @@ def build_parser() -> argparse.ArgumentParser:
     set_flag(g, "spec")
     g.set_defaults(func=cmd_design)
 
+    h = sub.add_parser("shpb", help="split-Hopkinson (Kolsky) bar: reduce a recorded shot to stress-strain curves",
+                       description="Split-Hopkinson (Kolsky) bar tools (docs/shpb.md). 'reduce' turns a recorded "
+                                   "shot into the specimen's stress, strain and strain rate (1-, 2- and 3-wave) and "
+                                   "its force equilibrium.")
+    hs = h.add_subparsers(dest="shpb_command", metavar="ACTION")
+    h.set_defaults(func=lambda args, parser=h: parser.print_help() or EXIT_INPUT)
+    r = hs.add_parser("reduce", help="reduce a recorded shot: stress-strain, strain rate, equilibrium",
+                      description="Reduce a recorded split-Hopkinson-bar shot: find the pulse windows, move the "
+                                  "pulses to the specimen faces, compute the 1-, 2- and 3-wave stress, strain and "
+                                  "strain rate (compression positive) and the equilibrium ratio R(t); write "
+                                  "reduction.csv, reduction.nc, plots and summary.json to OUTDIR.")
+    r.add_argument("recording", nargs="*", metavar="RECORDING",
+                   help="a LANL .raw file (its sheet gives bars, gauges and specimen), Tektronix .csv files (one "
+                        "per channel) or a .tdms file; or name them in the spec (recording.files)")
+    r.add_argument("--spec", metavar="SPEC.toml", help="bars, gauges, specimen, channels and settings the recording "
+                                                       "lacks (keys: rodimpact docs shpb)")
+    r.add_argument("--bridge", metavar="NAME", help="bridge circuit of both bars' gauges (quarter, half-axial, ...; "
+                                                    "the LANL sheets do not record it)")
+    r.add_argument("--polarity", type=int, choices=(1, -1), help="-1 if the recorder shows compression as positive "
+                                                                "voltage (both bars)")
+    r.add_argument("--dispersion", action="store_true", help="undo the Pochhammer-Chree dispersion between gauges "
+                                                             "and specimen")
+    output_flags(r, "RECORDING-shpb")
+    set_flag(r, "spec")
+    r.set_defaults(func=cmd_shpb_reduce)
+
     d = sub.add_parser("docs", help="print reference pages of this installation (model-file keys, ...)",
                        description="Print a reference page as Markdown, generated by the installed rodimpact from "
                                    "the schema it validates files with; without TOPIC, list the topics.")
-    d.add_argument("topic", nargs="?", help="model, synthesis or design")
+    d.add_argument("topic", nargs="?", help="model, synthesis, design or shpb")
     d.set_defaults(func=cmd_docs)
     return p
 

@@ -68,7 +68,7 @@ Override = Union[Window, float, str, None]
 
 def find_windows(signals: GaugeSignals, incident_bar: Bar, transmitted_bar: Bar, *, threshold: float = 0.1,
                  foot: float = 0.0, incident: Override = None, reflected: Override = None,
-                 transmitted: Override = None) -> PulseWindows:
+                 transmitted: Override = None, duration: Any = None) -> PulseWindows:
     """The three pulse windows of a shot, each overridable.
 
     **Incident arrival.** The first sample of the incident-bar record whose magnitude reaches ``threshold``
@@ -82,7 +82,8 @@ def find_windows(signals: GaugeSignals, incident_bar: Bar, transmitted_bar: Bar,
 
     **Overrides:** ``incident``, ``reflected``, ``transmitted`` each take a :class:`Window` (start and
     duration, s, gauge time) or a start time alone (s, or a string such as ``"153 us"``; the duration found is
-    kept). A given incident window moves the windows derived from it.
+    kept). A given incident window moves the windows derived from it. ``duration`` (s) replaces the duration
+    found, for every window not given as a :class:`Window`.
 
     Raises ``ValueError`` if the incident pulse cannot be found (a record without a pulse, or one that never
     falls back), or if the incident pulse is longer than the round trip ``2 a_I / c_I``: then the incident
@@ -97,6 +98,8 @@ def find_windows(signals: GaugeSignals, incident_bar: Bar, transmitted_bar: Bar,
         raise ValueError(f"foot: must lie in [0, threshold = {threshold!r}), got {foot!r}")
     given = tuple(name for name, value in zip(PULSES, (incident, reflected, transmitted)) if value is not None)
     found = _incident_window(signals, threshold, foot)
+    if duration is not None:
+        found = Window(found.start, positive("duration", duration, "s"))
     first = _override("incident", incident, found)
     round_trip = 2.0 * incident_bar.travel_time
     if first.duration > round_trip and "reflected" not in given:

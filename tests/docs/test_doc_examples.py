@@ -137,12 +137,12 @@ def run_shell(block: Block, path: Path) -> None:
 
 
 # ============================================================================================ per-file setup
-def _measurement(tmp_path: Path) -> None:
-    """The session reads the reader's LANL recording ``shot.raw``; the LANL shot of the test data stands in."""
+def _lanl_shot(tmp_path: Path) -> None:
+    """The examples read the reader's LANL recording ``shot.raw``; the LANL copper shot of the test data stands in."""
     shutil.copy(LANL, tmp_path / "shot.raw")
 
 
-SETUP = {"docs/measurement.md": _measurement}
+SETUP = {"docs/measurement.md": _lanl_shot, "docs/cli.md": _lanl_shot, "docs/shpb.md": _lanl_shot}
 
 
 # ============================================================================================ tests
