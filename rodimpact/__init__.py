@@ -32,7 +32,7 @@ from .io.model import Model, dump_model, load_model, loads_model, save_model
 from .io.results import load, save, summarize
 from . import inverse, io
 
-_LAZY_SUBPACKAGES = ("plotting", "reference", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
+_LAZY_SUBPACKAGES = ("plotting", "reference", "shpb", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
 
 
 def __getattr__(name: str):
@@ -60,5 +60,5 @@ __all__ = [
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
     "design", "DesignResult",
     "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
-    "inverse", "io", "plotting", "reference", "signals",
+    "inverse", "io", "plotting", "reference", "shpb", "signals",
 ]
