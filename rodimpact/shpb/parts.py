@@ -7,7 +7,7 @@ SI units. A quantity may be given as a unit string (``"9.47 mm"``) or a pint Qua
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from typing import Any, Optional
 
 from .._validate import finite, non_negative, positive
@@ -30,9 +30,9 @@ def _section(owner: str, diameter: Any, area: Any) -> tuple[float, float]:
     return math.sqrt(4.0 * a / math.pi), a
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True)
 class Bar:
-    """An elastic pressure bar with a strain-gauge station.
+    """An elastic pressure bar with a strain-gauge station: ``Bar(material, diameter=..., gauge_distance=...)``.
 
     Parameters
     ----------
@@ -52,6 +52,7 @@ class Bar:
     """
 
     material: Material
+    _: KW_ONLY
     diameter: Optional[float] = None
     area: Optional[float] = None
     gauge_distance: float
@@ -105,12 +106,13 @@ class Bar:
         return self.gauge_distance / self.wave_speed
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True)
 class SpecimenGeometry:
     """The specimen's initial length L0 (m) and cross-section: exactly one of ``diameter`` (m, a cylinder) and
-    ``area`` A0 (m^2)."""
+    ``area`` A0 (m^2), given by name."""
 
     length: float
+    _: KW_ONLY
     diameter: Optional[float] = None
     area: Optional[float] = None
 
