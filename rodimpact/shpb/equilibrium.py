@@ -6,7 +6,7 @@ face force, its pass/review/fail bands and the time from which the specimen is i
 F1 is the force on the specimen's front face (incident bar), F2 on its back face (transmitted bar), both from
 the bar strains at the faces (tension positive). Ravichandran and Subhash (1994) introduced this ratio (their
 R(t) = Delta P / P_avg) and took a specimen to be in equilibrium while R <= 5 %, the limit used widely since
-(Chen and Song 2011, sec. 2.6). Defaults here: **pass** R <= 5 % (that limit), **review** 5 % < R <= 10 %
+(e.g. Chen and Song 2011). Defaults here: **pass** R <= 5 % (that limit), **review** 5 % < R <= 10 %
 (twice it: a band in which data may serve with the imbalance stated; a convention of this package, not a
 published limit), **fail** R > 10 %.
 

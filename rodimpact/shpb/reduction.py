@@ -9,8 +9,8 @@ travelling +x has particle velocity ``v = -c eps`` and one travelling -x ``v = +
     F1 = E_I A_I (eps_I + eps_R),   v1 = c_I (eps_R - eps_I)      front face (incident bar)
     F2 = E_T A_T eps_T,             v2 = -c_T eps_T               back face (transmitted bar)
 
-and the specimen (initial length L0, area A0) shortens at ``v1 - v2``. The analyses (Gray 2000, eqs. 2-5;
-Chen and Song 2011, eqs. 1.13-1.21, there with compression-positive bar strains):
+and the specimen (initial length L0, area A0) shortens at ``v1 - v2``. The analyses (Gray 2000, the classic
+data reduction; Chen and Song 2011, ch. 1, there with the specimen negative in compression):
 
 * **3-wave** (both faces): ``sigma = -(F1 + F2) / (2 A0)``, ``eps_dot = (v1 - v2) / L0``; for equal bars
   ``eps_dot = -(c_b / L0)(eps_I - eps_R - eps_T)`` and ``sigma = -E_b A_b (eps_I + eps_R + eps_T) / (2 A0)``.

@@ -172,8 +172,8 @@ class ShpbReduction:
                                  "windows_given": ",".join(self.windows.given)}
         for role, bar in (("incident_bar", self.incident_bar), ("transmitted_bar", self.transmitted_bar)):
             attrs.update({f"{role}_youngs_modulus": bar.youngs_modulus, f"{role}_density": bar.material.density,
-                          f"{role}_material": bar.material.name, f"{role}_area": bar.area, f"{role}_gauge_distance": bar.gauge_distance,
-                          f"{role}_name": bar.name})
+                          f"{role}_material": bar.material.name, f"{role}_area": bar.area,
+                          f"{role}_gauge_distance": bar.gauge_distance, f"{role}_name": bar.name})
             if bar.poisson_ratio is not None:
                 attrs[f"{role}_poisson_ratio"] = bar.poisson_ratio
         for name in PULSES:

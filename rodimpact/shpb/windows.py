@@ -6,7 +6,7 @@ and transmitted windows follow from the bars' wave travel: the reflected pulse p
 ``2 a_I / c_I`` after the incident one (to the specimen face and back), the transmitted pulse passes the
 transmitted gauge ``a_I / c_I + a_T / c_T`` after it (a = gauge distance to the specimen face, c = bar wave
 speed). The specimen's own transit time is neglected, as in the classical reduction (Gray 2000; Chen and Song
-2011, ch. 2): it is one of the things the equilibrium check judges.
+2011): it is one of the things the equilibrium check judges.
 """
 
 from __future__ import annotations
