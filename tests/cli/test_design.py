@@ -79,6 +79,11 @@ def test_small_spec_options(tmp_path):
     (('elements = 6', 'element = 6'), "design.element: unknown key"),
     (('max_iterations = 3', 'max_iterations = 3\nimprovement = 2'), "design.improvement: must be"),
     (('max_iterations = 3', 'max_iterations = 3\nreloading = false'), "design.reloading: chooses the definition of the efficiency"),
+    (('max_iterations = 3', 'max_iterations = 3\nduration = "1 ms"'), "design.duration: the length of the efficiency run"),
+    (('velocity = "12 m/s"', 'velocity = "12 m/s"\nvelocity_min = "14 m/s"\nvelocity_max = "8 m/s"'),
+     "striker.velocity_min: the lower bound 14 m/s exceeds the upper bound 8 m/s"),
+    (('bore = "0 mm"', 'bore = "5 mm"'), "striker.diameter_min: the smallest diameter 0.005 m must exceed the bore"),
+    (('starts = 1', 'starts = 1\nmax_steps = 0'), "design.max_steps"),
     (('force = "-80e3 * sin(pi * t / 24e-6)"', 'force = "-80e3 / (t - 6e-6)"'),
      "target.force: the expression '-80e3 / (t - 6e-6)' gives -inf at t = 6e-06; it must be finite"),
 ])
