@@ -27,7 +27,8 @@ from .direct.batch import BatchOutputs, BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
                       impedance_to_shape, synthesize, transform_force)
-from .design import DesignResult, design
+from .design import (DesignResult, EfficiencyObjective, MatchObjective, SearchOptions, StrikerLimits,
+                     design)
 from .io.model import Model, dump_model, load_model, loads_model, save_model
 from .io.results import load, save, summarize
 from . import inverse, io
@@ -58,7 +59,7 @@ __all__ = [
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
-    "design", "DesignResult",
+    "design", "DesignResult", "MatchObjective", "EfficiencyObjective", "StrikerLimits", "SearchOptions",
     "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
     "inverse", "io", "plotting", "reference", "signals",
 ]
