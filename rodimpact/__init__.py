@@ -13,12 +13,13 @@ from .rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, Exp
 from .rods.rod import Rod
 from .rods.history import History
 from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd, Junction,
-                              NonReflectingEnd, SpringDashpot, SpringEnd, VelocityEnd)
+                              NonReflectingEnd, PulseShaper, Specimen, SpringDashpot, SpringEnd, VelocityEnd)
+from .rods.laws import CowperSymonds, ElasticPlastic, FrewShaper, JohnsonCook, LinearElastic
 from .rods.loads import Bearings, NodalForce
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
-from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
-                            SimulationResult)
+from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents, Probe,
+                            ProbeHistory, SimulationResult)
 from .direct.recording import Outputs
 from .direct.problem import Problem, TimeGrid
 from .direct.simulate import simulate
@@ -50,12 +51,13 @@ __all__ = [
     "CosHorn", "TabulatedProfile", "stepped_profile", "AreaFunction",
     "Rod", "History", "System", "InitialState",
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
-    "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "NodalForce", "Bearings",
+    "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "Specimen", "PulseShaper",
+    "LinearElastic", "ElasticPlastic", "JohnsonCook", "CowperSymonds", "FrewShaper", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
     "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
     "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
     "FieldSnapshots", "EnergyHistory",
-    "JunctionEvents", "BitRockOutcome",
+    "JunctionEvents", "BitRockOutcome", "JointOutcome",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",

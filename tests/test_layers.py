@@ -29,11 +29,12 @@ BELOW = {
     "reference": {"rods"},
     "signals": {"rods", "lattice"},             # measurement only: no solver (the test rig sits above)
     "testrig": {"rods", "lattice", "direct", "signals"},
-    "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
-    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "plotting"},
-    "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "plotting",
+    "shpb": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
+    "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb"},
+    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "plotting"},
+    "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "plotting",
                  "io"},
-    "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "plotting", "io",
+    "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "plotting", "io",
             "examples"},
 }
 

@@ -46,8 +46,8 @@ class Declaration:
     """What a field declares.
 
     ``kind``: ``quantity`` (a float in SI), ``history`` (a time history of ``dimension``), ``choice`` (one of
-    ``choices``), ``flag`` (true/false), ``rod`` (a rod index, written as a rod name in files) or ``spans``
-    (pairs of lengths). ``dimension`` names an entry of :data:`rodimpact._quantities.DIMENSIONS` (``length``,
+    ``choices``), ``flag`` (true/false), ``rod`` (a rod index, written as a rod name in files), ``spans``
+    (pairs of lengths) or ``part`` (an element of the registered ``family``, e.g. a specimen's law). ``dimension`` names an entry of :data:`rodimpact._quantities.DIMENSIONS` (``length``,
     ``stiffness``, ...), which gives its SI unit. ``bound``: ``positive``, ``non_negative`` or ``None`` (any
     finite value).
     """
@@ -57,6 +57,7 @@ class Declaration:
     dimension: Optional[str] = None
     bound: Optional[str] = None
     choices: tuple[str, ...] = ()
+    family: Optional[str] = None
 
     @property
     def unit(self) -> str:
@@ -108,6 +109,11 @@ def spans(doc: str) -> Any:
     return _field(Declaration("spans", doc, "length"), REQUIRED)
 
 
+def part(family: str, doc: str) -> Any:
+    """A required element of the registered ``family`` (a nested table with its ``type`` in model files)."""
+    return _field(Declaration("part", doc, family=family), REQUIRED)
+
+
 def declarations(cls: type) -> Iterator[tuple[dataclasses.Field, Declaration]]:
     """The declared fields of an element class, in declaration order (fields without a declaration, such as the
     ``material`` of a segment, are skipped)."""
@@ -142,6 +148,9 @@ def check(obj: Any) -> None:
             raise TypeError(f"{owner}.{f.name}: must be True or False, got {value!r}")
         elif d.kind == "rod" and (isinstance(value, bool) or not isinstance(value, int) or value < 0):
             raise ValueError(f"{owner}.{f.name}: must be a rod index >= 0, got {value!r}")
+        elif d.kind == "part" and type(value) not in ELEMENTS.get(d.family, {}).values():
+            names = ", ".join(cls.__name__ for cls in ELEMENTS.get(d.family, {}).values())
+            raise TypeError(f"{owner}.{f.name}: must be one of {names}, got {type(value).__name__}")
 
 
 #: family ("end", "junction", "load", "segment") -> type name -> class, in registration order
