@@ -27,7 +27,8 @@ with ``overwrite=True``, and only if rodimpact wrote it: see :func:`check_output
     and time coordinates). This is what :func:`load` reads (also format 1 and 2 files, which named the probes in
     a JSON attribute); the CSV files are for people and spreadsheets.
 ``plots/``
-    PNG figures (and ``force.gif`` when the animation is requested and pillow is installed).
+    PNG figures (and ``force.gif``): not written here. io writes data only; the command line and the examples
+    draw the figures into the same folder (:mod:`rodimpact.output_folders`, above io and plotting).
 """
 
 from __future__ import annotations
@@ -48,7 +49,9 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .._version import __version__
+from .._moved import moved
 from .._permissions import normal_mode
+from .._result_files import netcdf_engine
 from .._validate import caller_stacklevel
 from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, json_default, result_dataset
 from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
@@ -622,15 +625,6 @@ def energy_columns(result: SimulationResult) -> tuple[list[str], list[np.ndarray
 
 
 # ============================================================================================ NetCDF
-def _engine() -> str:
-    """The xarray engine for writing: h5netcdf if h5py is installed, else netCDF4, else scipy (NetCDF3)."""
-    if importlib.util.find_spec("h5netcdf") and importlib.util.find_spec("h5py"):
-        return "h5netcdf"
-    if importlib.util.find_spec("netCDF4"):
-        return "netcdf4"
-    return "scipy"
-
-
 def _read_engine(path: Path) -> str:
     """An installed engine that reads ``path`` (NetCDF3 files start with b"CDF", NetCDF4 with the HDF5 mark)."""
     with open(path, "rb") as fh:
@@ -659,54 +653,80 @@ def summary_json(obj: Any) -> str:
 
 
 # ============================================================================================ save / load
-def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, overwrite: bool = False,
-         plots: Sequence[str] = (), csv: bool = True, fields: bool = True,
-         snapshot_times: Optional[Sequence[float]] = None, engine: Optional[str] = None) -> Path:
-    """Write ``result`` to the folder ``outdir`` (layout in this module's docstring) and return its path.
+SUMMARY_FILE = "summary.json"
 
-    ``model`` (a :class:`~rodimpact.io.model.Model`) is written as ``model.toml``; by default one is built
-    from the result (:func:`~rodimpact.io.model.model_from_result`). ``plots`` names the figures to write
-    (see :func:`rodimpact.plotting.save_plots`). Refuses to replace a non-empty folder unless ``overwrite``, and
-    even then refuses a folder holding files rodimpact did not write, or the current working folder
-    (:class:`OutputExistsError`, see :func:`check_output_folder`).
-    ``engine``: the xarray NetCDF engine (default: h5netcdf with h5py, else netcdf4, else scipy).
-    """
+#: What :func:`save` no longer takes, and where it went: io writes data files only (docs/architecture.md, layers).
+FIGURES_MOVED = {
+    "plots": "plots: rodimpact.io.save writes the data files only; the folder with figures, as the command line "
+             "writes it, is rodimpact.output_folders.write_simulation(result, outdir, plots=[...]) (or draw them "
+             "with rodimpact.plotting.save_plots)",
+    "snapshot_times": "snapshot_times: a setting of the snapshot plot; give it to "
+                      "rodimpact.output_folders.write_simulation(result, outdir, plots=['snapshots'], "
+                      "snapshot_times=[...])",
+}
+
+
+def write_simulation_files(result: SimulationResult, folder: Path, *, model: Any = None, csv: bool = True,
+                           fields: bool = True, engine: Optional[str] = None) -> tuple[list[str], list[str]]:
+    """Write the data files of a results folder into ``folder`` (``model.toml``, ``result.nc``, ``signals.csv``,
+    ``energy.csv``; layout in this module's docstring). Returns the files written and notes on what was left out
+    (a ``model.toml`` that cannot be written). ``model``, ``csv``, ``fields``, ``engine``: as :func:`save`."""
     from .model import ModelWriteError, dump_model, model_from_result
 
-    names = [plots] if isinstance(plots, str) else list(plots)
-    for i, p in enumerate(names):          # checked before anything is written
-        if p in names[:i]:
-            raise ValueError(f"plots: {p!r} is listed twice")
     files: list[str] = []
     notes: list[str] = []
-    with AtomicFolder(outdir, overwrite) as tmp:
-        if model is None and result.system is not None:
-            model = model_from_result(result)
-        if model is not None:
-            try:
-                (tmp / "model.toml").write_text(dump_model(model), encoding="utf-8")
-                files.append("model.toml")
-            except ModelWriteError as exc:
-                notes.append(f"model.toml not written: {exc}")
-        ds = result_dataset(result, fields=fields)
-        ds.to_netcdf(tmp / RESULT_FILE, engine=engine or _engine())
-        files.append(RESULT_FILE)
-        if csv:
-            for name, (h, c) in (("signals.csv", signal_columns(result)), ("energy.csv", energy_columns(result))):
-                _write_csv(tmp / name, h, c)
-                files.append(name)
-        if plots:
-            from ..plotting import save_plots
+    if model is None and result.system is not None:
+        model = model_from_result(result)
+    if model is not None:
+        try:
+            (folder / "model.toml").write_text(dump_model(model), encoding="utf-8")
+            files.append("model.toml")
+        except ModelWriteError as exc:
+            notes.append(f"model.toml not written: {exc}")
+    ds = result_dataset(result, fields=fields)
+    ds.to_netcdf(folder / RESULT_FILE, engine=engine or netcdf_engine())
+    files.append(RESULT_FILE)
+    if csv:
+        for name, (h, c) in (("signals.csv", signal_columns(result)), ("energy.csv", energy_columns(result))):
+            _write_csv(folder / name, h, c)
+            files.append(name)
+    return files, notes
 
-            written, plot_notes = save_plots(result, tmp / "plots", plots, snapshot_times=snapshot_times)
-            files += [f"plots/{p.name}" for p in written]
-            notes += plot_notes
-        summary = summarize(result)
-        if model is not None and getattr(model, "title", ""):
-            summary["title"] = model.title
-        summary["files"] = files + ["summary.json"]
-        summary["notes"] = notes
-        (tmp / "summary.json").write_text(summary_json(summary), encoding="utf-8")
+
+def simulation_summary(result: SimulationResult, model: Any, files: Sequence[str],
+                       notes: Sequence[str]) -> dict[str, Any]:
+    """The ``summary.json`` of a results folder: :func:`summarize`, the title of ``model`` (if it has one), the
+    ``files`` in the folder (``summary.json`` added) and the ``notes`` on what was left out."""
+    summary = summarize(result)
+    if model is not None and getattr(model, "title", ""):
+        summary["title"] = model.title
+    summary["files"] = list(files) + [SUMMARY_FILE]
+    summary["notes"] = list(notes)
+    return summary
+
+
+def write_summary(folder: Path, summary: dict[str, Any]) -> dict[str, Any]:
+    """Write ``summary`` as ``summary.json`` into ``folder`` (:func:`summary_json`) and return it."""
+    (folder / SUMMARY_FILE).write_text(summary_json(summary), encoding="utf-8")
+    return summary
+
+
+@moved(FIGURES_MOVED)
+def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, overwrite: bool = False,
+         csv: bool = True, fields: bool = True, engine: Optional[str] = None) -> Path:
+    """Write ``result`` to the folder ``outdir`` (layout in this module's docstring: the data files, no figures)
+    and return its path.
+
+    ``model`` (a :class:`~rodimpact.io.model.Model`) is written as ``model.toml``; by default one is built
+    from the result (:func:`~rodimpact.io.model.model_from_result`). ``csv``: write ``signals.csv`` and
+    ``energy.csv``; ``fields``: keep the field snapshots in ``result.nc``. Refuses to replace a non-empty folder
+    unless ``overwrite``, and even then refuses a folder holding files rodimpact did not write, or the current
+    working folder (:class:`OutputExistsError`, see :func:`check_output_folder`).
+    ``engine``: the xarray NetCDF engine (default: h5netcdf with h5py, else netcdf4, else scipy).
+    """
+    with AtomicFolder(outdir, overwrite) as tmp:
+        files, notes = write_simulation_files(result, tmp, model=model, csv=csv, fields=fields, engine=engine)
+        write_summary(tmp, simulation_summary(result, model, files, notes))
     return Path(outdir)
 
 

@@ -13,7 +13,8 @@ import pytest
 import rodimpact as ri
 from rodimpact import cli
 from rodimpact.inverse import SynthesisResult, lundberg_lesser_impedance
-from rodimpact.io.synthesis_spec import TEMPLATE, loads_spec, run, save, spec_reference_markdown
+from rodimpact.io.synthesis_spec import TEMPLATE, loads_spec, run, spec_reference_markdown
+from rodimpact.output_folders import write_spec_run
 
 RODIMPACT = [sys.executable, "-m", "rodimpact"]
 
@@ -99,7 +100,7 @@ def test_percussion_drilling_spec_round_trip_at_machine_precision(tmp_path):
     r = run(spec)
     assert r.result.n_feasible == 100 and r.result.feasible
     assert r.verification.max_deviation < 1e-13
-    summary = save(r, spec, tmp_path / "drill", plots=False)
+    summary = write_spec_run(r, spec, tmp_path / "drill", plots=False)
     assert summary["position_m"] == pytest.approx(2.0)
     assert summary["striker"]["length_m"] == pytest.approx(0.5, rel=1e-9)
 
