@@ -31,10 +31,10 @@ Job = tuple[str, Callable[[Any], Any]]
 def write_simulation(result: Any, outdir: str | Path, *, model: Any = None, overwrite: bool = False,
                      plots: Sequence[str] = (), csv: bool = True, fields: bool = True,
                      snapshot_times: Optional[Sequence[float]] = None) -> Path:
-    """Write the results folder of a simulation: the data files of :func:`rodimpact.io.results.save` (``model``,
-    ``csv``, ``fields`` as there) and the figures ``plots`` names in ``plots/`` (:func:`rodimpact.plotting.save_plots`,
-    with ``snapshot_times`` for the snapshot plot; a plot that cannot be drawn is noted in ``summary.json``).
-    Returns the folder. Every argument is checked before anything is written."""
+    """Write the results folder of a simulation: the data files of :func:`rodimpact.io.results.save_simulation`
+    (``model``, ``csv``, ``fields`` as there) and the figures ``plots`` names in ``plots/``
+    (:func:`rodimpact.plotting.save_plots`, with ``snapshot_times`` for the snapshot plot; a plot that cannot be
+    drawn is noted in ``summary.json``). Returns the folder. Nothing is put in place when an argument is refused."""
     names = [plots] if isinstance(plots, str) else list(plots)
     for i, p in enumerate(names):
         if p in names[:i]:

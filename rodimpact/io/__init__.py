@@ -31,9 +31,9 @@ _NAMES = {
     "ModelWriteError": "model",
     "SafeExpression": "expressions",
     "expression_area": "expressions",
-    # results on disk
-    "save": "results",
-    "load": "results",
+    # results on disk: every kind
+    "save": "storage",
+    "load": "storage",
     "summarize": "results",
     "format_summary": "results",
     "OutputExistsError": "results",

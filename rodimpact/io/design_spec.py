@@ -24,6 +24,7 @@ from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
     validate_table
+from .storage import save
 from .synthesis_spec import TARGET_TYPES, _target, read_struck
 
 # ============================================================================================ schema
@@ -315,7 +316,7 @@ def write_files(r: DesignRun, spec: DesignSpec, folder: Path) -> list[str]:
     res = r.result
     (folder / "spec.toml").write_text(spec.text, encoding="utf-8")
     res.to_csv(folder / "striker.csv", spec.material, spec.bore)
-    res.save(folder / "design.nc")
+    save(res, folder / "design.nc")
     return ["spec.toml", "striker.csv", "design.nc"]
 
 

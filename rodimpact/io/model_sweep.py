@@ -18,7 +18,6 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence
 
-from .._result_files import netcdf_engine
 from ..direct.sweep import METRIC_DISPLAY
 from ..rods.conditions import BitRockEnd
 from . import _toml
@@ -26,6 +25,7 @@ from .model import Model, load_model
 from .overrides import parse_assignment, parse_value
 from .preflight import check_run, run_size
 from .quantities import ModelError
+from .storage import save
 
 #: How the table shows each summary quantity: label, unit and factor from the SI value (as the sweep plots do).
 COLUMNS: dict[str, tuple[str, str, float]] = METRIC_DISPLAY
@@ -284,10 +284,10 @@ def summary(ds: Any, model: str | Path, overrides: Mapping[str, Any]) -> dict[st
 def write_files(ds: Any, data: Mapping[str, Any], folder: Path) -> list[str]:
     """Write the table of a sweep into the (new) ``folder`` and return the file names: ``sweep.csv`` (one row per
     point: the key paths, then the quantities with their units in the header; ``data`` is :func:`summary`) and
-    ``sweep.nc`` (the dataset). The command line's output folder adds ``sweep.png`` and ``summary.json``
-    (:func:`rodimpact.output_folders.write_sweep`)."""
+    ``sweep.nc`` (the dataset, :func:`rodimpact.io.storage.save`). The command line's output folder adds
+    ``sweep.png`` and ``summary.json`` (:func:`rodimpact.output_folders.write_sweep`)."""
     _write_table(folder / "sweep.csv", ds, data["rows"])
-    ds.to_netcdf(folder / "sweep.nc", engine=netcdf_engine())
+    save(ds, folder / "sweep.nc")
     return ["sweep.csv", "sweep.nc"]
 
 

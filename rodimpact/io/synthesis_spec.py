@@ -30,6 +30,7 @@ from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
                      validate_table)
+from .storage import save
 
 
 # ============================================================================================ schema
@@ -375,7 +376,7 @@ def write_files(r: SynthesisRun, spec: SynthesisSpec, folder: Path) -> list[str]
         r.shape.to_csv(folder / "striker.csv",
                        note=f"synthesized striker; impact velocity {res.striker_velocity!r} m/s")
         files.append("striker.csv")
-    res.save(folder / "synthesis.nc")
+    save(res, folder / "synthesis.nc")
     files.append("synthesis.nc")
     return files
 

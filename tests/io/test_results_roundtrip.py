@@ -11,7 +11,8 @@ import pytest
 
 import rodimpact as ri
 from rodimpact.io.model import Model, OutputSpec
-from rodimpact.io.results import OutputExistsError, load, save, summarize
+from rodimpact.io import load, save
+from rodimpact.io.results import OutputExistsError, summarize
 
 C = ri.STEEL.wave_speed
 ENGINES = ["scipy"] + [e for e, mod in (("netcdf4", "netCDF4"), ("h5netcdf", "h5py")) if importlib.util.find_spec(mod)]
@@ -186,7 +187,7 @@ def test_python_callables_give_results_without_model_file(tmp_path):
 
 
 def test_load_of_a_folder_without_results_says_so(tmp_path):
-    with pytest.raises(FileNotFoundError, match="no result.nc here"):
+    with pytest.raises(FileNotFoundError, match=r"no result here \(none of result.nc, synthesis.nc, design.nc"):
         load(tmp_path)
 
 
