@@ -69,8 +69,8 @@ def save(result: Result, path: str | Path, *, overwrite: bool = False, engine: O
     snapshots, default ``True``): :func:`rodimpact.io.results.save_simulation`.
     """
     if isinstance(result, SimulationResult):
-        return save_simulation(result, path, model=model, overwrite=overwrite, csv=csv is not False,
-                               fields=fields is not False, engine=engine)
+        return save_simulation(result, path, model=model, overwrite=overwrite, csv=True if csv is None else csv,
+                               fields=True if fields is None else fields, engine=engine)
     given = [name for name, value in (("model", model), ("csv", csv), ("fields", fields)) if value is not None]
     ds = _dataset(result)
     if given:
