@@ -13,7 +13,7 @@ from .rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, Exp
 from .rods.rod import Rod
 from .rods.history import History
 from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd, Junction,
-                              NonReflectingEnd, SpringEnd, VelocityEnd)
+                              NonReflectingEnd, SpringDashpot, SpringEnd, VelocityEnd)
 from .rods.loads import Bearings, NodalForce
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
@@ -27,7 +27,8 @@ from .direct.batch import BatchOutputs, BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
                       impedance_to_shape, synthesize, transform_force)
-from .design import DesignResult, design
+from .design import (DesignResult, EfficiencyObjective, MatchObjective, SearchOptions, StrikerLimits,
+                     design)
 from .io.model import Model, dump_model, load_model, loads_model, save_model
 from .io.results import summarize
 from .io.storage import load, save
@@ -50,7 +51,7 @@ __all__ = [
     "CosHorn", "TabulatedProfile", "stepped_profile", "AreaFunction",
     "Rod", "History", "System", "InitialState",
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
-    "BitRockEnd", "Junction", "Contact", "Bonded", "NodalForce", "Bearings",
+    "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
     "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
     "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
@@ -59,7 +60,7 @@ __all__ = [
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
-    "design", "DesignResult",
+    "design", "DesignResult", "MatchObjective", "EfficiencyObjective", "StrikerLimits", "SearchOptions",
     "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
     "inverse", "io", "plotting", "reference", "signals",
 ]

@@ -21,8 +21,10 @@ from typing import Any, Optional
 import numpy as np
 
 from .._validate import finite, fits_in_memory, positive_array
+from ..direct.boundary import ACC_SLOTS
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
+from ..rods.conditions import Bonded, Contact
 from ..rods.rod import Rod
 from ..rods.system import System
 from ..inverse.struck import Location, as_struck_system, position_probe, with_striker
@@ -86,6 +88,11 @@ class ImpactProblem:
             raise TypeError(f"struck: must be a System (see rodimpact.inverse.struck.as_struck_system), "
                             f"got {type(struck).__name__}")
         struck = as_struck_system(struck)
+        for i, j in enumerate(struck.junctions):
+            if j.code not in (Bonded.code, Contact.code):
+                # the reverse sweep (_adjoint_kernels.reverse) differentiates bonded and contact nodes only
+                raise ValueError(f"struck.junctions[{i}]: design's exact gradients cover bonded and contact "
+                                 f"junctions, got {type(j).__name__}; simulate or synthesize take it")
         self.n = _count("n", n, "striker elements")
         self.steps = _count("steps", steps, "time steps")
         if quantity not in QUANTITIES:
@@ -165,12 +172,13 @@ class ImpactProblem:
         n_j, n_p, n_sp, steps = n_rods - 1, a["pr_rod"].size, a["sp_elem"].size, self.steps
         ends = (a["end_code"], a["end_par"], np.zeros((2, 2)), self._end_value)
         junctions = (a["junction_code"], np.zeros(n_j, dtype=np.int64), a["gap"].copy(), a["gap_tol"],
-                     np.zeros((n_rods, 2)))
+                     np.zeros((n_rods, 2)), a["junction_par"])
         specials = (a["sp_elem"], a["sp_cap"], self._sp_force, np.zeros(n_sp), np.zeros(n_sp))
         probes = (a["pr_rod"], a["pr_local"], a["pr_sp"], np.zeros((n_p, steps)), np.zeros((n_p, steps)),
                   np.zeros((n_p, steps)), np.zeros(n_p))
         outputs = (np.zeros((n_j, steps)), np.zeros((n_j, steps)), np.zeros((2, steps)), np.zeros((2, steps)))
-        return ends, junctions, specials, probes, outputs, np.zeros(8), tuple(np.empty(n_rods) for _ in range(4))
+        return (ends, junctions, specials, probes, outputs, np.zeros(ACC_SLOTS),
+                tuple(np.empty(n_rods) for _ in range(4)))
 
     # ------------------------------------------------------------------ gradient
     def gradient(self, fw: Forward, face_force: Any = None, observed: Any = None, end_force: Any = None,

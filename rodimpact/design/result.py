@@ -40,16 +40,16 @@ class DesignResult:
     impedance:
         Z_1..Z_n from the impact face, N s/m, inside the bounds.
     striker_velocity:
-        Impact velocity, m/s (optimised when ``velocity_bounds`` was given).
+        Impact velocity, m/s (optimised when ``StrikerLimits.velocity_bounds`` was given).
     dt:
         Travel time of each element, s.
     objective:
-        "match" or "efficiency".
+        "match" (a :class:`~rodimpact.MatchObjective`) or "efficiency" (an :class:`~rodimpact.EfficiencyObjective`).
     time:
         Start times k dt of the run's steps, s (from the impact).
     achieved:
         The observed per-step quantity of the design's run: the contact force at the impact face, or the force /
-        incident wave at ``position`` (N, tension positive).
+        incident wave at the objective's ``position`` (N, tension positive).
     face_force:
         Contact force per step, N.
     target:

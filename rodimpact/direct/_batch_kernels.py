@@ -30,7 +30,8 @@ Outputs per design d (junction index r, rod index q):
 * ``hist[d, k]``: junction 0 force at step ``k * stride`` (N; not written if ``hist`` has no columns);
 * ``kin[d, q, 0/1]``, ``pot[d, q, 0/1]``: kinetic 1/2 Z dt v^2 and strain 1/2 N^2 dt / Z energy of rod q at
   the start and the end (thesis eq. 3.25), summed from the waves as :func:`rodimpact.simulate` does;
-* ``work[d, 0:4]``: work done by the left end, the right end, the loads and the friction (``acc[0:4]``), J;
+* ``work[d, 0:5]``: work done by the left end, the right end, the loads, the friction and the joints
+  (``acc[0:4]``, ``acc[8]``), J;
 * ``ends_out[d, e]``: the outer end's state at the end, (outward displacement delta, largest delta), m;
 * ``fin_N[d]``, ``fin_v[d]``: the striker's element forces and velocities at the end;
 * junction events (every step, whatever the stride): ``low[d, r]`` most compressive force and ``low_step``
@@ -45,7 +46,7 @@ import numpy as np
 from numba import njit, prange
 
 from ._kernels import _rod_energy, node_updates, reflecting_blocks
-from .boundary import boundaries
+from .boundary import ACC_SLOTS, boundaries
 
 _OPTS = dict(cache=True, error_model="numpy", nogil=True)
 
@@ -105,7 +106,7 @@ def _events(force, contact, r, n_steps, low, low_step, peak, steps_on, n_ph, ph_
 
 @njit(**_OPTS)
 def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-            junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+            junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
     """One design (see the module docstring); ``out`` holds the output arrays."""
     hist, kin, pot, work, fin_N, fin_v, low, low_step, peak, steps_on, n_ph, ph_start, ph_stop, ph_peak, ends_out = out
     n_s = Zs.shape[1]
@@ -129,7 +130,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     end_V = np.empty((2, n_steps))
     pr_N = np.empty((0, n_steps))
     no_int = np.empty(0, dtype=np.int64)
-    acc = np.zeros(8)
+    acc = np.zeros(ACC_SLOTS)
     sp_F = np.zeros(n_sp)
     sp_V = np.zeros(n_sp)
     rod_NL = np.empty(n_rods)
@@ -137,7 +138,8 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     # the argument groups of boundaries() (see _kernels._grouped)
     end_state = np.zeros((2, 2))
     ends = (end_code, end_par[d].copy(), end_state, end_value)
-    junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)))
+    junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)),
+                 junction_par)
     specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
     probes = (no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0))
     outputs = (junction_N, junction_contact, end_N, end_V)
@@ -168,6 +170,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     _rod_energies(f, g, inv_Z, dt, rod_start, kin[d], pot[d], 1)
     for k in range(4):
         work[d, k] = acc[k]
+    work[d, 4] = acc[8]
     for e in range(2):
         ends_out[d, e, 0] = end_state[e, 0]
         ends_out[d, e, 1] = end_state[e, 1]
@@ -181,21 +184,21 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
 
 
 def _run_parallel(n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-                  junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+                  junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
     """All designs (rows of ``Zs``) on the numba threads; the outputs are written into the arrays of ``out``."""
     for d in prange(Zs.shape[0]):
         _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-                junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
+                junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
 
 
 def _run_serial(n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-                junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+                junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
     """All designs one after another in the calling thread. A function of its own, not ``_run_parallel``
     compiled without ``parallel``: numba's on-disk cache is keyed by the Python function, so two dispatchers of
     one function would load each other's machine code (the serial one then ran on all threads)."""
     for d in range(Zs.shape[0]):
         _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-                junction_code, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
+                junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
 
 
 #: designs on all numba threads (``numba.set_num_threads``)

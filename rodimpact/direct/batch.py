@@ -64,6 +64,7 @@ class BatchResult:
     work_right: np.ndarray         # (designs,) ... by the right (far) end, e.g. a BitRockEnd
     work_loads: np.ndarray         # (designs,) ... by prescribed nodal loads
     work_friction: np.ndarray      # (designs,) ... by bearing friction (<= 0)
+    work_joints: np.ndarray        # (designs,) ... by the joints between rods (<= 0: a passive joint absorbs)
     final_force: Optional[np.ndarray]     # (designs, n_striker) striker element forces at the end, or None
     final_velocity: Optional[np.ndarray]  # (designs, n_striker) striker element velocities at the end, or None
     rigid_body_velocity: np.ndarray  # (designs,) striker's mean (centre-of-mass) velocity at the end, m/s:
@@ -317,7 +318,7 @@ def run_designs(system: System, zs: np.ndarray, tail: np.ndarray, vel: np.ndarra
         time=np.arange(0, n_steps, stride) * dt if contact_force else np.zeros(0),
         contact_force=hist if contact_force else None, energy_time=np.array([0.0, n_steps * dt]),
         kinetic=kin, strain=pot, work_left=work[:, 0], work_right=work[:, 1], work_loads=work[:, 2],
-        work_friction=work[:, 3], final_force=fin_n if final_state else None,
+        work_friction=work[:, 3], work_joints=work[:, 4], final_force=fin_n if final_state else None,
         final_velocity=fin_v if final_state else None, rigid_body_velocity=rbv, peak_force=low,
         peak_force_step=low_step, max_abs_force=peak, contact_steps=on, n_phases=n_ph, phase_start=ph_start,
         phase_stop=ph_stop, phase_max_abs_force=ph_peak, end_state=ends,
@@ -358,6 +359,7 @@ class _Plan:
     end_code: np.ndarray
     end_value: np.ndarray
     junction_code: np.ndarray
+    junction_par: np.ndarray
     gap0: np.ndarray
     sp_elem: np.ndarray
     sp_cap: np.ndarray
@@ -444,7 +446,8 @@ def _plan(system: System, zs: np.ndarray, vel: np.ndarray, tail: np.ndarray, dt:
     plan = _Plan(n_steps=n_steps, stride=stride, n_rec=n_rec, max_phases=max_phases, dt=dt,
                  quiet=_quiet_from(n_s, state["N"], state["v"], arrays, end_value, sp_force), z0=lattice.impedance, N0=state["N"], v0=state["v"],
                  rod_start=arrays["rod_start"], touch=touch, end_code=arrays["end_code"], end_value=end_value,
-                 junction_code=arrays["junction_code"], gap0=arrays["gap"], sp_elem=arrays["sp_elem"],
+                 junction_code=arrays["junction_code"],
+                 junction_par=arrays["junction_par"], gap0=arrays["gap"], sp_elem=arrays["sp_elem"],
                  sp_cap=arrays["sp_cap"], sp_force=sp_force)
     return plan, end_par, gap_tol
 
@@ -457,13 +460,13 @@ def _run_chunk(plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray
     n_d, n_s = zs.shape
     n_rods = plan.rod_start.size - 1
     n_j, m = n_rods - 1, plan.max_phases
-    out = (np.zeros((n_d, plan.n_rec)), np.zeros((n_d, n_rods, 2)), np.zeros((n_d, n_rods, 2)), np.zeros((n_d, 4)),
+    out = (np.zeros((n_d, plan.n_rec)), np.zeros((n_d, n_rods, 2)), np.zeros((n_d, n_rods, 2)), np.zeros((n_d, 5)),
            np.zeros((n_d, n_s)), np.zeros((n_d, n_s)), np.zeros((n_d, n_j)), np.zeros((n_d, n_j), dtype=np.int64),
            np.zeros((n_d, n_j)), np.zeros((n_d, n_j), dtype=np.int64), np.zeros((n_d, n_j), dtype=np.int64),
            np.full((n_d, n_j, m), -1, dtype=np.int64), np.full((n_d, n_j, m), -1, dtype=np.int64),
            np.zeros((n_d, n_j, m)), np.zeros((n_d, 2, 2)))
     args = (plan.n_steps, plan.stride, plan.quiet, zs, vel, plan.z0, plan.N0, plan.v0, plan.rod_start, plan.touch,
-            plan.end_code, end_par, plan.end_value, plan.junction_code, plan.gap0, gap_tol, plan.sp_elem,
+            plan.end_code, end_par, plan.end_value, plan.junction_code, plan.junction_par, plan.gap0, gap_tol, plan.sp_elem,
             plan.sp_cap, plan.sp_force, plan.dt, out)
     if threads <= 1 or n_d == 1:
         BK.run_batch_serial(*args)

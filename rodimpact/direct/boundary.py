@@ -15,7 +15,11 @@ from numba import njit
 
 #: end-law codes (``end_code``) and junction codes (``junction_code``) of the kernel arrays
 FREE, FIXED, FORCE, VELOCITY, NONREFLECTING, SPRING, BITROCK = 0, 1, 2, 3, 4, 5, 6
-BONDED, CONTACT = 0, 1
+BONDED, CONTACT, SPRING_DASHPOT = 0, 1, 2
+
+#: slots of the work and impulse accumulator ``acc``: [W_left, W_right, W_loads, W_friction, I_left, I_right,
+#: I_loads, I_friction, W_joints] (J and N s); joint forces act on both faces and carry no net impulse
+ACC_SLOTS = 9
 
 
 @njit(inline="always", error_model="numpy", cache=True)
@@ -106,7 +110,7 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
     arrays come grouped in tuples (see :func:`run_numba`) so that the compiler can inline this function into the
     step loop."""
     end_code, end_par, end_state, end_value = ends
-    junction_code, junction_state, gap, gap_tol, u_end = junctions
+    junction_code, junction_state, gap, gap_tol, u_end, junction_par = junctions
     sp_elem, sp_cap, sp_force, sp_F, sp_V = specials
     pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp = probes
     junction_N, junction_contact, end_N, end_V = outputs
@@ -145,33 +149,50 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
         va_free = v[a] - N[a] / za
         vb_free = v[b] + N[b] / zb
         code = junction_code[r]
-        if code == CONTACT and junction_state[r] == 0:
-            # re-contact if the gap closes within the first half of the step, by more than rounding
-            if gap[r] + 0.5 * (vb_free - va_free) * dt <= -gap_tol[r]:
-                junction_state[r] = 1
-        touching = code == BONDED or junction_state[r] == 1
-        if touching:
-            vn = (N[b] - N[a] + za * v[a] + zb * v[b]) / (za + zb)
-            nj = N[a] + za * (vn - v[a])
-            # unilateral: only a compressive force keeps the rods together; a force that is zero to
-            # rounding (e.g. equal impedances after the pulse has passed) counts as separation
-            scale = abs(N[a]) + abs(N[b]) + za * abs(v[a]) + zb * abs(v[b])
-            if code == CONTACT and nj >= -1e-13 * scale:
-                junction_state[r] = 0
-                touching = False
-        if touching:
+        if code == SPRING_DASHPOT:
+            # faces: V_a = va_free + N/za, V_b = vb_free - N/zb; shortening rate s = V_a - V_b = N mu + s0.
+            # Law at the step's midpoint: N = -(k (delta + s dt/2) + c s), delta = -gap (linear in N: exact)
+            k = junction_par[r, 0]
+            kc = k * 0.5 * dt + junction_par[r, 1]
+            s0 = va_free - vb_free
+            nj = -(k * (-gap[r]) + kc * s0) / (1.0 + kc * (1.0 / za + 1.0 / zb))
+            if junction_par[r, 2] != 0.0 and nj > 0.0:      # compression only: the faces separate
+                nj = 0.0
             rod_NR[r] = nj
             rod_NL[r + 1] = nj
-            rod_VR[r] = vn
-            rod_VL[r + 1] = vn
+            rod_VR[r] = va_free + nj / za
+            rod_VL[r + 1] = vb_free - nj / zb
             junction_N[r, out] = nj
+            junction_contact[r, out] = 1.0 if nj < 0.0 or junction_par[r, 2] == 0.0 else 0.0
+            acc[8] += nj * (rod_VR[r] - rod_VL[r + 1]) * dt
         else:
-            rod_NR[r] = 0.0
-            rod_NL[r + 1] = 0.0
-            rod_VR[r] = va_free
-            rod_VL[r + 1] = vb_free
-            junction_N[r, out] = 0.0
-        junction_contact[r, out] = 1.0 if touching else 0.0
+            if code == CONTACT and junction_state[r] == 0:
+                # re-contact if the gap closes within the first half of the step, by more than rounding
+                if gap[r] + 0.5 * (vb_free - va_free) * dt <= -gap_tol[r]:
+                    junction_state[r] = 1
+            touching = code == BONDED or junction_state[r] == 1
+            if touching:
+                vn = (N[b] - N[a] + za * v[a] + zb * v[b]) / (za + zb)
+                nj = N[a] + za * (vn - v[a])
+                # unilateral: only a compressive force keeps the rods together; a force that is zero to
+                # rounding (e.g. equal impedances after the pulse has passed) counts as separation
+                scale = abs(N[a]) + abs(N[b]) + za * abs(v[a]) + zb * abs(v[b])
+                if code == CONTACT and nj >= -1e-13 * scale:
+                    junction_state[r] = 0
+                    touching = False
+            if touching:
+                rod_NR[r] = nj
+                rod_NL[r + 1] = nj
+                rod_VR[r] = vn
+                rod_VL[r + 1] = vn
+                junction_N[r, out] = nj
+            else:
+                rod_NR[r] = 0.0
+                rod_NL[r + 1] = 0.0
+                rod_VR[r] = va_free
+                rod_VL[r + 1] = vb_free
+                junction_N[r, out] = 0.0
+            junction_contact[r, out] = 1.0 if touching else 0.0
         gap[r] += (rod_VL[r + 1] - rod_VR[r]) * dt
     # ---- loaded and frictional interior nodes (Coulomb law solved exactly: stick if the driving force fits)
     for i in range(sp_elem.size):

@@ -20,7 +20,7 @@ import numpy as np
 from .._validate import positive
 from ..lattice.lattice import Lattice, build_lattice, default_time_step
 from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
-                               SpringEnd, VelocityEnd)
+                               SpringDashpot, SpringEnd, VelocityEnd)
 from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
@@ -319,6 +319,8 @@ def kernel_arrays(system: System, lat: Lattice, N: np.ndarray, v: np.ndarray, pr
     codes, pars, end_values = (left[0], right[0]), (left[1], right[1]), (left[2], right[2])
     junction_code = np.array([j.code for j in system.junctions], dtype=np.int64)
     gap = np.array([getattr(j, "gap", 0.0) for j in system.junctions], dtype=float)
+    junction_par = np.array([(j.stiffness, j.damping, float(j.compression_only)) if isinstance(j, SpringDashpot)
+                             else (0.0, 0.0, 0.0) for j in system.junctions], dtype=float).reshape(-1, 3)
     rs = lat.rod_start.tolist()
     length = lat.element_length
     gap_tol = np.array([1e-9 * min(length[a - 1], length[a]) for a in rs[1:-1]], dtype=float)
@@ -388,11 +390,11 @@ def kernel_arrays(system: System, lat: Lattice, N: np.ndarray, v: np.ndarray, pr
         rod_start=lat.rod_start.astype(np.int64), end_code=np.array(codes, dtype=np.int64),
         end_par=np.array(pars, dtype=float), end_state=np.zeros((2, 2)), step_inputs=step_inputs,
         junction_code=junction_code, junction_state=np.zeros(n_j, dtype=np.int64), gap=gap,
-        gap_tol=gap_tol,
+        gap_tol=gap_tol, junction_par=junction_par,
         u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap,
         sp_loaded=np.array([a in node_loads for a in sp_elem], dtype=bool),
         pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),
-        pr_sp=np.array(pr_sp, dtype=np.int64), pr_disp=np.zeros(n_p), acc=np.zeros(8),
+        pr_sp=np.array(pr_sp, dtype=np.int64), pr_disp=np.zeros(n_p), acc=np.zeros(B.ACC_SLOTS),
         # per-step histories: shapes only (rows); the steps are written through _History's buffers
         pr_N=np.zeros((n_p, 0)), pr_V=np.zeros((n_p, 0)), pr_u=np.zeros((n_p, 0)), junction_N=np.zeros((n_j, 0)),
         junction_contact=np.zeros((n_j, 0)), end_N=np.zeros((2, 0)), end_V=np.zeros((2, 0)))

@@ -17,6 +17,7 @@ import numpy as np
 from .._validate import finite_array
 from ..lattice.lattice import Lattice
 from . import guards
+from .boundary import ACC_SLOTS
 from .result import EnergyHistory, FieldSnapshots, JunctionEvents, Probe
 
 #: most snapshots of one run
@@ -149,7 +150,7 @@ class Recorder:
         self.events = (state, np.zeros((n_j, _PHASES, 3)), np.zeros(n_j, dtype=np.int64))
         m, ms = self.energy_steps.size, self.snapshot_steps.size
         self.samples = (self.energy_steps, self.snapshot_steps, np.zeros(2, dtype=np.int64), np.zeros((m, n_rods)),
-                        np.zeros((m, n_rods)), np.zeros((m, n_rods)), np.zeros((m, 8)), np.zeros((ms, n_el)),
+                        np.zeros((m, n_rods)), np.zeros((m, n_rods)), np.zeros((m, ACC_SLOTS)), np.zeros((ms, n_el)),
                         np.zeros((ms, n_el)), np.zeros((ms, n_nodes)), initial_force,
                         1.0 / lattice.impedance)
 
@@ -189,7 +190,8 @@ class Recorder:
         steps, _, _, kin, pot, mom, acc = self.samples[:7]
         return EnergyHistory(time=steps * dt, kinetic=kin.T, strain=pot.T, momentum=mom.T, work_left=acc[:, 0],
                              work_right=acc[:, 1], work_loads=acc[:, 2], work_friction=acc[:, 3],
-                             impulse=functools.reduce(np.add, acc[:, 4:].T))     # I_left + I_right + ...
+                             work_joints=acc[:, 8],
+                             impulse=functools.reduce(np.add, acc[:, 4:8].T))    # I_left + I_right + ...
 
     def snapshots(self, lattice: Lattice) -> Optional[FieldSnapshots]:
         """The field snapshots (``None`` if none were requested)."""

@@ -92,6 +92,7 @@ class EnergyHistory:
     work_right: np.ndarray
     work_loads: np.ndarray
     work_friction: np.ndarray
+    work_joints: np.ndarray   # (m,) work done on the rods by the joints between them (<= 0 if passive)
     impulse: np.ndarray       # (m,) total external impulse, N s
 
     def __repr__(self) -> str:
@@ -106,8 +107,8 @@ class EnergyHistory:
 
     @property
     def exchanged(self) -> np.ndarray:
-        """Cumulative work done on the rods by ends, loads and friction, J."""
-        return self.work_left + self.work_right + self.work_loads + self.work_friction
+        """Cumulative work done on the rods by ends, loads, friction and joints, J."""
+        return self.work_left + self.work_right + self.work_loads + self.work_friction + self.work_joints
 
     @property
     def balance_error(self) -> float:

@@ -21,7 +21,7 @@ from ..direct.recording import Outputs
 from ..direct.simulate import simulate
 from ..lattice.lattice import Lattice, build_lattice
 from ..rods.conditions import (BitRockEnd, Bonded, Contact, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
-                               SpringEnd)
+                               SpringDashpot, SpringEnd)
 from ..rods.rod import Rod
 from ..rods.system import System
 from ._rectangular import chain_response
@@ -79,6 +79,10 @@ def linearized(system: System) -> tuple[System, list[str]]:
                                  f"and cannot be transformed; close the gap or use Bonded()")
             notes.append(f"junction {i}: Contact treated as bonded (valid while it stays compressed)")
             junctions.append(Bonded())
+        elif isinstance(j, SpringDashpot) and j.compression_only:
+            notes.append(f"junction {i}: compression-only SpringDashpot treated as pulling too (valid while it "
+                         "stays compressed)")
+            junctions.append(SpringDashpot(j.stiffness, j.damping))
         else:
             junctions.append(j)
     right = system.right

@@ -2,9 +2,11 @@
 
 A design spec is a synthesis spec (docs/cli.md: ``[[struck]]``, ``far_end``, ``[target]``, ``[materials]``,
 ``[parameters]``) plus the constraints of the striker (``[striker]``: velocity or its bounds, diameter or
-impedance bounds, bore, mass) and the ``[design]`` settings (objective, elements, dt, steps). :func:`run` calls
-:func:`rodimpact.design` and verifies the result with the direct solver; :func:`write_files` writes its data files
-(the command line's folder with figures: :mod:`rodimpact.output_folders`).
+impedance bounds, bore, mass) and the ``[design]`` settings (objective, elements, dt, steps). Reading it makes
+the arguments of :func:`rodimpact.design`: the objective (``[target]`` or the efficiency), the struck
+:class:`~rodimpact.System`, the :class:`~rodimpact.StrikerLimits` and the :class:`~rodimpact.SearchOptions`.
+:func:`run` calls :func:`rodimpact.design` and verifies the result with the direct solver; :func:`write_files`
+writes its data files (the command line's folder with figures: :mod:`rodimpact.output_folders`).
 """
 
 from __future__ import annotations
@@ -16,10 +18,12 @@ from typing import Any, Mapping, Optional
 
 import numpy as np
 
-
+from ..design import EfficiencyObjective, MatchObjective, SearchOptions, StrikerLimits
 from ..rods.material import STEEL
+from ..rods.system import System
 from .dimensions import Parameters
 from .model import _material, _materials, parse_toml, read_text_file
+from .keypaths import DESIGN_KEYS, translated
 from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
@@ -109,11 +113,10 @@ def spec_reference_markdown() -> str:
 # ============================================================================================ spec objects
 @dataclass(frozen=True, eq=False)
 class DesignSpec:
-    """A validated design spec: the keyword arguments of :func:`rodimpact.design` plus output settings."""
+    """A validated design spec: the arguments of :func:`rodimpact.design` (``target``: the objective, ``struck``,
+    ``striker_velocity``, ``n``, ``dt``, ``limits``, ``search``, ``backend``) plus output settings."""
 
     kwargs: dict[str, Any]
-    material: Any
-    bore: float
     plots: bool = True
     title: str = ""
     text: str = ""
@@ -121,7 +124,6 @@ class DesignSpec:
     def design(self):
         """Run :func:`rodimpact.design` with these settings."""
         from ..design import design
-        from .keypaths import DESIGN_KEYS, translated
 
         try:
             return design(**self.kwargs)
@@ -173,30 +175,43 @@ def _spec(raw: dict, base: Path, text: str) -> DesignSpec:
     if st["mass"] is not None and mb is not None:
         raise ModelError("striker.mass, striker.mass_min/mass_max: give a mass or a range, not both")
     t = d["target"]
-    if ds["objective"] == "match" and t is None:
+    match = ds["objective"] == "match"
+    if match and t is None:
         raise ModelError("target: the objective 'match' needs a [target] table")
-    if ds["objective"] == "efficiency" and t is not None:
+    if not match and t is not None:
         raise ModelError("target: the objective 'efficiency' takes no [target]; remove it")
-    kwargs: dict[str, Any] = dict(
-        target=None if t is None else _target(t, params, base), struck=list(rods), n=ds["elements"], dt=ds["dt"],
-        striker_velocity=st["velocity"], objective=ds["objective"], far_end=far_end, struck_velocity=list(vel),
-        junctions=junctions, loads=tuple(loads), initial=initial if any(s is not None for s in initial) else None,
-        position=None if t is None else t["position"], quantity="force" if t is None else t["quantity"],
-        rule="midpoint" if t is None else t["rule"], impedance_bounds=zb, diameter_bounds=db, material=mat,
-        bore=st["bore"], mass=st["mass"] if st["mass"] is not None else mb, velocity_bounds=vb,
-        max_steps=ds["max_steps"], smoothness=ds["smoothness"], duration=ds["duration"], starts=ds["starts"],
-        max_iterations=ds["max_iterations"], improvement=ds["improvement"], hops=ds["hops"],
-        reloading=ds["reloading"], backend=ds["backend"])
+    if match and not ds["reloading"]:
+        raise ModelError("design.reloading: chooses the definition of the efficiency; give it only with objective = "
+                         "\"efficiency\"")
+    if match and ds["duration"] is not None:
+        raise ModelError("design.duration: the length of the efficiency run; give it only with objective = "
+                         "\"efficiency\" (a match runs over the target's span)")
+    n = ds["elements"]
     if ds["elements_min"] is not None:
-        if ds["objective"] != "efficiency" or ds["elements"] is None:
+        if match or ds["elements"] is None:
             raise ModelError("design.elements_min: give it only with objective = \"efficiency\" and "
                              "design.elements (the longest piston)")
         if ds["elements_min"] > ds["elements"]:
             raise ModelError(f"design.elements_min: must not exceed design.elements ({ds['elements']}), got "
                              f"{ds['elements_min']}")
-        kwargs["n"] = (ds["elements_min"], ds["elements"])
+        n = (ds["elements_min"], ds["elements"])
+    target = None if t is None else _target(t, params, base)
+    try:
+        objective = (MatchObjective(target, position=t["position"], quantity=t["quantity"], rule=t["rule"]) if match
+                     else EfficiencyObjective(reloading=ds["reloading"], duration=ds["duration"]))
+        struck = System.struck(list(rods), far_end, list(vel), junctions=junctions, loads=tuple(loads),
+                               initial=initial if any(s is not None for s in initial) else None)
+        limits = StrikerLimits(impedance_bounds=zb, diameter_bounds=db, material=mat, bore=st["bore"],
+                               mass=st["mass"] if st["mass"] is not None else mb, velocity_bounds=vb,
+                               max_steps=ds["max_steps"], smoothness=ds["smoothness"])
+        search = SearchOptions(starts=ds["starts"], max_iterations=ds["max_iterations"],
+                               improvement=ds["improvement"], hops=ds["hops"])
+    except (ValueError, TypeError) as exc:     # errors name the spec's keys, not the Python arguments
+        raise translated(exc, DESIGN_KEYS) from None
+    kwargs: dict[str, Any] = dict(target=objective, struck=struck, striker_velocity=st["velocity"], n=n,
+                                  dt=ds["dt"], limits=limits, search=search, backend=ds["backend"])
     out = d["output"] or {"plots": True}
-    return DesignSpec(kwargs, mat, st["bore"], out["plots"], d["title"] or "", text)
+    return DesignSpec(kwargs, out["plots"], d["title"] or "", text)
 
 
 # ============================================================================================ running, saving
@@ -221,7 +236,8 @@ def run(spec: DesignSpec) -> DesignRun:
 def summarize_run(r: DesignRun, spec: DesignSpec) -> dict[str, Any]:
     """Key numbers of a design (JSON-ready, SI units)."""
     res = r.result
-    shape = res.shape(spec.material, spec.bore)
+    limits = spec.kwargs["limits"]
+    shape = res.shape(limits.material, limits.bore)
     diag = res.diagnostics
     out: dict[str, Any] = {
         "title": spec.title, "objective": res.objective, "elements": res.n_elements, "dt_s": res.dt,
@@ -315,7 +331,8 @@ def write_files(r: DesignRun, spec: DesignSpec, folder: Path) -> list[str]:
     ``plots/`` and ``summary.json`` (:func:`rodimpact.output_folders.write_spec_run`)."""
     res = r.result
     (folder / "spec.toml").write_text(spec.text, encoding="utf-8")
-    res.to_csv(folder / "striker.csv", spec.material, spec.bore)
+    limits = spec.kwargs["limits"]
+    res.to_csv(folder / "striker.csv", limits.material, limits.bore)
     save(res, folder / "design.nc")
     return ["spec.toml", "striker.csv", "design.nc"]
 

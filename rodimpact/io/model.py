@@ -32,15 +32,13 @@ from .._validate import fits_in_memory
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
 from ..direct.result import Probe, SimulationResult
-from ..rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd,
-                               NonReflectingEnd, SpringEnd, VelocityEnd)
+from ..rods.conditions import Contact
+from ..rods.declared import ELEMENTS, declarations, has_default, type_name
 from ..rods.history import History
-from ..rods.loads import Bearings, NodalForce
 from ..rods.material import MATERIALS, STEEL, Material
 from ..rods.plausibility import KeyPath
 from ..rods.rod import Rod
-from ..rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, ExponentialHorn, LinearAreaTaper,
-                             QuadraticHorn, Segment, TabulatedProfile, Tube, stepped_profile)
+from ..rods.segments import AreaFunction, Segment, TabulatedProfile, stepped_profile
 from ..rods.system import InitialState, System
 from . import _toml
 from ._files import read_bytes_limited, write_text_atomic
@@ -293,34 +291,10 @@ def _model_from_dict(raw: dict, base_dir: Path) -> Model:
                 raise ModelError(f"rods[{i}].name: {rod.name!r} is already the name of rods[{names[rod.name]}]")
             names[rod.name] = i
     n = len(rods)
-    junctions = None
-    if d["junctions"] is not None:
-        if len(d["junctions"]) != n - 1:
-            raise ModelError(f"junctions: need one per neighbouring pair of rods ({n - 1}), got "
-                             f"{len(d['junctions'])}")
-        junctions = [Contact(j["gap"]) if j["type"] == "contact" else Bonded() for j in d["junctions"]]
+    junctions = _junctions(d["junctions"], n, params, base_dir)
     ends = d["ends"] or {"left": {"type": "free"}, "right": {"type": "free"}}
-    left = _end(ends["left"] if isinstance(ends["left"], dict) else {"type": ends["left"]}, "ends.left",
-                params, base_dir)
-    right = _end(ends["right"] if isinstance(ends["right"], dict) else {"type": ends["right"]}, "ends.right",
-                 params, base_dir)
-    loads = []
-    for i, ld in enumerate(d["loads"] or []):
-        path = f"loads[{i}]"
-        k = _rod_index(ld["rod"], names, n, f"{path}.rod")
-        if ld["type"] == "force":
-            if not 0.0 < ld["position"] < rods[k].length:
-                raise ModelError(f"{path}.position: must lie inside rod {k}, 0 < x < {rods[k].length:.6g} m, got "
-                                 f"{ld['position']:.6g} m (end faces take [ends] force conditions)")
-            loads.append(_wrap(path, lambda: NodalForce(k, ld["position"], _history(
-                ld["force"], f"{path}.force", params, base_dir, "force"), ld["interpolation"])))
-        else:
-            for j, (a, b) in enumerate(ld["spans"]):
-                if b > rods[k].length * (1 + 1e-12):
-                    raise ModelError(f"{path}.spans[{j}]: the span ends at {b:.6g} m, beyond the end of rod {k} "
-                                     f"({rods[k].length:.6g} m)")
-            loads.append(_wrap(path, lambda: Bearings(k, ld["spans"], ld["friction_coefficient"], ld["gravity"],
-                                                      ld["normal_load"])))
+    left, right = (_element("end", ends[side], f"ends.{side}", params, base_dir) for side in ("left", "right"))
+    loads = _loads(d["loads"] or [], rods, names, params, base_dir)
     probes = []
     seen: dict[str, int] = {}
     for i, p in enumerate(d["probes"] or []):
@@ -473,8 +447,6 @@ def _rod(r: dict, path: str, materials: dict[str, Material], params: dict[str, f
     return rod, st
 
 
-_SHAPE_CLASSES = {"exponential-horn": ExponentialHorn, "quadratic-horn": QuadraticHorn, "cosh-horn": CoshHorn,
-                  "cos-horn": CosHorn}
 
 
 def _segment(s: dict, path: str, materials: dict[str, Material], params: dict[str, float],
@@ -490,20 +462,10 @@ def _segment(s: dict, path: str, materials: dict[str, Material], params: dict[st
 def _shape(s: dict, path: str, mat: Optional[Material], params: dict[str, float]) -> Segment:
     """The segment of one ``[[rods.segments]]`` table of an analytic shape or an expression."""
     shape = s["shape"]
-    if shape == "cylinder":
-        return _wrap(path, lambda: Cylinder(s["length"], s["diameter"], material=mat))
-    if shape == "tube":
-        if not s["inner_diameter"] < s["outer_diameter"]:
-            raise ModelError(f"{path}.inner_diameter: must be smaller than outer_diameter "
-                             f"({s['outer_diameter'] * 1e3:.6g} mm), got {s['inner_diameter'] * 1e3:.6g} mm")
-        return _wrap(path, lambda: Tube(s["length"], s["outer_diameter"], s["inner_diameter"], material=mat))
-    if shape == "cone":
-        return _wrap(path, lambda: Cone(s["length"], s["diameter_start"], s["diameter_end"], material=mat))
-    if shape == "linear-area":
-        return _wrap(path, lambda: LinearAreaTaper(s["length"], s["area_start"], s["area_end"], material=mat))
-    if shape in _SHAPE_CLASSES:
-        cls = _SHAPE_CLASSES[shape]
-        return _wrap(path, lambda: cls(s["length"], s["area_start"], s["xi"], material=mat))
+    if shape in ELEMENTS["segment"]:            # a registered shape: its declared fields
+        cls = ELEMENTS["segment"][shape]
+        values = {f.name: s[f.name] for f, _ in declarations(cls)}
+        return _wrap(path, lambda: cls(**values, material=mat), cls.__name__)
     func = expression_area(s["area"], s["length"], params, path=f"{path}.area")    # shape == "expression"
     check_dimension(func, "area", {"s": "length", "L": "length"}, params)
     return _wrap(path, lambda: AreaFunction(s["length"], func, material=mat, name=s["area"]))
@@ -673,23 +635,45 @@ def _field_value(v: Optional[dict], path: str, params: dict[str, float], dimensi
     return expr
 
 
-def _end(e: dict, path: str, params: dict[str, float], base_dir: Path) -> EndCondition:
-    kind = e["type"]
-    if kind == "free":
-        return FreeEnd()
-    if kind == "fixed":
-        return FixedEnd()
-    if kind == "nonreflecting":
-        return NonReflectingEnd(e["impedance"])
-    if kind == "force":
-        return _wrap(path, lambda: ForceEnd(_history(e["force"], f"{path}.force", params, base_dir, "force"),
-                                            e["interpolation"]))
-    if kind == "velocity":
-        return _wrap(path, lambda: VelocityEnd(_history(e["velocity"], f"{path}.velocity", params, base_dir,
-                                                        "velocity"), e["interpolation"]))
-    if kind == "spring":
-        return SpringEnd(e["stiffness"], e["damping"])
-    return _wrap(path, lambda: BitRockEnd(e["loading_stiffness"], e["unloading_stiffness"]), "BitRockEnd")
+def _junctions(tables: Optional[list[dict]], n_rods: int, params: dict[str, float], base_dir: Path,
+               rods: str = "rods") -> Optional[list]:
+    """The junctions of validated ``[[junctions]]`` tables (``None``: the default), one per neighbouring pair."""
+    if tables is None:
+        return None
+    if len(tables) != n_rods - 1:
+        raise ModelError(f"junctions: need one per neighbouring pair of {rods} ({n_rods - 1}), got {len(tables)}")
+    return [_element("junction", j, f"junctions[{i}]", params, base_dir) for i, j in enumerate(tables)]
+
+
+def _loads(tables: list[dict], rods: list[Rod], names: dict[str, int], params: dict[str, float],
+           base_dir: Path) -> list:
+    """The loads of validated ``[[loads]]`` tables, their rod references resolved and their positions checked
+    against the rods (``names``: rod name -> index)."""
+    loads = []
+    for i, ld in enumerate(tables):
+        path = f"loads[{i}]"
+        k = _rod_index(ld["rod"], names, len(rods), f"{path}.rod")
+        if ld["type"] == "force" and not 0.0 < ld["position"] < rods[k].length:
+            raise ModelError(f"{path}.position: must lie inside rod {k}, 0 < x < {rods[k].length:.6g} m, got "
+                             f"{ld['position']:.6g} m (end faces take [ends] force conditions)")
+        for j, (a, b) in enumerate(ld.get("spans") or ()):
+            if b > rods[k].length * (1 + 1e-12):
+                raise ModelError(f"{path}.spans[{j}]: the span ends at {b:.6g} m, beyond the end of rod {k} "
+                                 f"({rods[k].length:.6g} m)")
+        loads.append(_element("load", {**ld, "rod": k}, path, params, base_dir))
+    return loads
+
+
+def _element(family: str, d: dict | str, path: str, params: dict[str, float], base_dir: Path) -> Any:
+    """The element of ``family`` (``end``, ``junction``, ``load``) that the validated table ``d`` describes, built
+    from its class's field declarations (:mod:`rodimpact.rods.declared`): histories are read here, every other
+    value goes to the class as it is (rod references already resolved to indices). The class's messages
+    ``Class.field: ...`` become the key paths ``path.field: ...``."""
+    d = d if isinstance(d, dict) else {"type": d}
+    cls = ELEMENTS[family][d["type"]]
+    values = {f.name: _history(d[f.name], f"{path}.{f.name}", params, base_dir, decl.dimension)
+              if decl.kind == "history" else d[f.name] for f, decl in declarations(cls)}
+    return _wrap(path, lambda: cls(**values), cls.__name__)
 
 
 def _rod_index(ref: int | str, names: dict[str, int], n: int, path: str) -> int:
@@ -840,22 +824,9 @@ class _Writer:
         return [float(x) for x in np.asarray(v, dtype=float)]
 
     def segment(self, s: Segment, path: str) -> dict:
-        if isinstance(s, Cylinder):
-            d = {"shape": "cylinder", "length": _c(s.length, "length"), "diameter": _c(s.diameter, "length")}
-        elif isinstance(s, Tube):
-            d = {"shape": "tube", "length": _c(s.length, "length"), "outer_diameter": _c(s.outer_diameter, "length"),
-                 "inner_diameter": _c(s.inner_diameter, "length")}
-        elif isinstance(s, Cone):
-            d = {"shape": "cone", "length": _c(s.length, "length"), "diameter_start": _c(s.diameter_start, "length"),
-                 "diameter_end": _c(s.diameter_end, "length")}
-        elif isinstance(s, LinearAreaTaper):
-            d = {"shape": "linear-area", "length": _c(s.length, "length"), "area_start": _c(s.area_start, "area"),
-                 "area_end": _c(s.area_end, "area")}
-        elif isinstance(s, (ExponentialHorn, QuadraticHorn, CoshHorn, CosHorn)):
-            shape = {ExponentialHorn: "exponential-horn", QuadraticHorn: "quadratic-horn", CoshHorn: "cosh-horn",
-                     CosHorn: "cos-horn"}[type(s)]
-            d = {"shape": shape, "length": _c(s.length, "length"), "area_start": _c(s.area_start, "area"),
-                 "xi": _c(s.xi, "wavenumber")}
+        if type(s) in ELEMENTS["segment"].values():      # a registered shape: its declared fields
+            d = {"shape": type_name(s), **{f.name: _c(getattr(s, f.name), decl.dimension)
+                                           for f, decl in declarations(type(s))}}
         elif isinstance(s, TabulatedProfile):
             d = {"shape": "table", "x": [float(v) for v in s.x], s.kind: [float(v) for v in s.values]}
         elif isinstance(s, AreaFunction):
@@ -899,42 +870,26 @@ class _Writer:
             d["segments"] = [self.segment(s, f"{path}.segments[{j}]") for j, s in enumerate(rod.segments)]
         return d
 
-    def end(self, e: EndCondition, path: str) -> Any:
-        if isinstance(e, FreeEnd):
-            return "free"
-        if isinstance(e, FixedEnd):
-            return "fixed"
-        if isinstance(e, NonReflectingEnd):
-            return "nonreflecting" if e.impedance is None else _toml.Inline(type="nonreflecting",
-                                                                            impedance=float(e.impedance))
-        if isinstance(e, ForceEnd):
-            d = _toml.Inline(type="force", force=self.history(e.force, f"{path}.force"))
-        elif isinstance(e, VelocityEnd):
-            d = _toml.Inline(type="velocity", velocity=self.history(e.velocity, f"{path}.velocity"))
-        elif isinstance(e, SpringEnd):
-            return _toml.Inline(type="spring", stiffness=float(e.stiffness), damping=float(e.damping))
-        elif isinstance(e, BitRockEnd):
-            return _toml.Inline(type="bit-rock", loading_stiffness=float(e.loading_stiffness),
-                                unloading_stiffness=float(e.unloading_stiffness))
-        else:
-            raise ModelWriteError(f"{path}: cannot write a {type(e).__name__}")
-        h = e.force if isinstance(e, ForceEnd) else e.velocity
-        if h.interpolation != "linear":
-            d["interpolation"] = h.interpolation
-        return d
-
-    def load(self, ld: Any, path: str) -> dict:
-        if isinstance(ld, NodalForce):
-            d = {"type": "force", "rod": self.rod_ref[ld.rod], "position": _c(ld.position, "length"),
-                 "force": self.history(ld.force, f"{path}.force")}
-            if ld.force.interpolation != "linear":
-                d["interpolation"] = ld.force.interpolation
-            return d
-        d = {"type": "bearings", "rod": self.rod_ref[ld.rod], "spans": [[float(a), float(b)] for a, b in ld.spans],
-             "friction_coefficient": float(ld.friction_coefficient), "gravity": _c(ld.gravity, "acceleration")}
-        if ld.normal_load is not None:
-            d["normal_load"] = _c(ld.normal_load, "force")
-        return d
+    def element(self, e: Any, path: str, inline: bool = False) -> Any:
+        """An end, junction or load as a table (``type`` and the declared fields that differ from their
+        defaults), from its class's field declarations; an element without such fields as its type name.
+        ``inline``: an inline table (bare SI numbers: TOML has no room for unit comments inside one)."""
+        d = {"type": type_name(e)}
+        for f, decl in declarations(type(e)):
+            value = getattr(e, f.name)
+            if decl.kind == "history":
+                d[f.name] = self.history(value, f"{path}.{f.name}")
+            elif decl.kind == "rod":
+                d[f.name] = self.rod_ref[value]
+            elif decl.kind == "spans":
+                d[f.name] = [[float(a), float(b)] for a, b in value]
+            elif has_default(f) and value == f.default:
+                continue
+            elif decl.kind == "quantity":
+                d[f.name] = float(value) if inline else _c(value, decl.dimension)
+            else:
+                d[f.name] = value
+        return d["type"] if len(d) == 1 else _toml.Inline(**d) if inline else d
 
     def document(self) -> dict:
         m, s = self.model, self.model.system
@@ -944,8 +899,9 @@ class _Writer:
         if m.description:
             doc["description"] = m.description
         rods = [self.rod(i, r, s.velocities[i], s.initial[i]) for i, r in enumerate(s.rods)]
-        ends = {"left": self.end(s.left, "ends.left"), "right": self.end(s.right, "ends.right")}
-        loads = [self.load(ld, f"loads[{i}]") for i, ld in enumerate(s.loads)]
+        ends = {side: self.element(e, f"ends.{side}", inline=True) for side, e in (("left", s.left),
+                                                                                   ("right", s.right))}
+        loads = [self.element(ld, f"loads[{i}]") for i, ld in enumerate(s.loads)]
         if self.params:
             doc["parameters"] = dict(self.params)
         if self.materials:
@@ -953,8 +909,8 @@ class _Writer:
                                     "density": _c(v.density, "density")} for k, v in self.materials.items()}
         doc["rods"] = rods
         if any(not (isinstance(j, Contact) and j.gap == 0.0) for j in s.junctions):
-            doc["junctions"] = [{"type": "contact", "gap": _c(j.gap, "length")} if isinstance(j, Contact)
-                                else {"type": "bonded"} for j in s.junctions]
+            doc["junctions"] = [{"type": j} if isinstance(j, str) else j
+                                for j in (self.element(j, f"junctions[{i}]") for i, j in enumerate(s.junctions))]
         doc["ends"] = ends
         if loads:
             doc["loads"] = loads

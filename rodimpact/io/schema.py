@@ -9,6 +9,7 @@ tables appear in the file: ``rods[1].segments[2].diameter: must be > 0, got -5 m
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import functools
 import math
@@ -16,6 +17,9 @@ import sys
 from dataclasses import dataclass
 from typing import Any, Optional
 
+from ..rods import conditions as _conditions, loads as _loads, segments as _segments  # noqa: F401  (registers)
+from ..rods.declared import ELEMENTS as ELEMENT_CLASSES, declarations, has_default, summary
+from ..rods.material import Material
 from . import _toml
 from .quantities import (DIMENSIONS, ModelError, check_sign, parse_quantity, pint_quantity, show_as_written,
                          si_magnitude)
@@ -77,41 +81,44 @@ class Variants:
 
 
 # ============================================================================================ the schema
+#: Field kinds of the element declarations (rodimpact.rods.declared) -> field kinds of the schema
+_DECLARED_KINDS = {"quantity": "quantity", "history": "history", "choice": "string", "flag": "boolean",
+                   "rod": "rod", "spans": "spans"}
+
+
+def element_table(name: str, cls: type, example: str = "") -> Table:
+    """The table of one element class, generated from its field declarations (:mod:`rodimpact.rods.declared`):
+    keys, kinds, dimensions, bounds, defaults and docs; the description is the class docstring's first
+    paragraph."""
+    fields = []
+    for f, d in declarations(cls):
+        optional = has_default(f)
+        fields.append(Field(f.name, _DECLARED_KINDS[d.kind], d.doc,
+                            dimension=d.dimension if d.kind in ("quantity", "history") else None,
+                            sign=d.bound if d.kind == "quantity" else None, required=not optional,
+                            default=f.default if optional else None, choices=d.choices or None))
+    return Table(name, summary(cls), tuple(fields), example)
+
+
+def element_tables(family: str, examples: Optional[dict[str, str]] = None) -> dict[str, Table]:
+    """The tables of every registered element kind of ``family`` (``end``, ``junction``, ``load``, ``segment``),
+    by type name, with the reference page's ``examples`` of some."""
+    return {name: element_table(name, cls, (examples or {}).get(name, ""))
+            for name, cls in ELEMENT_CLASSES[family].items()}
+
+
 def _q(name: str, dimension: str, doc: str, sign: Optional[str] = "positive", required: bool = True,
        default: Any = None) -> Field:
     return Field(name, "quantity", doc, dimension=dimension, sign=sign, required=required, default=default)
 
 
-_LENGTH = _q("length", "length", "Length of the segment.")
+_LENGTH = element_table("segment", _segments.Segment).field("length")      # the declaration of every segment
 _SEG_MATERIAL = Field("material", "string", "Material of this segment (a preset or a name from `[materials]`); "
                                             "default: the rod's material.")
 
 SEGMENT_SHAPES: dict[str, Table] = {
-    "cylinder": Table("cylinder", "Solid circular cylinder.", (
-        _LENGTH, _q("diameter", "length", "Diameter."), _SEG_MATERIAL),
-        'shape = "cylinder"\nlength = "0.5 m"\ndiameter = "50 mm"'),
-    "tube": Table("tube", "Hollow circular tube (constant bore).", (
-        _LENGTH, _q("outer_diameter", "length", "Outer diameter."),
-        _q("inner_diameter", "length", "Inner diameter (bore), 0 <= inner < outer.", sign="non_negative"),
-        _SEG_MATERIAL)),
-    "cone": Table("cone", "Frustum: the diameter changes linearly along the segment.", (
-        _LENGTH, _q("diameter_start", "length", "Diameter at the left end."),
-        _q("diameter_end", "length", "Diameter at the right end."), _SEG_MATERIAL)),
-    "linear-area": Table("linear-area", "The cross-section area changes linearly (thesis setup 3, x1..x2).", (
-        _LENGTH, _q("area_start", "area", "Area at the left end."), _q("area_end", "area", "Area at the right end."),
-        _SEG_MATERIAL)),
-    "exponential-horn": Table("exponential-horn", "A(s) = area_start * exp(xi s) (thesis Tab. 2.1, eq. 3.28).", (
-        _LENGTH, _q("area_start", "area", "Area A0 at the left end."),
-        _q("xi", "wavenumber", "Flare constant xi.", sign=None), _SEG_MATERIAL)),
-    "quadratic-horn": Table("quadratic-horn", "A(s) = area_start * (1 + xi s)^2 (thesis Tab. 2.1).", (
-        _LENGTH, _q("area_start", "area", "Area A0 at the left end."),
-        _q("xi", "wavenumber", "Flare constant xi.", sign=None), _SEG_MATERIAL)),
-    "cosh-horn": Table("cosh-horn", "A(s) = area_start * cosh(xi s)^2 (thesis Tab. 2.1).", (
-        _LENGTH, _q("area_start", "area", "Area A0 at the left end."),
-        _q("xi", "wavenumber", "Flare constant xi.", sign=None), _SEG_MATERIAL)),
-    "cos-horn": Table("cos-horn", "A(s) = area_start * cos(xi s)^2 (thesis Tab. 2.1); |xi| length < pi/2.", (
-        _LENGTH, _q("area_start", "area", "Area A0 at the left end."),
-        _q("xi", "wavenumber", "Flare constant xi.", sign=None), _SEG_MATERIAL)),
+    **{name: Table(t.name, t.doc, t.fields + (_SEG_MATERIAL,), t.example) for name, t in element_tables(
+        "segment", {"cylinder": 'shape = "cylinder"\nlength = "0.5 m"\ndiameter = "50 mm"'}).items()},
     "table": Table("table", "A tabulated profile, interpolated linearly between points, with steps where a "
                             "position is given twice: either inline lists `x` with `diameter` or `area`, or a CSV "
                             "`file` with a column `x` and a column `diameter` or `area` (units in the header, e.g. "
@@ -191,8 +198,7 @@ ROD = Table("rods", "A rod, listed left to right (`[[rods]]`, one table per rod)
 
 MATERIAL = Table("materials", "Named materials (`[materials.NAME]`), used by `material = \"NAME\"`. Either "
                               "`youngs_modulus` and `density`, or a `base` material scaled by the factors.", (
-    _q("youngs_modulus", "pressure", "Young's modulus E.", required=False),
-    _q("density", "density", "Density rho.", required=False),
+    *(dataclasses.replace(f, required=False) for f in element_table("materials", Material).fields),
     Field("base", "string", "A preset or an earlier material to start from."),
     _q("youngs_factor", "dimensionless", "Factor on the base's E (thesis setup 3: 1.5).", required=False,
        default=1.0),
@@ -200,33 +206,8 @@ MATERIAL = Table("materials", "Named materials (`[materials.NAME]`), used by `ma
        default=1.0),
 ), '[materials.heavy]\nbase = "steel"\nyoungs_factor = 1.5\ndensity_factor = 1.2')
 
-JUNCTION_TYPES = {
-    "contact": Table("contact", "Unilateral contact: compression only; separation and re-contact.", (
-        _q("gap", "length", "Initial gap.", sign="non_negative", required=False, default=0.0),)),
-    "bonded": Table("bonded", "Welded or screwed joint: continuity at all times.", ()),
-}
-
-_INTERP = Field("interpolation", "string", "How samples are interpolated: `linear` or `previous` (hold).",
-                default="linear", choices=("linear", "previous"))
-
-END_TYPES = {
-    "free": Table("free", "Stress-free end (N = 0).", ()),
-    "fixed": Table("fixed", "Fixed end (u = 0).", ()),
-    "nonreflecting": Table("nonreflecting", "Impedance-matched semi-infinite continuation (outgoing waves "
-                                            "leave); also spelled `non-reflecting`.", (
-        _q("impedance", "impedance", "Impedance of the continuation; default that of the end element.",
-           required=False),)),
-    "force": Table("force", "Prescribed normal force at the end face (tension positive).", (
-        Field("force", "history", "Force history.", dimension="force", required=True), _INTERP)),
-    "velocity": Table("velocity", "Prescribed end velocity (positive to the right).", (
-        Field("velocity", "history", "Velocity history.", dimension="velocity", required=True), _INTERP)),
-    "spring": Table("spring", "Linear spring with optional parallel dashpot to the ground.", (
-        _q("stiffness", "stiffness", "Spring stiffness.", sign="non_negative"),
-        _q("damping", "damping", "Dashpot coefficient.", sign="non_negative", required=False, default=0.0))),
-    "bit-rock": Table("bit-rock", "Bilinear bit-rock interaction, compression only (thesis Fig. 4.9).", (
-        _q("loading_stiffness", "stiffness", "Loading stiffness k1."),
-        _q("unloading_stiffness", "stiffness", "Unloading stiffness k2; default k1.", required=False))),
-}
+JUNCTION_TYPES = element_tables("junction")
+END_TYPES = element_tables("end")
 
 _END_VARIANTS = Variants("type", END_TYPES, aliases=(("non-reflecting", "nonreflecting"),))
 
@@ -236,21 +217,9 @@ ENDS = Table("ends", "Conditions at the outer left end of the first rod and the 
     Field("right", "variant", "Right end.", default="free", variants=_END_VARIANTS),
 ), '[ends]\nleft = "free"\nright = { type = "bit-rock", loading_stiffness = "300 MN/m" }')
 
-_ROD_REF = Field("rod", "rod", "The rod: its name or its index (0 = first rod).", required=True)
-LOAD_TYPES = {
-    "force": Table("force", "A prescribed force (positive in +x) at the node nearest to `position`.", (
-        _ROD_REF, _q("position", "length", "Distance from the rod's left end.", sign=None),
-        Field("force", "history", "Force history.", dimension="force", required=True), _INTERP)),
-    "bearings": Table("bearings", "Coulomb friction of plain bearings (thesis eqs. 3.21-3.23): the total "
-                                  "friction mu m g is shared by the nodes inside the spans. One table per rod.", (
-        _ROD_REF,
-        Field("spans", "spans", "Bearing spans `[[start, end], ...]` from the rod's left end.", required=True),
-        _q("friction_coefficient", "dimensionless", "Friction coefficient mu.", sign="non_negative"),
-        _q("gravity", "acceleration", "Gravitational acceleration g.", required=False, default=9.81),
-        _q("normal_load", "force", "Total normal load instead of the rod's weight.", sign="non_negative",
-           required=False))),
-}
+LOAD_TYPES = element_tables("load")
 
+_ROD_REF = Field("rod", "rod", "The rod: its name or its index (0 = first rod).", required=True)
 PROBE = Table("probes", "An output request: force, velocity, displacement and strain histories at a position "
                         "(e.g. a strain gauge).", (
     Field("name", "string", "Unique name (used in CSV headers and plots).", required=True),

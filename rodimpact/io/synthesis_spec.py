@@ -19,13 +19,11 @@ from typing import Any, Mapping, Optional
 
 import numpy as np
 
-from ..rods.conditions import Bonded, Contact
-from ..rods.loads import Bearings, NodalForce
 from ..rods.material import STEEL
 from .dimensions import Parameters, check_dimension
 from .expressions import SafeExpression
-from .model import (_end, _history, _material, _materials, _rod, _rod_index, _wrap, parse_toml, read_csv_columns,
-                    read_text_file)
+from .model import (_element, _junctions, _loads, _material, _materials, _rod, _wrap, parse_toml,
+                    read_csv_columns, read_text_file)
 from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
@@ -226,23 +224,9 @@ def read_struck(d: dict, params: Parameters, materials: dict, dt: Optional[float
         vel.append(r["velocity"])
         initial.append(st)
     names = {r.name: i for i, r in enumerate(rods) if r.name is not None}
-    junctions = None
-    if d["junctions"] is not None:
-        if len(d["junctions"]) != len(rods) - 1:
-            raise ModelError(f"junctions: need one per neighbouring pair of struck rods ({len(rods) - 1}), got "
-                             f"{len(d['junctions'])}")
-        junctions = [Contact(j["gap"]) if j["type"] == "contact" else Bonded() for j in d["junctions"]]
-    fe = d["far_end"] if isinstance(d["far_end"], dict) else {"type": d["far_end"]}
-    far_end = _end(fe, "far_end", params, base)
-    loads = []
-    for i, ld in enumerate(d["loads"] or []):
-        k = _rod_index(ld["rod"], names, len(rods), f"loads[{i}].rod")
-        if ld["type"] == "force":
-            loads.append(_wrap(f"loads[{i}]", lambda: NodalForce(k, ld["position"], _history(
-                ld["force"], f"loads[{i}].force", params, base, "force"), ld["interpolation"])))
-        else:
-            loads.append(_wrap(f"loads[{i}]", lambda: Bearings(k, ld["spans"], ld["friction_coefficient"],
-                                                               ld["gravity"], ld["normal_load"])))
+    junctions = _junctions(d["junctions"], len(rods), params, base, "struck rods")
+    far_end = _element("end", d["far_end"], "far_end", params, base)
+    loads = _loads(d["loads"] or [], rods, names, params, base)
     return rods, vel, initial, junctions, far_end, loads
 
 

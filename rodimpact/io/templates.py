@@ -2,6 +2,15 @@
 
 from __future__ import annotations
 
+from ..rods import conditions as _conditions, loads as _loads  # noqa: F401  (register the element classes)
+from ..rods.declared import ELEMENTS
+
+
+def _types(family: str) -> str:
+    """The registered type names of an element family, quoted, for the template's comments."""
+    return ", ".join(f'"{name}"' for name in ELEMENTS[family])
+
+
 SIMULATE = '''\
 # rodimpact model file -- run it with:   rodimpact simulate model.toml -o results/model
 #
@@ -62,21 +71,23 @@ length = "1800 mm"
 area = "pi/4 * d_rod**2"
 
 # ------------------------------------------------------------------------------------- connections
-# One [[junctions]] table per neighbouring pair: type = "contact" (compression only, may separate and
-# re-contact; optional gap) or "bonded". Default: contact without gap.
+# One [[junctions]] table per neighbouring pair. "contact": compression only, may separate and re-contact
+# (optional gap). Default: contact without gap. All types (keys: rodimpact docs model):
+# {junctions}.
 [[junctions]]
 type = "contact"
 gap = "0 mm"
 
-# Outer ends: "free", "fixed", "nonreflecting", or a table such as
+# Outer ends, one of {ends}:
+# a name, or a table such as
 # { type = "spring", stiffness = "300 MN/m" }, { type = "bit-rock", loading_stiffness = "300 MN/m" },
 # { type = "force", force = "-1 kN" }, { type = "velocity", velocity = { time = [...], value = [...] } }.
 [ends]
 left = "free"
 right = "free"
 
-# Loads on interior nodes: type = "force" (a force history at a position) or "bearings" (Coulomb friction
-# mu * m * g shared by the nodes inside the spans, thesis eqs. 3.21-3.23).
+# Loads on interior nodes, one of {loads}: "force" (a force history at a position) or
+# "bearings" (Coulomb friction mu * m * g shared by the nodes inside the spans, thesis eqs. 3.21-3.23).
 [[loads]]
 type = "bearings"
 rod = "piston"
@@ -114,7 +125,7 @@ plots = ["forces", "profile", "snapshots", "xt", "energy"]   # add "animation" f
 csv = true                     # signals.csv and energy.csv
 fields = true                  # keep the snapshots in result.nc
 # record_every = 10            # keep every 10th step of the signals (memory of very long runs)
-'''
+'''.replace("{junctions}", _types("junction")).replace("{ends}", _types("end")).replace("{loads}", _types("load"))
 
 TEMPLATES: dict[str, tuple[str, str]] = {"simulate": (SIMULATE, "model.toml")}
 

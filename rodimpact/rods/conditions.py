@@ -13,8 +13,8 @@ import difflib
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from .._validate import non_negative, positive
-from .history import HistoryLike, as_history
+from .declared import check, choice, element, flag, history, quantity
+from .history import HistoryLike
 
 
 class EndCondition:
@@ -23,6 +23,7 @@ class EndCondition:
     code: int = -1
 
 
+@element("end", "free")
 @dataclass(frozen=True)
 class FreeEnd(EndCondition):
     """Stress-free end: N = 0 (thesis eq. 2.42)."""
@@ -30,6 +31,7 @@ class FreeEnd(EndCondition):
     code = 0
 
 
+@element("end", "fixed")
 @dataclass(frozen=True)
 class FixedEnd(EndCondition):
     """Fixed end: u = 0, v = 0 (thesis eq. 2.41)."""
@@ -37,36 +39,43 @@ class FixedEnd(EndCondition):
     code = 1
 
 
+_INTERPOLATION = ("How samples are interpolated: `linear` or `previous` (hold).", ("linear", "previous"), "linear")
+
+
+@element("end", "force")
 @dataclass(frozen=True, eq=False)
 class ForceEnd(EndCondition):
-    """Prescribed normal force N(t) at the end face (tension positive; push on the end -> negative), N.
+    """Prescribed normal force at the end face (tension positive; push on the end -> negative).
 
     ``force`` is a number, a callable f(t) or samples (t, N); see :class:`~rodimpact.rods.history.History`.
     """
 
-    force: HistoryLike
-    interpolation: str = "linear"
+    force: HistoryLike = history("force", "Force history.")
+    interpolation: str = choice(*_INTERPOLATION)
     code = 2
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "force", as_history(self.force, "ForceEnd.force", self.interpolation, "N"))
+        check(self)
 
 
+@element("end", "velocity")
 @dataclass(frozen=True, eq=False)
 class VelocityEnd(EndCondition):
-    """Prescribed end velocity v(t) in m/s (positive to the right, as x)."""
+    """Prescribed end velocity (positive to the right, as x)."""
 
-    velocity: HistoryLike
-    interpolation: str = "linear"
+    velocity: HistoryLike = history("velocity", "Velocity history.")
+    interpolation: str = choice(*_INTERPOLATION)
     code = 3
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "velocity", as_history(self.velocity, "VelocityEnd.velocity", self.interpolation, "m/s"))
+        check(self)
 
 
+@element("end", "nonreflecting")
 @dataclass(frozen=True)
 class NonReflectingEnd(EndCondition):
-    """Non-reflecting end ("energy sink", thesis eq. 3.20): outgoing waves leave, nothing comes in.
+    """Impedance-matched semi-infinite continuation ("energy sink", thesis eq. 3.20): outgoing waves leave,
+    nothing comes in; also spelled `non-reflecting`.
 
     Eq. (3.20), N^- = N (left) / N^+ = N (right) with v^- = v from eqs. (3.16)/(3.17), makes the boundary's
     increments in the update of eqs. (3.10)-(3.15) zero: no wave enters the end element from outside. Since
@@ -79,35 +88,36 @@ class NonReflectingEnd(EndCondition):
     R = (Z_ext - Z) / (Z_ext + Z). See docs/method.md.
     """
 
-    impedance: Optional[float] = None
+    impedance: Optional[float] = quantity("impedance", "Impedance of the continuation; default that of "
+                                                                "the end element.", default=None)
     code = 4
 
     def __post_init__(self) -> None:
-        if self.impedance is not None:
-            object.__setattr__(self, "impedance", positive("NonReflectingEnd.impedance", self.impedance, "N s/m"))
+        check(self)
 
 
+@element("end", "spring")
 @dataclass(frozen=True)
 class SpringEnd(EndCondition):
-    """Linear spring (stiffness N/m) with optional parallel dashpot (damping N s/m) to the ground.
+    """Linear spring with optional parallel dashpot to the ground.
 
     Outward motion compresses the spring: N = -(k delta + c w). The spring force is taken at the step's
     midpoint displacement delta + w dt/2 (implicit midpoint), which makes the energy bookkeeping exact:
     the spring's energy change equals the work done on it.
     """
 
-    stiffness: float
-    damping: float = 0.0
+    stiffness: float = quantity("stiffness", "Spring stiffness.", bound="non_negative")
+    damping: float = quantity("damping", "Dashpot coefficient.", bound="non_negative", default=0.0)
     code = 5
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "stiffness", non_negative("SpringEnd.stiffness", self.stiffness, "N/m"))
-        object.__setattr__(self, "damping", non_negative("SpringEnd.damping", self.damping, "N s/m"))
+        check(self)
 
 
+@element("end", "bit-rock")
 @dataclass(frozen=True)
 class BitRockEnd(EndCondition):
-    """Bilinear bit-rock interaction (percussive drilling, thesis Fig. 4.9): compression only.
+    """Bilinear bit-rock interaction, compression only (percussive drilling, thesis Fig. 4.9).
 
     Loading along F = k1 delta (``loading_stiffness``, N/m) while the penetration delta exceeds its previous
     maximum; unloading and reloading along the line of slope k2 (``unloading_stiffness``, default k1) through
@@ -121,14 +131,15 @@ class BitRockEnd(EndCondition):
     model").
     """
 
-    loading_stiffness: float
-    unloading_stiffness: Optional[float] = None
+    loading_stiffness: float = quantity("stiffness", "Loading stiffness k1.")
+    unloading_stiffness: Optional[float] = quantity("stiffness", "Unloading stiffness k2 >= k1; default "
+                                                                        "k1.", default=None)
     code = 6
 
     def __post_init__(self) -> None:
-        k1 = positive("BitRockEnd.loading_stiffness", self.loading_stiffness, "N/m")
-        k2 = k1 if self.unloading_stiffness is None else positive(
-            "BitRockEnd.unloading_stiffness", self.unloading_stiffness, "N/m")
+        check(self)
+        k1 = self.loading_stiffness
+        k2 = k1 if self.unloading_stiffness is None else self.unloading_stiffness
         if k2 < k1:
             # Unloading along k2 < k1 from the maximum returns more work than loading put in: the rock would
             # give out energy (negative energy into the rock, negative permanent penetration).
@@ -136,7 +147,6 @@ class BitRockEnd(EndCondition):
                 f"BitRockEnd.unloading_stiffness: must be >= BitRockEnd.loading_stiffness for a passive rock "
                 f"(k2 >= k1), got unloading_stiffness = {k2:.6g} N/m < loading_stiffness = {k1:.6g} N/m; "
                 f"unloading less stiff than loading would give energy back that was never put in")
-        object.__setattr__(self, "loading_stiffness", k1)
         object.__setattr__(self, "unloading_stiffness", k2)
 
 
@@ -169,26 +179,53 @@ class Junction:
     code: int = -1
 
 
+@element("junction", "contact")
 @dataclass(frozen=True)
 class Contact(Junction):
-    """Unilateral contact: transmits compression only; the rods separate when the contact force would turn
-    tensile and re-contact when the gap (tracked from the end displacements) closes.
+    """Unilateral contact: compression only; separation and re-contact.
 
-    ``gap`` is the initial gap in m (default 0: touching at t = 0).
+    The rods separate when the contact force would turn tensile and re-contact when the gap (tracked from the
+    end displacements) closes. ``gap`` is the initial gap in m (default 0: touching at t = 0).
     """
 
-    gap: float = 0.0
+    gap: float = quantity("length", "Initial gap.", bound="non_negative", default=0.0)
     code = 1
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "gap", non_negative("Contact.gap", self.gap, "m"))
+        check(self)
 
 
+@element("junction", "bonded")
 @dataclass(frozen=True)
 class Bonded(Junction):
-    """Bonded (welded, screwed) joint: continuity of displacement and force at all times."""
+    """Welded or screwed joint: continuity of displacement and force at all times."""
 
     code = 0
+
+
+@element("junction", "spring-dashpot")
+@dataclass(frozen=True)
+class SpringDashpot(Junction):
+    """Massless spring and dashpot in parallel between the end faces of two rods (a cushion, a joint, an
+    elastic specimen).
+
+    With the shortening delta of the joint (the left rod's face moving right against the right rod's face) and
+    its rate s, the joint carries the compressive force F = k delta + c s, so both faces see the normal force
+    N = -F (tension positive). In a step the faces move at constant velocities, delta runs linearly, and the
+    law is taken at the step's midpoint, F = k (delta_k + s dt/2) + c s (trapezoidal rule: second order in dt,
+    and the spring's energy change k (delta_k+1^2 - delta_k^2)/2 equals the work done on it exactly). With the
+    two faces' wave relations the law is one linear equation for N, solved exactly each step
+    (docs/method.md, "Joints between rods"). ``compression_only``: the joint pushes but never pulls (F >= 0;
+    the faces separate instead), as a cushion resting between a hammer and a pile.
+    """
+
+    stiffness: float = quantity("stiffness", "Spring stiffness k.", bound="non_negative")
+    damping: float = quantity("damping", "Dashpot coefficient c.", bound="non_negative", default=0.0)
+    compression_only: bool = flag("Push only, never pull (F >= 0): the faces separate instead.", False)
+    code = 2
+
+    def __post_init__(self) -> None:
+        check(self)
 
 
 def as_junction(value: Any, where: str) -> Junction:
@@ -197,7 +234,8 @@ def as_junction(value: Any, where: str) -> Junction:
         return value
     if isinstance(value, str) and value.strip().lower() in ("contact", "bonded"):
         return Contact() if value.strip().lower() == "contact" else Bonded()
-    text = f"{where}: must be Contact(gap=...), Bonded() or one of 'contact', 'bonded', got {value!r}"
+    text = (f"{where}: must be Contact(gap=...), Bonded() or SpringDashpot(stiffness, damping), or one of "
+            f"'contact', 'bonded', got {value!r}")
     if not isinstance(value, str):
         raise TypeError(text + f" (of type {type(value).__name__})")
     raise ValueError(text + _did_you_mean(value, ("contact", "bonded")))

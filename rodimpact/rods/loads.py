@@ -5,32 +5,40 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional, Sequence
 
-from .._validate import finite, non_negative, positive
-from .history import HistoryLike, as_history
+from .._validate import finite
+from .declared import check, choice, element, history, quantity
+from .declared import rod as rod_index
+from .declared import spans as span_list
+from .history import HistoryLike
+
+_ROD = "The rod: its name or its index (0 = first rod)."
 
 
+@element("load", "force")
 @dataclass(frozen=True, eq=False)
 class NodalForce:
-    """A prescribed external force F(t) (N, positive in +x) at ``position`` (m from the left end of rod
-    number ``rod``). It acts on the lattice node nearest to ``position`` (thesis Sec. 3.1: line loads are
-    lumped to nodes, forces are constant during a step). End faces take :class:`~rodimpact.ForceEnd` instead.
+    """A prescribed force (positive in +x) at the node nearest to `position`.
+
+    F(t) in N acts at ``position`` (m from the left end of rod number ``rod``), on the lattice node nearest to
+    it (thesis Sec. 3.1: line loads are lumped to nodes, forces are constant during a step). End faces take
+    :class:`~rodimpact.ForceEnd` instead.
     """
 
-    rod: int
-    position: float
-    force: HistoryLike
-    interpolation: str = "linear"
+    rod: int = rod_index(_ROD)
+    position: float = quantity("length", "Distance from the rod's left end.", bound=None)
+    force: HistoryLike = history("force", "Force history.")
+    interpolation: str = choice("How samples are interpolated: `linear` or `previous` (hold).",
+                                ("linear", "previous"), "linear")
 
     def __post_init__(self) -> None:
-        if not isinstance(self.rod, int) or self.rod < 0:
-            raise ValueError(f"NodalForce.rod: must be a rod index >= 0, got {self.rod!r}")
-        object.__setattr__(self, "position", finite("NodalForce.position", self.position, "m"))
-        object.__setattr__(self, "force", as_history(self.force, "NodalForce.force", self.interpolation, "N"))
+        check(self)
 
 
+@element("load", "bearings")
 @dataclass(frozen=True)
 class Bearings:
-    """Coulomb friction of plain bearings on rod number ``rod`` (thesis eqs. 3.21-3.23).
+    """Coulomb friction of plain bearings (thesis eqs. 3.21-3.23): the total friction mu m g is shared by the
+    nodes inside the spans. One table per rod.
 
     The total friction force F_R = mu m g (``friction_coefficient`` mu, the rod's mass m, ``gravity`` g in
     N/kg) -- or ``normal_load`` * mu if a normal load in N is given -- is shared equally by the interior nodes
@@ -39,15 +47,15 @@ class Bearings:
     (v = 0) instead of chattering (set-valued Coulomb law, see docs/method.md).
     """
 
-    rod: int
-    spans: Sequence[tuple[float, float]]
-    friction_coefficient: float
-    gravity: float = 9.81
-    normal_load: Optional[float] = None
+    rod: int = rod_index(_ROD)
+    spans: Sequence[tuple[float, float]] = span_list("Bearing spans `[[start, end], ...]` from the rod's left end.")
+    friction_coefficient: float = quantity("dimensionless", "Friction coefficient mu.", bound="non_negative")
+    gravity: float = quantity("acceleration", "Gravitational acceleration g.", default=9.81)
+    normal_load: Optional[float] = quantity("force", "Total normal load instead of the rod's weight.",
+                                            bound="non_negative", default=None)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.rod, int) or self.rod < 0:
-            raise ValueError(f"Bearings.rod: must be a rod index >= 0, got {self.rod!r}")
+        check(self)
         spans = []
         for i, span in enumerate(self.spans):
             if len(span) != 2:
@@ -64,8 +72,3 @@ class Bearings:
             if a1 < b0:
                 raise ValueError(f"Bearings.spans: bearings must not overlap, ({a0}, {b0}) and ({a1}, {b1}) do")
         object.__setattr__(self, "spans", tuple(spans))
-        object.__setattr__(self, "friction_coefficient",
-                           non_negative("Bearings.friction_coefficient", self.friction_coefficient))
-        object.__setattr__(self, "gravity", positive("Bearings.gravity", self.gravity, "N/kg"))
-        if self.normal_load is not None:
-            object.__setattr__(self, "normal_load", non_negative("Bearings.normal_load", self.normal_load, "N"))

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from .._validate import positive
+from .declared import check, quantity
 
 
 @dataclass(frozen=True)
@@ -24,16 +25,15 @@ class Material:
         Optional label used in reports.
     """
 
-    youngs_modulus: float
-    density: float
+    youngs_modulus: float = quantity("pressure", "Young's modulus E.")
+    density: float = quantity("density", "Density rho.")
     name: str = ""
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str):
             raise TypeError(f"Material.name: must be a string, got {type(self.name).__name__} {self.name!r} "
                             "(Material takes youngs_modulus, density, name; the Poisson ratio is not used in 1D)")
-        object.__setattr__(self, "youngs_modulus", positive("youngs_modulus", self.youngs_modulus, "Pa"))
-        object.__setattr__(self, "density", positive("density", self.density, "kg/m^3"))
+        check(self)
 
     @property
     def wave_speed(self) -> float:

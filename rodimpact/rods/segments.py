@@ -18,7 +18,8 @@ from typing import Callable, Optional
 import numpy as np
 
 from .._units import is_quantity
-from .._validate import finite, finite_array, positive
+from .._validate import finite_array
+from .declared import check, element, quantity
 from .material import Material, as_material
 
 ArrayLike = np.ndarray | float
@@ -35,7 +36,7 @@ def _check_area(name: str, area: np.ndarray, where: str) -> None:
 class Segment:
     """Base class: a rod piece of ``length`` (m) with area function :meth:`area` and optional material."""
 
-    length: float
+    length: float = quantity("length", "Length of the segment.")
     material: Optional[Material] = field(default=None, kw_only=True)
 
     def __init_subclass__(cls, **kwargs) -> None:
@@ -47,15 +48,19 @@ class Segment:
             return
 
         def __post_init__(self, _own=own) -> None:
-            if "_with_units" not in self.__dict__:
-                object.__setattr__(self, "_with_units", frozenset(
-                    k for k, v in self.__dict__.items() if isinstance(v, str) or is_quantity(v)))
+            self._note_units()
             _own(self)
 
         cls.__post_init__ = __post_init__
 
+    def _note_units(self) -> None:
+        if "_with_units" not in self.__dict__:
+            object.__setattr__(self, "_with_units", frozenset(
+                k for k, v in self.__dict__.items() if isinstance(v, str) or is_quantity(v)))
+
     def __post_init__(self) -> None:
-        object.__setattr__(self, "length", positive(f"{type(self).__name__}.length", self.length, "m"))
+        self._note_units()
+        check(self)            # the declared fields: SI floats within their bounds
         if self.material is not None:          # a Material or a preset name ("steel"), as Rod accepts
             object.__setattr__(self, "material", as_material(self.material, f"{type(self).__name__}.material"))
         s = np.linspace(0.0, self.length, 65)
@@ -75,68 +80,56 @@ class Segment:
         return np.sqrt(4.0 * self.area(s) / math.pi)
 
 
+@element("segment", "cylinder")
 @dataclass(frozen=True)
 class Cylinder(Segment):
-    """Solid circular cylinder of constant ``diameter`` (m)."""
+    """Solid circular cylinder."""
 
-    diameter: float
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "diameter", positive("Cylinder.diameter", self.diameter, "m"))
-        super().__post_init__()
+    diameter: float = quantity("length", "Diameter.")
 
     def area(self, s: ArrayLike) -> np.ndarray:
         return np.full(np.shape(s), 0.25 * math.pi * self.diameter**2)
 
 
+@element("segment", "tube")
 @dataclass(frozen=True)
 class Tube(Segment):
-    """Hollow circular tube with constant ``outer_diameter`` and ``inner_diameter`` (bore), m."""
+    """Hollow circular tube (constant bore)."""
 
-    outer_diameter: float
-    inner_diameter: float
+    outer_diameter: float = quantity("length", "Outer diameter.")
+    inner_diameter: float = quantity("length", "Inner diameter (bore), 0 <= inner < outer.", bound="non_negative")
 
     def __post_init__(self) -> None:
-        d_out = positive("Tube.outer_diameter", self.outer_diameter, "m")
-        d_in = finite("Tube.inner_diameter", self.inner_diameter, "m")
-        if not 0.0 <= d_in < d_out:
-            raise ValueError(f"Tube.inner_diameter: must satisfy 0 <= inner < outer = {d_out} m, got {d_in} m")
-        object.__setattr__(self, "outer_diameter", d_out)
-        object.__setattr__(self, "inner_diameter", d_in)
+        check(self)
+        if not 0.0 <= self.inner_diameter < self.outer_diameter:
+            raise ValueError(f"Tube.inner_diameter: must satisfy 0 <= inner < outer = {self.outer_diameter} m, "
+                             f"got {self.inner_diameter} m")
         super().__post_init__()
 
     def area(self, s: ArrayLike) -> np.ndarray:
         return np.full(np.shape(s), 0.25 * math.pi * (self.outer_diameter**2 - self.inner_diameter**2))
 
 
+@element("segment", "cone")
 @dataclass(frozen=True)
 class Cone(Segment):
-    """Frustum: the diameter changes linearly from ``diameter_start`` to ``diameter_end`` (m)."""
+    """Frustum: the diameter changes linearly along the segment."""
 
-    diameter_start: float
-    diameter_end: float
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "diameter_start", positive("Cone.diameter_start", self.diameter_start, "m"))
-        object.__setattr__(self, "diameter_end", positive("Cone.diameter_end", self.diameter_end, "m"))
-        super().__post_init__()
+    diameter_start: float = quantity("length", "Diameter at the left end.")
+    diameter_end: float = quantity("length", "Diameter at the right end.")
 
     def area(self, s: ArrayLike) -> np.ndarray:
         d = self.diameter_start + (self.diameter_end - self.diameter_start) * np.asarray(s) / self.length
         return 0.25 * math.pi * d**2
 
 
+@element("segment", "linear-area")
 @dataclass(frozen=True)
 class LinearAreaTaper(Segment):
-    """The area changes linearly from ``area_start`` to ``area_end`` (m^2) (thesis setup 3, x1..x2)."""
+    """The cross-section area changes linearly (thesis setup 3, x1..x2)."""
 
-    area_start: float
-    area_end: float
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "area_start", positive("LinearAreaTaper.area_start", self.area_start, "m^2"))
-        object.__setattr__(self, "area_end", positive("LinearAreaTaper.area_end", self.area_end, "m^2"))
-        super().__post_init__()
+    area_start: float = quantity("area", "Area at the left end.")
+    area_end: float = quantity("area", "Area at the right end.")
 
     def area(self, s: ArrayLike) -> np.ndarray:
         return self.area_start + (self.area_end - self.area_start) * np.asarray(s, dtype=float) / self.length
@@ -146,47 +139,44 @@ class LinearAreaTaper(Segment):
 class _AnalyticHorn(Segment):
     """Common parameters of the thesis Tab. 2.1 families: ``area_start`` A0 (m^2) and ``xi`` (1/m)."""
 
-    area_start: float
-    xi: float
-
-    def __post_init__(self) -> None:
-        name = type(self).__name__
-        object.__setattr__(self, "area_start", positive(f"{name}.area_start", self.area_start, "m^2"))
-        object.__setattr__(self, "xi", finite(f"{name}.xi", self.xi, "1/m"))
-        super().__post_init__()
+    area_start: float = quantity("area", "Area A0 at the left end.")
+    xi: float = quantity("wavenumber", "Flare constant xi.", bound=None)
 
 
+@element("segment", "quadratic-horn")
 @dataclass(frozen=True)
 class QuadraticHorn(_AnalyticHorn):
-    """A(s) = A0 (1 + xi s)^2 (thesis Tab. 2.1, b = 0: non-dispersive)."""
+    """A(s) = area_start * (1 + xi s)^2 (thesis Tab. 2.1, b = 0: non-dispersive)."""
 
     def area(self, s: ArrayLike) -> np.ndarray:
         return self.area_start * (1.0 + self.xi * np.asarray(s, dtype=float)) ** 2
 
 
+@element("segment", "exponential-horn")
 @dataclass(frozen=True)
 class ExponentialHorn(_AnalyticHorn):
-    """A(s) = A0 exp(xi s) (thesis Tab. 2.1, eq. 3.28; setup 1 / Fig. 3.11 with xi = 1/2 per m)."""
+    """A(s) = area_start * exp(xi s) (thesis Tab. 2.1, eq. 3.28; setup 1 / Fig. 3.11 with xi = 1/2 per m)."""
 
     def area(self, s: ArrayLike) -> np.ndarray:
         return self.area_start * np.exp(self.xi * np.asarray(s, dtype=float))
 
 
+@element("segment", "cosh-horn")
 @dataclass(frozen=True)
 class CoshHorn(_AnalyticHorn):
-    """A(s) = A0 cosh^2(xi s) (thesis Tab. 2.1)."""
+    """A(s) = area_start * cosh(xi s)^2 (thesis Tab. 2.1)."""
 
     def area(self, s: ArrayLike) -> np.ndarray:
         return self.area_start * np.cosh(self.xi * np.asarray(s, dtype=float)) ** 2
 
 
+@element("segment", "cos-horn")
 @dataclass(frozen=True)
 class CosHorn(_AnalyticHorn):
-    """A(s) = A0 cos^2(xi s) (thesis Tab. 2.1); requires |xi| length < pi/2 so the area stays positive."""
+    """A(s) = area_start * cos(xi s)^2 (thesis Tab. 2.1); |xi| length < pi/2."""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "xi", finite("CosHorn.xi", self.xi, "1/m"))
-        object.__setattr__(self, "length", positive("CosHorn.length", self.length, "m"))
+        check(self)
         if abs(self.xi) * self.length >= math.pi / 2:
             raise ValueError(f"CosHorn.xi: |xi| * length must be < pi/2 so that the area stays > 0, "
                              f"got {abs(self.xi) * self.length:.4g}")

@@ -290,9 +290,9 @@ def _bad(edit_from: str, edit_to: str) -> str:
     ('[[rods]]\nmaterial = "steel"\n[rods.elements]\ndt = 1e-6\nimpedance = [1e4]\n[simulation]\nsteps = 3\n',
      "rods[0].material: an impedance-level rod has no material"),
     ('[[rods]]\n[[rods.segments]]\nshape = "tube"\nlength = 1\nouter_diameter = 0.02\ninner_diameter = 0.03\n'
-     '[simulation]\nsteps = 3\n', "rods[0].segments[0].inner_diameter: must be smaller than outer_diameter"),
+     '[simulation]\nsteps = 3\n', "rods[0].segments[0].inner_diameter: must satisfy 0 <= inner < outer"),
     ('[[rods]]\n[[rods.segments]]\nshape = "cos-horn"\nlength = 4\narea_start = 1e-3\nxi = 0.5\n'
-     '[simulation]\nsteps = 3\n', "rods[0].segments[0]: CosHorn.xi: |xi| * length must be < pi/2"),
+     '[simulation]\nsteps = 3\n', "rods[0].segments[0].xi: |xi| * length must be < pi/2"),
     ('[[rods]]\n[[rods.segments]]\nshape = "expression"\nlength = 1\narea = "1e-3 - 2e-3*s"\n'
      '[simulation]\nsteps = 3\n', "rods[0].segments[0]: AreaFunction: the cross-section area must be finite and > 0"),
     ('[[rods]]\n[[rods.segments]]\nshape = "expression"\nlength = 1\narea = "A9*s"\n[simulation]\nsteps = 3\n',
