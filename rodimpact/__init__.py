@@ -31,7 +31,8 @@ from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, For
 from .design import (DesignResult, EfficiencyObjective, MatchObjective, SearchOptions, StrikerLimits,
                      design)
 from .io.model import Model, dump_model, load_model, loads_model, save_model
-from .io.results import load, save, summarize
+from .io.results import summarize
+from .io.storage import load, save
 from . import inverse, io
 
 _LAZY_SUBPACKAGES = ("plotting", "reference", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use

@@ -5,8 +5,8 @@ A design spec is a synthesis spec (docs/cli.md: ``[[struck]]``, ``far_end``, ``[
 impedance bounds, bore, mass) and the ``[design]`` settings (objective, elements, dt, steps). Reading it makes
 the arguments of :func:`rodimpact.design`: the objective (``[target]`` or the efficiency), the struck
 :class:`~rodimpact.System`, the :class:`~rodimpact.StrikerLimits` and the :class:`~rodimpact.SearchOptions`.
-:func:`run` calls :func:`rodimpact.design` and verifies the result with the direct solver; :func:`save` writes a
-folder.
+:func:`run` calls :func:`rodimpact.design` and verifies the result with the direct solver; :func:`write_files`
+writes its data files (the command line's folder with figures: :mod:`rodimpact.output_folders`).
 """
 
 from __future__ import annotations
@@ -28,7 +28,8 @@ from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
     validate_table
-from .synthesis_spec import TARGET_TYPES, _target, finish_folder, read_struck, write_plots
+from .storage import save
+from .synthesis_spec import TARGET_TYPES, _target, read_struck
 
 # ============================================================================================ schema
 STRIKER = Table("striker", "The striker to be designed and its constraints.", (
@@ -323,32 +324,17 @@ def format_summary(s: dict[str, Any], spec: DesignSpec) -> str:
     return "\n".join(lines)
 
 
-def save(r: DesignRun, spec: DesignSpec, outdir: str | Path, *, overwrite: bool = False,
-         plots: bool = True) -> dict[str, Any]:
-    """Write a design to ``outdir`` (atomically, with the output-folder safety of
-    :func:`rodimpact.io.results.check_output_folder`): ``spec.toml``, ``striker.csv`` (profile listed left to
-    right, readable by ``[rods.elements] file``), ``design.nc``, ``summary.json``, ``plots/`` and
-    ``verification/`` (the direct simulation with its ``model.toml``). Returns the summary."""
-    from .results import AtomicFolder
-
+def write_files(r: DesignRun, spec: DesignSpec, folder: Path) -> list[str]:
+    """Write the data files of a design into the (new) ``folder`` and return their names: ``spec.toml``,
+    ``striker.csv`` (profile listed left to right, readable by ``[rods.elements] file``) and ``design.nc``. The
+    command line's output folder adds ``verification/`` (the direct simulation with its ``model.toml``),
+    ``plots/`` and ``summary.json`` (:func:`rodimpact.output_folders.write_spec_run`)."""
     res = r.result
-    with AtomicFolder(outdir, overwrite) as tmp:
-        (tmp / "spec.toml").write_text(spec.text, encoding="utf-8")
-        limits = spec.kwargs["limits"]
-        res.to_csv(tmp / "striker.csv", limits.material, limits.bore)
-        res.save(tmp / "design.nc")
-        summary = finish_folder(tmp, ["spec.toml", "striker.csv", "design.nc"], r.verification,
-                                plots and spec.plots, lambda: _plots(res, tmp / "plots"), summarize_run(r, spec))
-    return summary
-
-
-def _plots(res: Any, folder: Path) -> list[str]:
-    from ..plotting import design as dp
-
-    folder.mkdir(parents=True, exist_ok=True)
-    return write_plots(folder, [("force.png", lambda ax: dp.plot_design_force(res, ax=ax)),
-                                ("profile.png", lambda ax: dp.plot_design_profile(res, ax=ax)),
-                                ("convergence.png", lambda ax: dp.plot_convergence(res, ax=ax))])
+    (folder / "spec.toml").write_text(spec.text, encoding="utf-8")
+    limits = spec.kwargs["limits"]
+    res.to_csv(folder / "striker.csv", limits.material, limits.bore)
+    save(res, folder / "design.nc")
+    return ["spec.toml", "striker.csv", "design.nc"]
 
 
 # ============================================================================================ template

@@ -78,9 +78,15 @@ def test_xarray_and_netcdf(small, tmp_path):
     ds = small.to_xarray()
     assert np.array_equal(ds["impedance"].values, small.impedance)
     assert ds.attrs["misfit"] == small.misfit
-    p = small.save(tmp_path / "design.nc")
+    p = ri.save(small, tmp_path / "design.nc")
     with pytest.raises(FileExistsError):
-        small.save(p)
+        ri.save(small, p)
+    back = ri.load(p)                       # the arrays, the report and the diagnostics of a real design
+    for name in ("impedance", "time", "achieved", "face_force", "target", "compared", "window_values"):
+        assert np.array_equal(getattr(back, name), getattr(small, name)), name
+    assert (back.misfit, back.constraint_report, back.material, back.location) == \
+        (small.misfit, small.constraint_report, small.material, small.location)
+    assert back.convergence == small.convergence
 
 
 def test_mass_and_velocity_bounds():

@@ -8,7 +8,7 @@ import pytest
 
 import rodimpact as ri
 from rodimpact import cli
-from rodimpact.inverse import SynthesisResult, academic_example
+from rodimpact.inverse import academic_example
 from rodimpact.io.quantities import ModelError
 
 MODEL = """
@@ -42,7 +42,7 @@ def test_synthesize_csv_model_simulate_reproduces_the_synthesized_force(tmp_path
     monkeypatch.chdir(tmp_path)
     assert cli.main(["init", "synthesize", "--quiet"]) == 0
     assert cli.main(["synthesize", "synthesis.toml", "-o", "out", "--no-plots", "--quiet"]) == 0
-    res = SynthesisResult.load(tmp_path / "out" / "synthesis.nc")
+    res = ri.load(tmp_path / "out" / "synthesis.nc")
     assert res.n_feasible == 100
     (tmp_path / "model.toml").write_text(MODEL.format(extra=""))
     assert cli.main(["simulate", "model.toml", "-o", "sim", "--no-plots", "--quiet"]) == 0
