@@ -7,8 +7,9 @@ n = 0.31, C = 0.025, m = 1.09), requested engineering rate 2000 1/s over 2-15 % 
 
 * designed striker: ``design_striker`` (n = 100 elements, the incident pulse for the constant rate matched with
   the lattice's exact adjoint gradients), then the whole bar simulated with the specimen;
-* designed shaper: ``design_shaper`` for a 0.4 m striker of the bar's section and an annealed copper shaper
-  (Frew, Forrestal and Chen 2002: sigma_0 = 360 MPa, n = 0.3, m = 2);
+* designed shaper: ``design_shaper`` for a 0.4 m striker of the bar's section and a copper-like shaper of
+  the Frew, Forrestal and Chen (2002) form with sigma_0 = 360 MPa, n = 0.3, m = 2 (illustrative constants of
+  that form, not a fit to a tested copper);
 * baseline: a uniform striker of the designed striker's length at its best velocity (same run, same measure).
 
 Flatness: the largest |rate / 2000 - 1| while the specimen is inside the strain window.

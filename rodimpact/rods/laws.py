@@ -157,10 +157,10 @@ class FrewShaper(Law):
     sigma = sigma_0 eps^n / (1 - eps^m) in compression (engineering measures: the law's fit includes the area
     change), elastic unloading with E from the largest strain reached; compression only."""
 
-    stress: float = quantity("pressure", "Stress constant sigma_0 (annealed C11000 copper: 360 MPa, Frew et al.).")
-    n: float = quantity("dimensionless", "Exponent n (copper: 0.3).")
-    m: float = quantity("dimensionless", "Exponent m (copper: 2.0).")
-    youngs_modulus: float = quantity("pressure", "Unloading modulus E (copper: 117 GPa).", default=117e9)
+    stress: float = quantity("pressure", "Stress constant sigma_0 (fitted per shaper material, Frew et al. 2002).")
+    n: float = quantity("dimensionless", "Exponent n.")
+    m: float = quantity("dimensionless", "Exponent m.")
+    youngs_modulus: float = quantity("pressure", "Unloading modulus E (default: copper, 117 GPa).", default=117e9)
     code = FREW
     compression_only = True
 
