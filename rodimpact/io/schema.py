@@ -83,7 +83,7 @@ class Variants:
 # ============================================================================================ the schema
 #: Field kinds of the element declarations (rodimpact.rods.declared) -> field kinds of the schema
 _DECLARED_KINDS = {"quantity": "quantity", "history": "history", "choice": "string", "flag": "boolean",
-                   "rod": "rod", "spans": "spans"}
+                   "rod": "rod", "spans": "spans", "path": "string"}
 
 
 def element_table(name: str, cls: type, example: str = "") -> Table:

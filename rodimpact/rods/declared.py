@@ -47,7 +47,8 @@ class Declaration:
 
     ``kind``: ``quantity`` (a float in SI), ``history`` (a time history of ``dimension``), ``choice`` (one of
     ``choices``), ``flag`` (true/false), ``rod`` (a rod index, written as a rod name in files), ``spans``
-    (pairs of lengths) or ``part`` (an element of the registered ``family``, e.g. a specimen's law). ``dimension`` names an entry of :data:`rodimpact._quantities.DIMENSIONS` (``length``,
+    (pairs of lengths), ``path`` (a file name) or ``part`` (an element of the registered ``family``, e.g. a
+    specimen's law). ``dimension`` names an entry of :data:`rodimpact._quantities.DIMENSIONS` (``length``,
     ``stiffness``, ...), which gives its SI unit. ``bound``: ``positive``, ``non_negative`` or ``None`` (any
     finite value).
     """
@@ -109,6 +110,11 @@ def spans(doc: str) -> Any:
     return _field(Declaration("spans", doc, "length"), REQUIRED)
 
 
+def path(doc: str) -> Any:
+    """An optional file name (model files read it relative to the model file's folder)."""
+    return _field(Declaration("path", doc), None)
+
+
 def part(family: str, doc: str) -> Any:
     """A required element of the registered ``family`` (a nested table with its ``type`` in model files)."""
     return _field(Declaration("part", doc, family=family), REQUIRED)
@@ -148,6 +154,8 @@ def check(obj: Any) -> None:
             raise TypeError(f"{owner}.{f.name}: must be True or False, got {value!r}")
         elif d.kind == "rod" and (isinstance(value, bool) or not isinstance(value, int) or value < 0):
             raise ValueError(f"{owner}.{f.name}: must be a rod index >= 0, got {value!r}")
+        elif d.kind == "path" and value is not None and not isinstance(value, str):
+            raise TypeError(f"{owner}.{f.name}: must be a file name (a string), got {type(value).__name__}")
         elif d.kind == "part" and type(value) not in ELEMENTS.get(d.family, {}).values():
             names = ", ".join(cls.__name__ for cls in ELEMENTS.get(d.family, {}).values())
             raise TypeError(f"{owner}.{f.name}: must be one of {names}, got {type(value).__name__}")
