@@ -26,18 +26,18 @@ _HISTORIES = ("pr_N", "pr_V", "pr_u", "junction_N", "junction_contact", "end_N",
 
 @njit(inline="always", cache=True)
 def _grouped(end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end,
-             junction_par, sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N,
+             sp_elem, sp_cap, sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N,
              junction_contact, end_N, end_V, rod_NL, rod_VL, rod_NR, rod_VR):
     """The arrays :func:`boundaries` needs, grouped into tuples (ends, junctions, specials, probes, outputs,
     rod-end nodes); few arguments let the compiler inline :func:`boundaries` into the step loop."""
-    return ((end_code, end_par, end_state, end_value), (junction_code, junction_state, gap, gap_tol, u_end,
-                                                                                 junction_par),
+    return ((end_code, end_par, end_state, end_value), (junction_code, junction_state, gap, gap_tol, u_end),
             (sp_elem, sp_cap, sp_force, sp_F, sp_V), (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp),
             (junction_N, junction_contact, end_N, end_V), (rod_NL, rod_VL, rod_NR, rod_VR))
 
 
 def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_state, end_value,
-               junction_code, junction_state, gap, gap_tol, u_end, junction_par, sp_elem, sp_cap, sp_force, pr_rod, pr_local, pr_sp,
+               junction_code, junction_state, gap, gap_tol, u_end, junction_par, junction_q, sp_elem, sp_cap,
+               sp_force, pr_rod, pr_local, pr_sp,
                pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N, end_V, acc, dt):
     """Advance ``n_steps`` steps in place (compiled path). The i-th step reads and writes column ``i`` of the
     per-step input (``end_value``, ``sp_force``) and output arrays.
@@ -59,10 +59,11 @@ def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_sta
     sp_V = np.zeros(sp_elem.size)
     n_sp = sp_elem.size
     ends, junctions, specials, probes, outputs, rod_nodes = _grouped(
-        end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end, junction_par,
+        end_code, end_par, end_state, end_value, junction_code, junction_state, gap, gap_tol, u_end,
         sp_elem, sp_cap,
         sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N,
         end_V, rod_NL, rod_VL, rod_NR, rod_VR)
+    junctions = junctions + (junction_par, junction_q)     # the joints of later work (not in the old loop)
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
     for i in range(n_steps):

@@ -62,13 +62,13 @@ def _z(d: float) -> float:
     return ri.STEEL.impedance(np.pi / 4 * d * d)
 
 
-def run_design(n: int, **kw):
+def run_design(n: int, search: ri.SearchOptions | None = None):
     dt, bar, target = _case(n)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         t0 = time.perf_counter()
-        d = ri.design(target, struck=bar, striker_velocity=V, n=n, dt=dt, far_end="nonreflecting",
-                      diameter_bounds=(D_MIN, D_MAX), material=ri.STEEL, **kw)
+        d = ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), V, n, dt,
+                      limits=ri.StrikerLimits(diameter_bounds=(D_MIN, D_MAX), material=ri.STEEL), search=search)
         return d, time.perf_counter() - t0
 
 
@@ -99,18 +99,18 @@ def run_baseline(n: int, iterations: int):
 BEST_KNOWN, GOAL = 0.1254, 0.005
 
 
-def run_piston(n, **kw):
+def run_piston(n):
     dt, z_rod = 2e-6, 60e3
     rod = ri.Rod.from_impedance([z_rod] * 40, dt)
     k = 3.0 * z_rod / (2 * 20 * dt)
     t0 = time.perf_counter()
-    d = ri.design(None, objective="efficiency", struck=rod, far_end=ri.BitRockEnd(k, 3 * k), striker_velocity=10.0,
-                  n=n, dt=dt, diameter_bounds=(0.02, 0.08), mass=20 * dt * z_rod, **kw)
+    d = ri.design(ri.EfficiencyObjective(), ri.System.struck(rod, far_end=ri.BitRockEnd(k, 3 * k)), 10.0, n, dt,
+                  limits=ri.StrikerLimits(diameter_bounds=(0.02, 0.08), mass=20 * dt * z_rod))
     return d, time.perf_counter() - t0
 
 
 def global_phase(write: bool) -> None:
-    run_design(4, max_iterations=3, starts=1)                  # compile/load the kernels once
+    run_design(4, ri.SearchOptions(max_iterations=3, starts=1))  # compile/load the kernels once
     d, t_d = run_design(50)
     opt = d.diagnostics["local_optima"]["values"]
     gap = d.misfit / BEST_KNOWN - 1
@@ -158,11 +158,11 @@ def main() -> None:
     sizes = (8, 16) if args.quick else (50, 200)
     big = 40 if args.quick else 1000
     iters = 5 if args.quick else BASELINE_ITERATIONS
-    kw = dict(max_iterations=5) if args.quick else {}
-    run_design(4, **kw)                                        # compile/load the kernels once
+    search = ri.SearchOptions(max_iterations=5) if args.quick else None
+    run_design(4, search)                                      # compile/load the kernels once
     rows = []
     for n in sizes:
-        d, t_d = run_design(n, **kw)
+        d, t_d = run_design(n, search)
         m_b, t_b, runs_b = run_baseline(n, iters)
         rows.append((n, d.misfit, t_d, d.diagnostics["forward_runs"], d.diagnostics["gradient_runs"], m_b, t_b,
                      runs_b))
@@ -170,7 +170,7 @@ def main() -> None:
               f"{d.diagnostics['gradient_runs']} gradient runs); baseline misfit {m_b:.4g} in {t_b:.3g} s "
               f"({runs_b} simulations); speed-up {t_b / t_d:.3g}")
     tracemalloc.start()
-    d, t_big = run_design(big, **kw)
+    d, t_big = run_design(big, search)
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024

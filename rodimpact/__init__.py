@@ -13,12 +13,13 @@ from .rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, Exp
 from .rods.rod import Rod
 from .rods.history import History
 from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd, Junction,
-                              NonReflectingEnd, SpringDashpot, SpringEnd, VelocityEnd)
+                              NonReflectingEnd, PulseShaper, Specimen, SpringDashpot, SpringEnd, VelocityEnd)
+from .rods.laws import CowperSymonds, ElasticPlastic, FrewShaper, JohnsonCook, LinearElastic, TabulatedLaw
 from .rods.loads import Bearings, NodalForce
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
-from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
-                            SimulationResult)
+from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents, Probe,
+                            ProbeHistory, SimulationResult)
 from .direct.recording import Outputs
 from .direct.problem import Problem, TimeGrid
 from .direct.simulate import simulate
@@ -27,9 +28,11 @@ from .direct.batch import BatchOutputs, BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
                       impedance_to_shape, synthesize, transform_force)
-from .design import DesignResult, design
+from .design import (DesignResult, EfficiencyObjective, MatchObjective, SearchOptions, StrikerLimits,
+                     design)
 from .io.model import Model, dump_model, load_model, loads_model, save_model
-from .io.results import load, save, summarize
+from .io.results import summarize
+from .io.storage import load, save
 from . import inverse, io
 
 _LAZY_SUBPACKAGES = ("plotting", "reference", "shpb", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
@@ -49,16 +52,17 @@ __all__ = [
     "CosHorn", "TabulatedProfile", "stepped_profile", "AreaFunction",
     "Rod", "History", "System", "InitialState",
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
-    "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "NodalForce", "Bearings",
+    "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "Specimen", "PulseShaper",
+    "LinearElastic", "ElasticPlastic", "JohnsonCook", "CowperSymonds", "FrewShaper", "TabulatedLaw", "NodalForce", "Bearings",
     "Lattice", "build_lattice",
     "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
     "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
     "FieldSnapshots", "EnergyHistory",
-    "JunctionEvents", "BitRockOutcome",
+    "JunctionEvents", "BitRockOutcome", "JointOutcome",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
-    "design", "DesignResult",
+    "design", "DesignResult", "MatchObjective", "EfficiencyObjective", "StrikerLimits", "SearchOptions",
     "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
     "inverse", "io", "plotting", "reference", "shpb", "signals",
 ]

@@ -1,4 +1,5 @@
-"""Keywords that a public function no longer takes because their value now lives in an object it receives.
+"""Keywords that a public function no longer takes because their value now lives in an object it receives, and
+methods that are gone (:class:`removed_method`).
 
 A call that still gives one gets a ``TypeError`` that says where the value went (``right: give the ends in the
 System: ri.System(rods, velocities, right=...)``), not Python's bare "unexpected keyword argument"; so does a
@@ -10,7 +11,7 @@ from __future__ import annotations
 
 import functools
 import inspect
-from typing import Any, Callable, Mapping, Sequence, TypeVar
+from typing import Any, Callable, Mapping, Optional, Sequence, TypeVar
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -44,3 +45,19 @@ def moved(where: Mapping[str, str], positional: Sequence[str] = ()) -> Callable[
         return call  # type: ignore[return-value]
 
     return wrap
+
+
+class removed_method:
+    """A method that is gone: looking it up on the class or an instance raises an ``AttributeError`` that says
+    what replaces it (``SynthesisResult.save: removed; ...``), not Python's bare "has no attribute"; ``hasattr``
+    is False, as for any missing attribute."""
+
+    def __init__(self, instead: str) -> None:
+        self.instead = instead
+        self.name = ""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = f"{owner.__name__}.{name}"
+
+    def __get__(self, obj: Any, owner: Optional[type] = None) -> Any:
+        raise AttributeError(f"{self.name}: removed; {self.instead}")

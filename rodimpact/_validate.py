@@ -51,6 +51,26 @@ def finite(name: str, value: Any, unit: str = "") -> float:
     return x
 
 
+def integer(name: str, value: Any, minimum: int, what: str = "") -> int:
+    """Return ``value`` as an int after checking it is an integer (not a bool) >= ``minimum``; ``what`` (what the
+    number counts) is said in the message."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise ValueError(f"{name}: must be an integer >= {minimum}{f' ({what})' if what else ''}, got {value!r}")
+    return int(value)
+
+
+def real_number(name: str, value: Any, valid: str, ok: Any) -> float:
+    """``value`` as a float if it is a real number (int or float, not bool, no string or sequence coerced),
+    finite and ``ok(value)``; otherwise a TypeError (wrong type) or ValueError (wrong value) naming ``name`` and
+    saying what is ``valid``."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name}: must be {valid}, got {type(value).__name__} {value!r}")
+    x = float(value)
+    if not (np.isfinite(x) and ok(x)):
+        raise ValueError(f"{name}: must be {valid}, got {value!r}")
+    return x
+
+
 def finite_array(name: str, values: Any, *, ndim: int = 1, min_size: int = 1, unit: str = "") -> np.ndarray:
     """Return ``values`` as a float array after checking shape and finiteness; with a ``unit`` (SI), a pint
     Quantity array or entries given as unit strings / Quantities are converted to it."""

@@ -1,4 +1,5 @@
-"""The ``rodimpact`` command line: thin wrappers around the Python API.
+"""The ``rodimpact`` command line: thin wrappers around the Python API (output folders with figures:
+:mod:`rodimpact.output_folders`).
 
 Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design]``,
 ``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``shpb reduce RECORDING...``,
@@ -164,7 +165,8 @@ def _write_file(path: Path, text: str, force: bool, what: str = "file") -> None:
 def cmd_simulate(args: argparse.Namespace) -> int:
     from .io.preflight import check_run
     from .io.model import load_model
-    from .io.results import format_summary, save, summarize
+    from .io.results import format_summary, summarize
+    from .output_folders import write_simulation
 
     model_path = Path(args.model)
     out = _output(args, model_path.stem)
@@ -175,8 +177,8 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         result = _input_phase(lambda: model.simulate(progress=_progress(args),
                                                      max_element_updates=args.max_element_updates))
         if out is not None:
-            save(result, out, model=model, overwrite=args.force, plots=plots, csv=model.output.csv,
-                 fields=model.output.fields, snapshot_times=list(model.output.snapshot_times) or None)
+            write_simulation(result, out, model=model, overwrite=args.force, plots=plots, csv=model.output.csv,
+                             fields=model.output.fields, snapshot_times=list(model.output.snapshot_times) or None)
     computed = summarize(result)
     text = format_summary(_without_warnings(computed), model.title or model_path.name)
     if out is None:
@@ -191,7 +193,8 @@ def cmd_simulate(args: argparse.Namespace) -> int:
 
 # ============================================================================================ sweep
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from .io.model_sweep import check_model_grid_size, format_sweep, parse_grid, save_sweep, summary, sweep_model
+    from .io.model_sweep import check_model_grid_size, format_sweep, parse_grid, summary, sweep_model
+    from .output_folders import write_sweep
 
     model_path = Path(args.model)
     grid = _input_phase(lambda: parse_grid(args.grid))
@@ -203,7 +206,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
                                               progress=_progress(args), max_element_updates=args.max_element_updates))
         data = summary(ds, model_path, overrides)
         if out is not None:
-            save_sweep(ds, data, out, overwrite=args.force, plots=not args.no_plots)
+            write_sweep(ds, data, out, overwrite=args.force, plots=not args.no_plots)
     title = f"sweep of {model_path.name}: {data['points']} runs ({data['runner']}), {data['wall_time_s']:.2f} s"
     _report(data, format_sweep(ds, title), args, f"table written to {out / 'sweep.csv'}" if out else "")
     return EXIT_OK
@@ -307,8 +310,11 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
 
 
 def _run_spec(args: argparse.Namespace, module: Any, prepare: Any = None) -> int:
-    """Load a spec with ``module.load_spec``, ``run`` it, ``save`` the folder and report (synthesize, design);
-    ``prepare(spec)``, if given, adjusts the loaded spec from command-line flags."""
+    """Load a spec with ``module.load_spec``, ``run`` it, write the output folder
+    (:func:`rodimpact.output_folders.write_spec_run`) and report (synthesize, design); ``prepare(spec)``, if given,
+    adjusts the loaded spec from command-line flags."""
+    from .output_folders import write_spec_run
+
     spec_path = Path(args.spec)
     out = _output(args, spec_path.stem)
     with _claim_out(out, args.force):
@@ -317,7 +323,7 @@ def _run_spec(args: argparse.Namespace, module: Any, prepare: Any = None) -> int
             prepare(spec)
         result = _input_phase(lambda: module.run(spec))
         summary = (module.summarize_run(result, spec) if out is None
-                   else module.save(result, spec, out, overwrite=args.force, plots=not args.no_plots))
+                   else write_spec_run(result, spec, out, overwrite=args.force, plots=not args.no_plots))
     _report(summary, module.format_summary(_without_warnings(summary), spec), args,
             f"results written to {out}" if out else "", summary["warnings"])
     return EXIT_NO_EXACT if summary.get("feasible") is False else EXIT_OK

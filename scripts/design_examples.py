@@ -25,12 +25,12 @@ from rodimpact.plotting.design import plot_design_force, plot_design_profile, pl
 FIG = Path(__file__).resolve().parents[1] / "docs" / "figures"
 
 
-def half_sine(n: int, **kw):
+def half_sine(n: int, max_steps: int | None = None):
     dt = 100e-6 / (2 * n)
     bar = ri.Rod.from_impedance([ri.STEEL.impedance(np.pi / 4 * 0.02 ** 2)] * 8, dt)
     target = ri.inverse.ForceTarget.from_callable(lambda t: -80e3 * np.sin(np.pi * t / 100e-6), duration=100e-6)
-    return ri.design(target, struck=bar, striker_velocity=12.0, n=n, dt=dt, far_end="nonreflecting",
-                     diameter_bounds=(0.005, 0.06), material=ri.STEEL, **kw)
+    return ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), 12.0, n, dt,
+                     limits=ri.StrikerLimits(diameter_bounds=(0.005, 0.06), material=ri.STEEL, max_steps=max_steps))
 
 
 def drilling(n: int):
@@ -40,8 +40,8 @@ def drilling(n: int):
     k = 1.2564 * z / (2 * n * dt)          # the best x = k T / Z for the uniform piston of the rod's impedance
     rock = ri.BitRockEnd(k, 3 * k)
     m = n * dt * z
-    d = ri.design(None, objective="efficiency", struck=rod, far_end=rock, striker_velocity=10.0, n=n, dt=dt,
-                  diameter_bounds=(0.02, 0.09), mass=m)
+    d = ri.design(ri.EfficiencyObjective(), ri.System.struck(rod, far_end=rock), 10.0, n, dt,
+                  limits=ri.StrikerLimits(diameter_bounds=(0.02, 0.09), mass=m))
     uniform = ri.simulate(ri.System([ri.Rod.from_impedance([z] * n, dt), rod], [10.0, 0.0], right=rock),
                           steps=d.time.size, dt=dt)
     eta_u = -dt * np.dot(uniform.end_force["right"], uniform.end_velocity["right"]) / (0.5 * m * 100.0)

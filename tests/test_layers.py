@@ -1,9 +1,11 @@
 """Import direction between the package's layers (docs: architecture): a layer imports only the layers below it,
 so that there is no import circle (results know nothing about files or figures).
 
-Bottom to top: rods, lattice, direct, inverse, design, signals, testrig, shpb, plotting, io, examples, cli (signals, the
-measurement layer, does not import the solvers: the test rig that simulates sits above them); ``reference`` is
-independent of lattice and direct so that it can check them (inverse uses its closed form of eq. 4.26 as the
+Bottom to top: rods, lattice, direct, inverse, design, signals, testrig, shpb (the split-Hopkinson-bar
+application), then plotting and io side by side (io writes data files only; neither imports the other),
+output_folders (puts io's files and plotting's figures into one output folder for the command line and the
+examples), examples, cli (signals, the measurement layer, does not import the solvers: the test rig that simulates
+sits above them); ``reference`` is independent of lattice and direct so that it can check them (inverse uses its closed form of eq. 4.26 as the
 target of Lundberg and Lesser's example: one copy of the formula). The private helper modules at the top of the package
 (``_validate``, ``_permissions``, ...) may be used everywhere and import only each other; the package root is
 never imported from inside (``rodimpact._version`` holds the version). Checked twice: statically over every import statement
@@ -31,12 +33,16 @@ BELOW = {
     "testrig": {"rods", "lattice", "direct", "signals"},
     # the split-Hopkinson-bar application: composes the solvers and the measurement layer, below files and figures
     "shpb": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
+    # plotting draws and io reads and writes files: side by side, neither imports the other
     "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb"},
-    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "plotting"},
+    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb"},
+    # output folders with figures: io's data files and plotting's figures, put together
+    "output_folders": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
+                       "plotting", "io"},
     "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
-                 "plotting", "io"},
+                 "plotting", "io", "output_folders"},
     "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "plotting",
-            "io", "examples"},
+            "io", "output_folders", "examples"},
 }
 
 
@@ -100,12 +106,26 @@ def test_every_import_statement_points_down():
     assert not wrong, "imports against the layers:\n" + "\n".join(wrong)
 
 
+def test_io_and_plotting_never_import_each_other():
+    """io writes data files and plotting draws (issue 21): the command line and the examples compose them
+    (``rodimpact.output_folders``). Every import statement of either package, also inside functions."""
+    wrong = []
+    for own, other in (("io", "plotting"), ("plotting", "io")):
+        for path in sorted((PACKAGE / own).rglob("*.py")):
+            for target, _, line in static_imports(path):
+                if layer(target) == other:
+                    wrong.append(f"{path.relative_to(PACKAGE.parent)}:{line} imports {target}")
+    assert not wrong, "\n".join(wrong)
+
+
 def test_the_static_check_sees_an_upward_import():
     """The checker itself: a lazy import of io inside a result method (the circle this test guards against)."""
     assert not allowed("rodimpact.direct.result", "rodimpact.io.results", ("save",))
     assert not allowed("rodimpact.reference.modal", "rodimpact.direct.simulate", ("simulate",))
     assert not allowed("rodimpact.direct.simulate", "rodimpact", ("sweep",))
-    assert allowed("rodimpact.io.results", "rodimpact.plotting", ("save_plots",))
+    assert not allowed("rodimpact.io.results", "rodimpact.plotting", ("save_plots",))     # io writes data only
+    assert not allowed("rodimpact.plotting.sweep", "rodimpact.io.model_sweep", ("summary",))
+    assert allowed("rodimpact.output_folders", "rodimpact.plotting", ("save_plots",))
     assert not allowed("rodimpact.direct.simulate", "rodimpact", ("__version__",))   # rodimpact._version serves
     assert allowed("rodimpact.direct.simulate", "rodimpact._version", ("__version__",))
     assert not allowed("rodimpact._validate", "rodimpact.rods.material", ("Material",))
@@ -144,8 +164,7 @@ print(json.dumps(edges))
 @pytest.mark.parametrize("module", ["rodimpact.rods", "rodimpact.lattice", "rodimpact.direct.simulate",
                                     "rodimpact.direct.result", "rodimpact.inverse", "rodimpact.reference",
                                     "rodimpact.signals", "rodimpact.testrig", "rodimpact.shpb", "rodimpact.plotting",
-                                    "rodimpact.io.results",
-                                    "rodimpact.cli"])
+                                    "rodimpact.io.results", "rodimpact.output_folders", "rodimpact.cli"])
 def test_importing_a_layer_in_a_fresh_interpreter_imports_downwards(module):
     out = subprocess.run([sys.executable, "-c", RECORDER, module], capture_output=True, text=True, check=True,
                          cwd=PACKAGE.parent)

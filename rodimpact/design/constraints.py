@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Optional
+from typing import Any, Optional, Union
 
 import numpy as np
 
-from .._validate import finite, non_negative, positive
+from .._validate import finite, integer, non_negative, positive, real_number
 from ..rods.material import STEEL, Material
 
 
@@ -104,6 +104,77 @@ def diameter_to_impedance(diameter: float, material: Material, bore: float = 0.0
     return material.density * material.wave_speed * math.pi * (diameter * diameter - bore * bore) / 4.0
 
 
+#: one impedance or diameter bound: a number for every element, or one per element (from the impact face)
+Bound = Union[float, tuple[float, ...]]
+
+
+@dataclass(frozen=True)
+class StrikerLimits:
+    """What the designed striker may be: bounds of its element impedances or outer diameters, its material and
+    bore, its mass and impact velocity, and how it can be machined. Validated when made; per-element bounds are
+    checked against the number of elements n by :func:`~rodimpact.design`.
+
+    impedance_bounds:
+        (lower, upper) of the element impedances Z_q, N s/m > 0: numbers, or one per element (from the impact
+        face). Default (no bounds given): 1/100 .. 100 times the struck system's face impedance.
+    diameter_bounds:
+        (lower, upper) of the outer diameters, m > 0 (numbers or one per element), of a striker of ``material``
+        with a central ``bore``: Z = rho c pi (d^2 - d_i^2) / 4. Not together with ``impedance_bounds``.
+    material:
+        Striker material: turns diameters into impedances, and the result into lengths and a shape.
+    bore:
+        Diameter of a central bore, m >= 0 (0: solid); smaller than every diameter.
+    mass:
+        Striker mass, kg > 0, or a range (lower, upper); the mass of the lattice striker is m = dt sum Z_q.
+    velocity_bounds:
+        (lower, upper) m/s > 0: optimise the impact velocity too, within these bounds (the ``striker_velocity``
+        of :func:`~rodimpact.design` is then the start value).
+    max_steps:
+        Return a stepped striker of at most this many constant-impedance steps (machinable as cylinders, see
+        :mod:`rodimpact.design.stepped`); None: a free profile.
+    smoothness:
+        Weight >= 0 of a smoothed total-variation penalty sum |Z_{q+1} - Z_q| / Z_ref added to the objective
+        (0: none).
+    """
+
+    impedance_bounds: Optional[tuple[Bound, Bound]] = None
+    diameter_bounds: Optional[tuple[Bound, Bound]] = None
+    material: Material = STEEL
+    bore: float = 0.0
+    mass: Union[float, tuple[float, float], None] = None
+    velocity_bounds: Optional[tuple[float, float]] = None
+    max_steps: Optional[int] = None
+    smoothness: float = 0.0
+
+    def __post_init__(self) -> None:
+        def put(name: str, value: Any) -> None:
+            object.__setattr__(self, name, value)
+
+        if self.impedance_bounds is not None and self.diameter_bounds is not None:
+            raise ValueError("StrikerLimits.impedance_bounds, diameter_bounds: give one of them, not both")
+        if not isinstance(self.material, Material):
+            raise TypeError(f"StrikerLimits.material: must be a Material, got {type(self.material).__name__}")
+        put("bore", non_negative("StrikerLimits.bore", self.bore, "m"))
+        for name, unit in (("impedance_bounds", "N s/m"), ("diameter_bounds", "m")):
+            if getattr(self, name) is not None:
+                put(name, _bounds(f"StrikerLimits.{name}", getattr(self, name), unit))
+        if self.diameter_bounds is not None and np.min(self.diameter_bounds[0]) <= self.bore:
+            raise ValueError(f"StrikerLimits.diameter_bounds: the smallest diameter "
+                             f"{np.min(self.diameter_bounds[0]):.6g} m must exceed the bore {self.bore:.6g} m")
+        if isinstance(self.mass, (tuple, list)):
+            put("mass", _positive_range("StrikerLimits.mass", self.mass, "kg"))
+        elif self.mass is not None:
+            put("mass", positive("StrikerLimits.mass", self.mass, "kg"))
+        if self.velocity_bounds is not None:
+            put("velocity_bounds", _positive_range("StrikerLimits.velocity_bounds", self.velocity_bounds, "m/s"))
+        if self.max_steps is not None:
+            put("max_steps", integer("StrikerLimits.max_steps", self.max_steps, 1,
+                                     "number of constant-impedance steps"))
+        put("smoothness", real_number("StrikerLimits.smoothness", self.smoothness,
+                                      "a finite number >= 0 (weight of the total-variation penalty)",
+                                      lambda x: x >= 0.0))
+
+
 def _pair(name: str, value: Any, unit: str) -> tuple[Any, Any]:
     if not isinstance(value, (tuple, list)) or len(value) != 2:
         raise ValueError(f"{name}: give a pair (lower, upper) in {unit}, got {value!r}")
@@ -120,68 +191,73 @@ def real_array(name: str, value: Any, unit: str) -> np.ndarray:
     return a.astype(float)
 
 
-def _bound_array(name: str, value: Any, n: int, unit: str) -> np.ndarray:
-    a = real_array(name, value, unit)
+def _bounds(name: str, value: Any, unit: str) -> tuple[Bound, Bound]:
+    """A pair (lower, upper) of bounds, each finite and > 0, a number or one per element (a tuple), with lower <=
+    upper wherever both are given."""
+    pair = []
+    for i, side in enumerate(_pair(name, value, unit)):
+        a = real_array(f"{name}[{i}]", side, unit)
+        if a.ndim > 1:
+            raise ValueError(f"{name}[{i}]: give one value or one per element, got shape {a.shape}")
+        values = np.atleast_1d(a)
+        bad = values[~(np.isfinite(values) & (values > 0))]
+        if bad.size:
+            raise ValueError(f"{name}[{i}]: must be finite and > 0 {unit}, got {bad[0]!r}")
+        pair.append(float(a) if a.ndim == 0 else tuple(a.tolist()))
+    lo, hi = (np.atleast_1d(p) for p in pair)
+    if lo.size == 1 or hi.size == 1 or lo.size == hi.size:        # else the count is refused for the given n
+        lo, hi = np.broadcast_arrays(lo, hi)
+        bad = np.flatnonzero(lo > hi)
+        if bad.size:
+            q = int(bad[0])
+            raise ValueError(f"{name}: the lower bound exceeds the upper bound at element {q + 1} "
+                             f"({lo[q]:.6g} > {hi[q]:.6g} {unit}); give lower <= upper")
+    return pair[0], pair[1]
+
+
+def _bound_array(name: str, value: Bound, n: int) -> np.ndarray:
+    """A validated bound as one value per element."""
+    a = np.asarray(value, dtype=float)
     if a.ndim == 0:
-        a = np.full(n, float(a))
+        return np.full(n, float(a))
     if a.shape != (n,):
-        raise ValueError(f"{name}: give one value or one per element ({n}), got shape {a.shape}")
-    if not np.all(np.isfinite(a)) or np.any(a <= 0):
-        raise ValueError(f"{name}: must be finite and > 0 {unit}, got {a[~(np.isfinite(a) & (a > 0))][0]!r}")
+        raise ValueError(f"{name}: give one value or one per element ({n}), got {a.size} values")
     return a
 
 
-def build_constraints(n: int, dt: float, face_impedance: float, *, impedance_bounds: Any = None,
-                      diameter_bounds: Any = None, material: Material = STEEL, bore: float = 0.0,
-                      mass: Any = None, striker_velocity: Optional[float] = None,
-                      velocity_bounds: Any = None) -> Constraints:
-    """Check the constraint arguments of :func:`~rodimpact.design` and turn them into a :class:`Constraints`.
+def build_constraints(n: int, dt: float, face_impedance: float, limits: StrikerLimits,
+                      striker_velocity: Optional[float]) -> Constraints:
+    """The :class:`Constraints` of ``n`` elements of travel time ``dt`` (s) that ``limits`` set, the impact
+    velocity fixed at ``striker_velocity`` (m/s) unless ``limits.velocity_bounds`` frees it.
 
     Without impedance or diameter bounds the impedances may range over 1/100 .. 100 times the struck system's
-    face impedance."""
-    if impedance_bounds is not None and diameter_bounds is not None:
-        raise ValueError("impedance_bounds, diameter_bounds: give one of them, not both")
-    if diameter_bounds is not None:
-        if not isinstance(material, Material):
-            raise TypeError(f"material: must be a Material, got {type(material).__name__}")
-        d_i = non_negative("bore", bore, "m")
-        dlo, dhi = _pair("diameter_bounds", diameter_bounds, "m")
-        dlo = _bound_array("diameter_bounds[0]", dlo, n, "m")
-        dhi = _bound_array("diameter_bounds[1]", dhi, n, "m")
-        if np.any(dlo <= d_i):
-            raise ValueError(f"diameter_bounds: the smallest diameter {dlo.min():.6g} m must exceed the bore "
-                             f"{d_i:.6g} m")
-        lo = np.array([diameter_to_impedance(d, material, d_i) for d in dlo])
-        hi = np.array([diameter_to_impedance(d, material, d_i) for d in dhi])
+    face impedance (N s/m)."""
+    if limits.diameter_bounds is not None:
+        dlo = _bound_array("StrikerLimits.diameter_bounds[0]", limits.diameter_bounds[0], n)
+        dhi = _bound_array("StrikerLimits.diameter_bounds[1]", limits.diameter_bounds[1], n)
+        lo = np.array([diameter_to_impedance(d, limits.material, limits.bore) for d in dlo])
+        hi = np.array([diameter_to_impedance(d, limits.material, limits.bore) for d in dhi])
         name = "diameter_bounds"
     else:
-        zlo, zhi = ((face_impedance / 100.0, face_impedance * 100.0) if impedance_bounds is None
-                    else _pair("impedance_bounds", impedance_bounds, "N s/m"))
-        lo = _bound_array("impedance_bounds[0]", zlo, n, "N s/m")
-        hi = _bound_array("impedance_bounds[1]", zhi, n, "N s/m")
+        zlo, zhi = ((face_impedance / 100.0, face_impedance * 100.0) if limits.impedance_bounds is None
+                    else limits.impedance_bounds)
+        lo = _bound_array("StrikerLimits.impedance_bounds[0]", zlo, n)
+        hi = _bound_array("StrikerLimits.impedance_bounds[1]", zhi, n)
         name = "impedance_bounds"
-    bad = np.flatnonzero(lo > hi)
-    if bad.size:
-        q = int(bad[0])
-        raise ValueError(f"{name}: the lower bound exceeds the upper bound at element {q + 1} "
-                         f"(impedance {lo[q]:.6g} > {hi[q]:.6g} N s/m); give lower <= upper")
     mass_range = None
-    if mass is not None:
-        if isinstance(mass, (tuple, list)):
-            mass_range = _positive_range("mass", mass, "kg")
-        else:
-            m = positive("mass", mass, "kg")
-            mass_range = (m, m)
+    if limits.mass is not None:
+        mass_range = limits.mass if isinstance(limits.mass, tuple) else (limits.mass, limits.mass)
         reach = (dt * float(lo.sum()), dt * float(hi.sum()))
         if mass_range[1] < reach[0] * (1 - 1e-12) or mass_range[0] > reach[1] * (1 + 1e-12):
-            raise ValueError(f"mass: no striker of {n} elements inside the {name.replace('_', ' ')} can have a mass "
-                             f"of {_fmt_range(mass_range)} kg; with dt = {dt:.6g} s it can weigh "
+            raise ValueError(f"StrikerLimits.mass: no striker of {n} elements inside the {name.replace('_', ' ')} "
+                             f"can have a mass of {_fmt_range(mass_range)} kg; with dt = {dt:.6g} s it can weigh "
                              f"{reach[0]:.6g} .. {reach[1]:.6g} kg (mass = dt * sum Z)")
-    if velocity_bounds is not None:
-        vel = _positive_range("velocity_bounds", velocity_bounds, "m/s")
+    if limits.velocity_bounds is not None:
+        vel = limits.velocity_bounds
     else:
         if striker_velocity is None:
-            raise ValueError("striker_velocity: give the impact velocity (m/s), or velocity_bounds to optimise it")
+            raise ValueError("striker_velocity: give the impact velocity (m/s), or StrikerLimits.velocity_bounds to "
+                             "optimise it")
         v = positive("striker_velocity", striker_velocity, "m/s")
         vel = (v, v)
     return Constraints(lo, hi, float(dt), mass_range, vel)

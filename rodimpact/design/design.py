@@ -5,40 +5,42 @@ eq. 4.20) fails, which it does for every force that starts at 0 N. :func:`design
 over the n element impedances (and optionally the impact velocity) under bounds, a mass and manufacturability
 limits, with exact gradients from the adjoint of the lattice (:mod:`rodimpact.design._adjoint`, docs/adjoint.md)
 and scipy's L-BFGS-B (:mod:`rodimpact.design.optimize`). The method is described in docs/design.md.
+
+What is asked lives in three small objects: the objective (:class:`~rodimpact.design.objectives.MatchObjective`
+or :class:`~rodimpact.design.objectives.EfficiencyObjective`), the striker's limits
+(:class:`~rodimpact.design.constraints.StrikerLimits`) and how the optimum is searched (:class:`SearchOptions`);
+the struck system is one :class:`~rodimpact.System` (:meth:`System.struck <rodimpact.rods.system.System.struck>`).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 import time as _time
 import warnings
-from typing import Any, Optional, Sequence
+from dataclasses import dataclass
+from typing import Any, Callable, Optional, Union
 
 import numpy as np
 
+from .._moved import moved
+from .._validate import integer, real_number
 from .._version import __version__
-from .._validate import non_negative
 from ..lattice.lattice import build_lattice
 from ..rods.conditions import BitRockEnd
-from ..rods.material import STEEL, Material
-from ..rods.system import InitialState, System
 from ..inverse.diagnosis import explain_bounds
 from ..inverse.recursive import synthesize
-from ..inverse.struck import as_struck_system, locate, window_count_check
+from ..inverse.struck import STRUCK_KEYWORDS, as_struck_system, locate, window_count_check
 from ..inverse.targets import as_target
-from ..inverse.transform import checked_quantity, struck_time_step, window_count
+from ..inverse.transform import struck_time_step, window_count
 from ._adjoint import ImpactProblem
-from .constraints import Constraints, build_constraints, velocity_start
-from .objectives import EfficiencyObjective, MatchObjective
+from .constraints import Constraints, StrikerLimits, build_constraints, velocity_start
+from .objectives import EfficiencyCost, EfficiencyObjective, MatchCost, MatchObjective
 from .optimize import Evaluator, Levels, OptimisationProgress, Run, best_of, minimise
 from .result import DesignResult
 from .screening import POOL_SIZE, candidate_pool, diverse, screen as screen_pool
 from .stepped import stepped_design
 
-OBJECTIVES = ("match", "efficiency")
-#: default run length of the efficiency objective: the striker's pulse (2 n steps) plus this many round trips
-#: through the struck system, so that the reflected waves can come back and load the rock again
-EFFICIENCY_ROUND_TRIPS = 3
 #: misfit below which the recursive method's striker is returned as the exact answer
 EXACT_MISFIT = 1e-9
 #: several starts: each runs for max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) iterations, then the best
@@ -49,6 +51,66 @@ SCREEN_MIN, SCREEN_FRACTION, CONTINUED = 10, 10, 2
 COARSE_DIVISORS = (6, 3)
 #: basin hopping: relative amplitude (in log Z) of the smooth random perturbation, and the seed of its draws
 HOP_AMPLITUDE, HOP_SEED = 0.3, 1
+
+
+@dataclass(frozen=True)
+class SearchOptions:
+    """How :func:`design` searches for the optimum: the global phase (a screened pool, starts continued from
+    coarse to fine, basin hops) and the local L-BFGS-B runs. Validated when made.
+
+    starts:
+        Number of starting profiles (>= 1). Where the objective is observed at the impact face or is the
+        efficiency, the starts are the best, mutually different candidates of a pool of ``pool`` profiles
+        simulated together by :func:`rodimpact.simulate_batch` (:mod:`rodimpact.design.screening`); otherwise the
+        named starts. With several starts, each start is continued from a coarse profile (n/6, then n/3 levels)
+        to the free one, max(10, max_iterations / 10) iterations per stage, and the best two free profiles
+        continue for up to ``max_iterations``; every stage is a *run* of the convergence history (so there are
+        more runs than starts).
+    max_iterations:
+        L-BFGS-B iterations per stage (>= 1).
+    tolerance:
+        L-BFGS-B's relative reduction ``ftol`` of the objective per iteration (0 < tolerance < 1).
+    improvement:
+        Relative-improvement stopping criterion: a run stops when its best objective has improved by less than
+        this fraction over the last 10 iterations (0 <= improvement < 1; 0: never).
+    pool:
+        Candidates screened by :func:`rodimpact.simulate_batch` before the starts (>= 1).
+    hops:
+        Basin-hopping rounds after the starts (>= 0; with several starts): the best profile, perturbed (a smooth
+        random factor, or a thin tail from a random element on), runs again and replaces the best if it ends
+        better (default 8: on the half-sine of issue 20 they take the misfit from 0.1262 to 0.1260).
+        ``diagnostics["local_optima"]`` lists the objective at the end of every start and hop.
+    warm_start:
+        Try the exact recursive method first (:class:`~rodimpact.design.objectives.MatchObjective` only): its
+        striker is the answer when it exists inside the limits, else its feasible prefix is a start.
+    """
+
+    starts: int = 16
+    max_iterations: int = 300
+    tolerance: float = 1e-14
+    improvement: float = 1e-6
+    pool: int = POOL_SIZE
+    hops: int = 8
+    warm_start: bool = True
+
+    def __post_init__(self) -> None:
+        def put(name: str, value: Any) -> None:
+            object.__setattr__(self, name, value)
+
+        put("starts", integer("SearchOptions.starts", self.starts, 1))
+        put("max_iterations", integer("SearchOptions.max_iterations", self.max_iterations, 1))
+        put("tolerance", real_number("SearchOptions.tolerance", self.tolerance, "a finite number with 0 < "
+                                     "tolerance < 1 (L-BFGS-B's relative reduction ftol of the objective per "
+                                     "iteration)", lambda x: 0.0 < x < 1.0))
+        put("improvement", real_number("SearchOptions.improvement", self.improvement, "a finite number with 0 <= "
+                                       "improvement < 1 (relative improvement of the best objective over 10 "
+                                       "iterations below which a run stops)", lambda x: 0.0 <= x < 1.0))
+        put("pool", integer("SearchOptions.pool", self.pool, 1, "candidates screened by simulate_batch"))
+        put("hops", integer("SearchOptions.hops", self.hops, 0, "basin-hopping rounds after the starts"))
+        if not isinstance(self.warm_start, (bool, np.bool_)):
+            raise TypeError(f"SearchOptions.warm_start: must be True (try the exact recursive method first) or "
+                            f"False, got {self.warm_start!r}")
+        put("warm_start", bool(self.warm_start))
 
 
 def coarse_levels(n: int) -> list[int]:
@@ -66,145 +128,92 @@ def _even_breaks(n: int, k: int) -> np.ndarray:
     return np.unique(np.linspace(0, n, k + 1).round().astype(int))
 
 
-def design(target: Any = None, struck: Any = None, striker_velocity: Optional[float] = None,
-           n: Optional[int] = None, dt: Optional[float] = None, *, objective: str = "match",
-           far_end: Any = "free", struck_velocity: Any = 0.0, junctions: Optional[Sequence[Any]] = None,
-           loads: Sequence[Any] = (), initial: Optional[Sequence[Optional[InitialState]]] = None,
-           position: Optional[float] = None, quantity: str = "force", rule: str = "midpoint",
-           weights: Any = None, impedance_bounds: Any = None, diameter_bounds: Any = None,
-           material: Material = STEEL, bore: float = 0.0, mass: Any = None, velocity_bounds: Any = None,
-           max_steps: Optional[int] = None, smoothness: float = 0.0, steps: Optional[int] = None,
-           duration: Optional[float] = None, starts: int = 16, max_iterations: int = 300,
-           tolerance: float = 1e-14, improvement: float = 1e-6, pool: int = POOL_SIZE, hops: int = 8,
-           reloading: bool = True,
-           progress: Optional[bool] = None, warm_start: bool = True, backend: str = "numba") -> DesignResult:
+_OBJECTIVE = ("{key}: give the objective as the first argument: ri.design(ri.MatchObjective(target, {key}=...), "
+              "struck, ...)")
+_EFFICIENCY = ("{key}: give the objective as the first argument: ri.design(ri.EfficiencyObjective({key}=...), "
+               "struck, ...)")
+_LIMITS = ("{key}: give the striker's limits as one StrikerLimits: ri.design(target, struck, ..., "
+           "limits=ri.StrikerLimits({key}=...))")
+_SEARCH = ("{key}: give the search options as one SearchOptions: ri.design(target, struck, ..., "
+           "search=ri.SearchOptions({key}=...))")
+#: the keywords design() took before its parameters moved into the objects it receives, and where each went
+MOVED = {
+    **STRUCK_KEYWORDS,
+    "objective": ("objective: give the objective as the first argument: ri.design(ri.EfficiencyObjective(), struck, "
+                  "...) or ri.design(ri.MatchObjective(target, position=...), struck, ...) (a bare target is "
+                  "matched at the impact face)"),
+    **{key: _OBJECTIVE.format(key=key) for key in ("position", "quantity", "rule", "weights")},
+    **{key: _EFFICIENCY.format(key=key) for key in ("reloading", "steps", "duration")},
+    **{key: _LIMITS.format(key=key) for key in ("impedance_bounds", "diameter_bounds", "material", "bore", "mass",
+                                                 "velocity_bounds", "max_steps", "smoothness")},
+    **{key: _SEARCH.format(key=key) for key in ("starts", "max_iterations", "tolerance", "improvement", "pool",
+                                                 "hops", "warm_start")},
+}
+
+
+@moved(MOVED)
+def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
+           n: Union[int, tuple[int, int], None] = None, dt: Optional[float] = None, *,
+           limits: Optional[StrikerLimits] = None, search: Optional[SearchOptions] = None,
+           progress: Optional[bool] = None, backend: str = "numba") -> DesignResult:
     """Find the striker impedance profile that minimises an objective under constraints.
 
     Parameters
     ----------
     target:
-        ``objective="match"``: the wished force (N, tension positive, impact forces negative) in any form
-        :func:`rodimpact.synthesize` accepts (callable f(t), samples (t, F), window values, ForceTarget). Its
-        window values X_j (``rule``) held for 2 dt are compared with the achieved force at every step over the
-        target's span (n windows for a function without duration); at a ``position``, at the window starts after
-        the dead time (see :mod:`rodimpact.design.objectives`). ``objective="efficiency"``: None.
-    struck, far_end, struck_velocity, junctions, loads, initial:
-        The struck system, as for :func:`rodimpact.synthesize` (left end = impact face).
+        What to design for: the wished force history (N, tension positive, impact forces negative; any form
+        :func:`rodimpact.synthesize` accepts), matched at the impact face; or a
+        :class:`~rodimpact.MatchObjective` (the force observed at a ``position``, ``quantity``, ``rule``,
+        ``weights``); or an :class:`~rodimpact.EfficiencyObjective` (work done on the rock per blow over the
+        striker's kinetic energy; needs a :class:`~rodimpact.BitRockEnd` far end).
+    struck:
+        The struck system (left end = impact face): a :class:`~rodimpact.Rod` or rods listed from the impact face
+        outwards (bonded, at rest, free far end), or a :class:`~rodimpact.System` made by
+        :meth:`ri.System.struck(rods, far_end=..., velocity=..., junctions=..., loads=..., initial=...)
+        <rodimpact.rods.system.System.struck>`.
     striker_velocity:
-        Impact velocity, m/s (> 0); the start value when ``velocity_bounds`` is given.
-    n, dt:
-        Number of striker elements (default: as many as the target's windows) and their travel time, s.
-    objective:
-        ``"match"`` (relative L2 misfit, default) or ``"efficiency"`` (work done on the rock per blow divided by
-        the striker's kinetic energy m v^2 / 2; needs a :class:`~rodimpact.BitRockEnd` far end).
-    position, quantity:
-        Observe the ``"force"`` or the ``"incident"`` force wave at this distance (m) from the impact face inside
-        the struck system; time then counts from the wavefront's arrival (dead time).
-    weights:
-        Optional weights of the misfit: w(t), one per window or one per step.
-    impedance_bounds, diameter_bounds, material, bore:
-        Bounds (lower, upper) of the element impedances (N s/m; numbers or one per element) or of the outer
-        diameters (m) of a striker of ``material`` with a central ``bore`` (m). Default: 1/100..100 times the
-        struck face impedance.
-    mass:
-        Striker mass (kg), or a range (lo, hi); the mass is dt sum Z_q.
-    velocity_bounds:
-        (lo, hi) m/s: optimise the impact velocity too.
-    max_steps:
-        Return a stepped striker with at most this many constant-impedance steps (see :mod:`.stepped`).
-    smoothness:
-        Weight of a smoothed total-variation penalty sum |Z_{q+1} - Z_q| / Z_ref (0: none).
-    steps, duration:
-        Length of the efficiency run with ``reloading`` (default: the pulse 2 n dt plus
-        ``EFFICIENCY_ROUND_TRIPS`` round trips through the struck system).
-    reloading:
-        Efficiency only. True (default): the work done on the rock over the whole run, so that waves reflected
-        at the bit come back and load the rock again. False: Lundberg's classical efficiency of the first
-        pass: the run ends when the first wave reflected at the bit could be back there (3 travel times from
-        the impact face to the bit), so only the striker's incident wave loads the rock; the striker's pulse
-        (2 n dt) must then fit inside the round trip of the struck system.
-    starts, max_iterations, tolerance, improvement, pool:
-        Number of starting profiles; L-BFGS-B iterations per stage; its relative ``ftol``; and the
-        relative-improvement stopping criterion: a run stops when its best objective has improved by less than
-        the fraction ``improvement`` over the last 10 iterations (0: never). Where the objective is observed
-        at the impact face or is the efficiency, the starts are the best, mutually different candidates of a
-        pool of ``pool`` profiles simulated together by :func:`rodimpact.simulate_batch`
-        (:mod:`rodimpact.design.screening`); otherwise the named starts. With several starts, each start is
-        continued from a coarse profile (n/6, then n/3 levels) to the free one, max(10, max_iterations / 10)
-        iterations per stage, and the best two free profiles continue for up to ``max_iterations``; every stage
-        is a *run* of the convergence history (so there are more runs than starts).
-    hops:
-        Basin-hopping rounds after the starts (with several starts): the best profile, perturbed (a smooth
-        random factor, or a thin tail from a random element on), runs again and replaces the best if it ends
-        better (default 8: on the half-sine of issue 20 they take the misfit from 0.1262 to 0.1260).
-        ``diagnostics["local_optima"]`` lists the objective at the end of every start and hop.
+        Impact velocity, m/s (> 0); the start value when ``limits.velocity_bounds`` is given.
+    n:
+        Number of striker elements (default for a match: as many as the target's windows). For the efficiency
+        with a prescribed ``limits.mass``, a range (lo, hi): the piston's length varies; the best uniform
+        piston of the same mass is found over the range, full designs run at its count, its two neighbours and
+        hi, and the best is returned with ``diagnostics["lengths"]``.
+    dt:
+        Travel time of one element, s (default: the smallest of struck rods built with ``Rod.from_impedance``).
+    limits:
+        What the striker may be (:class:`~rodimpact.StrikerLimits`: impedance or diameter bounds, material, bore,
+        mass, velocity bounds, steps, smoothness). Default: impedances within 1/100..100 times the struck face
+        impedance, a steel striker, any mass, the velocity fixed.
+    search:
+        How the optimum is searched (:class:`~rodimpact.SearchOptions`: starts, iterations, tolerance,
+        improvement, screened pool, basin hops, warm start). Default: ``SearchOptions()``.
     progress:
         Print progress lines (run, iteration, objective, best so far) to stderr: True always, False never,
         None (default) when stderr is a terminal.
-    warm_start:
-        Try the exact recursive method first (match only).
     backend:
         "numba" or "numpy" (forward and adjoint runs).
     """
     wall0 = _time.perf_counter()
-    if objective == "efficiency" and isinstance(n, (tuple, list)):
-        args = dict(locals())
-        del args["wall0"]
-        return _design_lengths(args, wall0)
-    if objective not in OBJECTIVES:
-        raise ValueError(f"objective: must be one of {OBJECTIVES}, got {objective!r}")
+    goal = _as_objective(target)
+    match = isinstance(goal, MatchObjective)
+    limits = StrikerLimits() if limits is None else _instance("limits", limits, StrikerLimits)
+    search = SearchOptions() if search is None else _instance("search", search, SearchOptions)
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
-    checked_quantity(quantity)
-    if struck is None:
-        raise ValueError("struck: give the struck system (a Rod, a list of Rods or a System)")
-    if isinstance(starts, bool) or not isinstance(starts, (int, np.integer)) or starts < 1:
-        raise ValueError(f"starts: must be an integer >= 1, got {starts!r}")
-    if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 1:
-        raise ValueError(f"max_iterations: must be an integer >= 1, got {max_iterations!r}")
-    smoothness = _real("smoothness", smoothness, "a finite number >= 0 (weight of the total-variation penalty)",
-                       lambda x: x >= 0.0)
-    tolerance = _real("tolerance", tolerance, "a finite number with 0 < tolerance < 1 (L-BFGS-B's relative "
-                      "reduction ftol of the objective per iteration)", lambda x: 0.0 < x < 1.0)
-    non_negative("bore", bore, "m")
-    improvement = _real("improvement", improvement, "a finite number with 0 <= improvement < 1 (relative "
-                        "improvement of the best objective over 10 iterations below which a run stops)",
-                        lambda x: 0.0 <= x < 1.0)
-    if isinstance(hops, bool) or not isinstance(hops, (int, np.integer)) or hops < 0:
-        raise ValueError(f"hops: must be an integer >= 0 (basin-hopping rounds after the starts), got {hops!r}")
-    if isinstance(pool, bool) or not isinstance(pool, (int, np.integer)) or pool < 1:
-        raise ValueError(f"pool: must be an integer >= 1 (candidates screened by simulate_batch), got {pool!r}")
-    if not isinstance(reloading, (bool, np.bool_)):
-        raise TypeError(f"reloading: must be True (count the reloading of the rock by reflected waves) or False "
-                        f"(first pass only, Lundberg's classical efficiency), got {reloading!r}")
     if progress is not None and not isinstance(progress, (bool, np.bool_)):
         raise TypeError(f"progress: must be True, False or None (when stderr is a terminal), got {progress!r}")
+    if not match and isinstance(n, (tuple, list)):
+        return _design_lengths(n, limits, wall0, lambda m: design(
+            goal, struck, striker_velocity, m, dt, limits=limits, search=search, progress=progress, backend=backend))
     show_progress = bool(progress) if progress is not None else _stderr_is_a_terminal()
-    if max_steps is not None and (isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer))
-                                  or max_steps < 1):
-        raise ValueError(f"max_steps: must be an integer >= 1 (number of constant-impedance steps), got {max_steps!r}")
     system = as_struck_system(struck)
-    if not isinstance(struck, System):
-        system = System.struck(system.rods, far_end, struck_velocity, junctions=junctions, loads=loads,
-                               initial=initial)
-    elif loads or junctions is not None or initial is not None:
-        raise ValueError("struck: a System already carries junctions, loads and initial state; do not pass "
-                         "junctions=, loads= or initial= as well")
     dt = struck_time_step(system, dt)
     lat = build_lattice(system, dt)
     face_z = float(lat.impedance[0])
     diag: dict[str, Any] = {"version": __version__, "backend": backend}
 
-    if objective == "match":
-        if target is None:
-            raise ValueError("target: the 'match' objective needs a target force history")
-        if steps is not None or duration is not None:
-            raise ValueError("steps, duration: the 'match' run covers the target's span; give them only for "
-                             "objective='efficiency'")
-        if not reloading:
-            raise ValueError("reloading: chooses the definition of the efficiency; give reloading=False only for "
-                             "objective='efficiency'")
-        tgt = as_target(target, rule)
+    if match:
+        tgt = as_target(goal.target, goal.rule)
         n = window_count(tgt, n, dt)
         avail = tgt.available_windows(dt)
         nw = n if avail is None else avail
@@ -215,70 +224,64 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
             raise ValueError(f"target: window {j + 1} (from t = {2 * j} dt) is {windows[j]}; forces must be finite")
         if not np.any(windows != 0.0):
             raise ValueError("target: is zero in every window; nothing to match")
-        location = None if position is None else locate(system, position, dt)
-        obj: Any = MatchObjective.build(windows, None if location is None else location.node, weights, dt)
+        location = None if goal.position is None else locate(system, goal.position, dt)
+        obj: Any = MatchCost.build(windows, None if location is None else location.node, goal.weights, dt,
+                                   "MatchObjective.weights")
         run_steps = obj.steps
-        obs_quantity = quantity if location is not None else "force"
+        obs_quantity = goal.quantity if location is not None else "force"
     else:
-        if target is not None:
-            raise ValueError("target: the 'efficiency' objective takes no target; pass None")
         if not isinstance(system.right, BitRockEnd):
-            raise ValueError(f"far_end: the 'efficiency' objective (work done on the rock / striker kinetic energy) "
-                             f"needs a BitRockEnd far end, e.g. far_end=ri.BitRockEnd(k1, k2); got "
-                             f"{type(system.right).__name__}")
+            raise ValueError(f"struck.right: the 'efficiency' objective (work done on the rock / striker kinetic "
+                             f"energy) needs a BitRockEnd far end, e.g. ri.System.struck(rods, "
+                             f"far_end=ri.BitRockEnd(k1, k2)); got {type(system.right).__name__}")
         if n is None:
             raise ValueError("n: give the number of striker elements for the 'efficiency' objective")
         n = window_count_check(n)
-        if position is not None:
-            raise ValueError("position: the 'efficiency' objective observes the bit-rock interface; omit position")
         location = locate(system, sum(r.length for r in system.rods), dt)
-        if reloading:
-            run_steps = _efficiency_steps(n, lat.n_elements, dt, steps, duration)
+        if goal.reloading:
+            run_steps = goal.run_steps(n, lat.n_elements, dt)
         else:
-            run_steps = _first_pass_steps(n, location.node, steps, duration)
+            run_steps = _first_pass_steps(n, location.node)
         diag["efficiency_definition"] = (
             f"with reloading: work on the rock over {run_steps} steps, reflected waves load the rock again"
-            if reloading else
+            if goal.reloading else
             f"first pass only (Lundberg's classical efficiency): work on the rock over {run_steps} steps, before "
             f"the first wave reflected at the bit returns")
         obs_quantity = "incident"       # the incident wave at the bit, for the report and plots
         windows = np.zeros(0)
-        obj = EfficiencyObjective(dt, run_steps)
+        obj = EfficiencyCost(dt, run_steps)
 
-    cons = build_constraints(n, dt, face_z, impedance_bounds=impedance_bounds, diameter_bounds=diameter_bounds,
-                             material=material, bore=bore, mass=mass, striker_velocity=striker_velocity,
-                             velocity_bounds=velocity_bounds)
+    cons = build_constraints(n, dt, face_z, limits, striker_velocity)
     v0 = velocity_start(cons, striker_velocity)
-    if objective == "match" and location is None and not any(system.velocities):
+    if match and location is None and not any(system.velocities):
         diag["bounds_diagnosis"] = explain_bounds(windows, v0, face_z, float(cons.lower[0]), float(cons.upper[0]))
     problem = ImpactProblem(system, dt, n, run_steps, location=location, quantity=obs_quantity, backend=backend)
     z_ref = float(np.exp(np.mean(np.log(np.sqrt(cons.lower * cons.upper)))))
-    ev = Evaluator(problem, obj, float(smoothness), z_ref)
+    ev = Evaluator(problem, obj, limits.smoothness, z_ref)
 
     def finish(z: np.ndarray, v: float, fw: Any, iterations: int, runs: list[Run]) -> DesignResult:
         diag.update(bounds=(cons.lower, cons.upper), forward_runs=ev.forward_runs, gradient_runs=ev.gradient_runs,
                     convergence=[r.history for r in runs], start_values=[r.value for r in runs])
-        if objective == "match":
+        if match:
             diag["weights"] = obj.weights
         else:
-            diag["uniform_reference"] = uniform_reference(system, dt, cons.mass_of(z), v, cons, n, reloading,
-                                                          steps, duration, location.node)
+            diag["uniform_reference"] = uniform_reference(system, dt, cons.mass_of(z), v, cons, n, goal,
+                                                          location.node)
         value = obj.evaluate(fw, z, v)[0]
         return DesignResult(
-            impedance=z, striker_velocity=float(v), dt=dt, objective=objective, time=dt * np.arange(run_steps),
+            impedance=z, striker_velocity=float(v), dt=dt, objective="match" if match else "efficiency",
+            time=dt * np.arange(run_steps),
             achieved=np.asarray(fw.observed, dtype=float), face_force=np.asarray(fw.face_force, dtype=float),
-            target=obj.reference if objective == "match" else np.zeros(0),
-            compared=obj.index if objective == "match" else np.zeros(0, dtype=int),
-            window_values=windows, misfit=float(np.sqrt(value)) if objective == "match" else None,
-            efficiency=-value if objective == "efficiency" else None,
+            target=obj.reference if match else np.zeros(0),
+            compared=obj.index if match else np.zeros(0, dtype=int),
+            window_values=windows, misfit=float(np.sqrt(value)) if match else None,
+            efficiency=None if match else -value,
             constraint_report=cons.report(z, v), iterations=iterations, wall_time=_time.perf_counter() - wall0,
-            struck=system, location=location if (position is not None or objective == "efficiency") else None,
-            quantity=obs_quantity, material=material, diagnostics=diag)
+            struck=system, location=location, quantity=obs_quantity, material=limits.material, diagnostics=diag)
 
     initial_profiles: list[tuple[str, np.ndarray]] = []
-    if objective == "match":
-        exact = _warm_start(target, system, v0, n, nw, dt, position, quantity, rule, backend, cons, diag) \
-            if warm_start else None
+    if match:
+        exact = _warm_start(goal, system, v0, n, nw, dt, backend, cons, diag) if search.warm_start else None
         if exact is not None:
             value, fw = ev.value(exact, v0)
             if np.sqrt(value) < EXACT_MISFIT:
@@ -297,7 +300,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
                              ("falling taper", np.linspace(2.0, 0.5, n) * face_z)]
     free = Levels.free(cons)
     named = _distinct([(name, cons.project(z0)) for name, z0 in initial_profiles])
-    if objective == "match":
+    if match:
         progress_bar = OptimisationProgress(show_progress, "misfit", lambda j: float(np.sqrt(max(j, 0.0))), True)
     else:
         progress_bar = OptimisationProgress(show_progress, "efficiency", lambda j: -j, False)
@@ -305,29 +308,30 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     labels: list[str] = []
 
     def local(lv: Levels, u0: np.ndarray, v_start: float, iters: int, label: str) -> Run:
-        run = minimise(ev, cons, lv, u0, v_start, max_iterations=iters, tolerance=tolerance,
-                       improvement=improvement, progress=progress_bar, label=label)
+        run = minimise(ev, cons, lv, u0, v_start, max_iterations=iters, tolerance=search.tolerance,
+                       improvement=search.improvement, progress=progress_bar, label=label)
         runs.append(run)
         labels.append(label)
         return run
 
-    if objective == "efficiency" or location is None:     # observed by simulate_batch: screen a pool first
-        ranked = screen_pool(system, dt, run_steps, obj, candidate_pool(named, cons, size=pool), v0,
-                             float(smoothness), z_ref)
+    if not match or location is None:                        # observed by simulate_batch: screen a pool first
+        ranked = screen_pool(system, dt, run_steps, obj, candidate_pool(named, cons, size=search.pool), v0,
+                             limits.smoothness, z_ref)
         # the recursive method's striker (or prefix) stays first: it is the theory's guess, often in the basin
         # of the best optimum even when its value is not the lowest; the best diverse candidates follow
         # (for the efficiency the uniform piston stays first: the design then never ends below it)
         warm = [(name, z) for name, z in named if name.startswith("recursive") or name == "uniform"]
         profiles = diverse(warm + [(name, z) for name, z in zip(ranked.names, ranked.impedance)
-                                   if not any(np.allclose(z, w, rtol=1e-12, atol=0.0) for _, w in warm)], starts)
-        diag["screened"] = {"candidates": len(ranked.names), "best_values": ranked.values[:starts].tolist()}
+                                   if not any(np.allclose(z, w, rtol=1e-12, atol=0.0) for _, w in warm)],
+                           search.starts)
+        diag["screened"] = {"candidates": len(ranked.names), "best_values": ranked.values[:search.starts].tolist()}
     else:
-        profiles = named[:starts]
+        profiles = named[:search.starts]
     diag["starts"] = [name for name, _ in profiles]
     # each start: continuation from a coarse profile (few levels) to the free one, a short run per stage; then
     # the best CONTINUED go on (the tail of the convergence is slow and alike for all starts)
-    screen = max(SCREEN_MIN, max_iterations // SCREEN_FRACTION) if len(profiles) > 1 else max_iterations
-    screen = min(screen, max_iterations)
+    screen = (min(max(SCREEN_MIN, search.max_iterations // SCREEN_FRACTION), search.max_iterations)
+              if len(profiles) > 1 else search.max_iterations)
     stages = coarse_levels(n) if len(profiles) > 1 else []
     ends: list[Run] = []
     for s_i, (_, z0) in enumerate(profiles):
@@ -342,14 +346,15 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
         ends.append(local(free, cons.project(z_stage), v0, screen, f"start {s_i + 1}, free profile"))
     best = best_of(ends)
     finals = list(ends)
-    if max_iterations > screen:
+    if search.max_iterations > screen:
         # a start that leads after its stages is not always the one that ends best; a start whose run has
         # converged already is not continued
         ranked_runs = sorted(range(len(ends)), key=lambda i: ends[i].value if np.isfinite(ends[i].value) else np.inf)
         more = []
         for i in ranked_runs[:CONTINUED]:
             if ends[i].message.startswith("STOP"):
-                r = local(free, ends[i].levels, ends[i].velocity, max_iterations, f"start {i + 1}, continued")
+                r = local(free, ends[i].levels, ends[i].velocity, search.max_iterations,
+                          f"start {i + 1}, continued")
                 more.append(r)
                 finals[i] = r if r.value <= ends[i].value else ends[i]
         best = best_of([best, *more])
@@ -360,7 +365,7 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
     x_el = (np.arange(n) + 0.5) / n
     modes = np.arange(1, 6)
     shapes = np.cos(np.pi * modes[:, None] * x_el[None, :])
-    for h in range(hops if len(profiles) > 1 else 0):
+    for h in range(search.hops if len(profiles) > 1 else 0):
         z_best = free.expand(best.levels)
         if h % 2 == 0:
             z_try = z_best * np.exp(HOP_AMPLITUDE * (rng.normal(0.0, 1.0, modes.size) / modes) @ shapes)
@@ -370,41 +375,51 @@ def design(target: Any = None, struck: Any = None, striker_velocity: Optional[fl
             z_try[cut:] = cons.lower[cut:]
         r = local(free, cons.project(z_try), best.velocity, screen, f"basin hop {h + 1}")
         if r.value < best.value and r.message.startswith("STOP"):
-            r = local(free, r.levels, r.velocity, max_iterations, f"basin hop {h + 1}, continued")
+            r = local(free, r.levels, r.velocity, search.max_iterations, f"basin hop {h + 1}, continued")
         finals.append(r)
         if r.value < best.value:
             best = r
     diag["run_labels"] = labels
     shown = [progress_bar.show(r.value) for r in finals if np.isfinite(r.value)]
-    diag["local_optima"] = {"name": progress_bar.name, "values": sorted(shown, reverse=objective != "match")}
+    diag["local_optima"] = {"name": progress_bar.name, "values": sorted(shown, reverse=not match)}
     iterations = sum(r.iterations for r in runs)
     z, v, fw = free.expand(best.levels), best.velocity, best.fw
     diag["optimizer_message"] = best.message
     diag["mass_violation_before_projection"] = best.mass_violation
-    if max_steps is not None:
+    if limits.max_steps is not None:
         free_value = best.value
-        st = stepped_design(ev, cons, z, v, max_steps, max_iterations=max_iterations, tolerance=tolerance)
+        st = stepped_design(ev, cons, z, v, limits.max_steps, max_iterations=search.max_iterations,
+                            tolerance=search.tolerance)
         runs.append(st.run)
-        labels.append(f"stepped striker, {max_steps} steps at most")
+        labels.append(f"stepped striker, {limits.max_steps} steps at most")
         iterations += st.run.iterations
         z, v, fw = st.impedance, st.run.velocity, st.run.fw
         diag["free_profile"] = {"impedance": best.levels.copy(), "velocity": best.velocity,
-                                ("misfit" if objective == "match" else "efficiency"):
-                                    float(np.sqrt(free_value)) if objective == "match" else -free_value}
+                                ("misfit" if match else "efficiency"):
+                                    float(np.sqrt(free_value)) if match else -free_value}
         diag["breakpoints"] = st.breaks.tolist()
     return finish(z, v, fw, iterations, runs)
 
 
-def _real(name: str, value: Any, valid: str, ok: Any) -> float:
-    """``value`` as a float if it is a real number (int or float, not bool, no string or sequence coerced),
-    finite and ``ok``; otherwise a TypeError (wrong type) or ValueError (wrong value) naming ``name`` and saying
-    what is ``valid``."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise TypeError(f"{name}: must be {valid}, got {type(value).__name__} {value!r}")
-    x = float(value)
-    if not (np.isfinite(x) and ok(x)):
-        raise ValueError(f"{name}: must be {valid}, got {value!r}")
-    return x
+
+
+def _as_objective(target: Any) -> Union[MatchObjective, EfficiencyObjective]:
+    """The objective of a design: ``target`` itself when it is one, else a :class:`MatchObjective` of the force
+    history ``target`` at the impact face."""
+    if isinstance(target, (MatchObjective, EfficiencyObjective)):
+        return target
+    if target is None:
+        raise ValueError("target: give the force history to match, a ri.MatchObjective(target, position=...) or a "
+                         "ri.EfficiencyObjective()")
+    return MatchObjective(target)
+
+
+def _instance(name: str, value: Any, cls: type) -> Any:
+    """``value`` after checking it is a ``cls``."""
+    if not isinstance(value, cls):
+        raise TypeError(f"{name}: must be a {cls.__name__} (ri.{cls.__name__}(...)) or None, got "
+                        f"{type(value).__name__}")
+    return value
 
 
 def _distinct(profiles: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.ndarray]]:
@@ -417,26 +432,12 @@ def _distinct(profiles: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.ndar
     return out
 
 
-def _efficiency_steps(n: int, n_struck: int, dt: float, steps: Optional[int], duration: Optional[float]) -> int:
-    if steps is not None and duration is not None:
-        raise ValueError("steps, duration: give one of them")
-    if duration is not None:
-        if not (isinstance(duration, (int, float)) and np.isfinite(duration) and duration > 0):
-            raise ValueError(f"duration: must be a finite time > 0 s, got {duration!r}")
-        steps = int(round(duration / dt))
-    if steps is None:
-        return 2 * n + 2 * EFFICIENCY_ROUND_TRIPS * n_struck
-    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
-        raise ValueError(f"steps: must be an integer >= 1, got {steps!r}")
-    return int(steps)
-
-
 #: element counts scanned for the best uniform piston of the same mass (all up to this many, else log-spaced)
 UNIFORM_SCAN = 200
 
 
-def uniform_reference(system: Any, dt: float, mass: float, v: float, cons: Constraints, n: int, reloading: bool,
-                      steps: Optional[int], duration: Optional[float], arrival: int) -> dict[str, Any]:
+def uniform_reference(system: Any, dt: float, mass: float, v: float, cons: Constraints, n: int,
+                      goal: EfficiencyObjective, arrival: int) -> dict[str, Any]:
     """The best uniform piston of mass ``mass`` (kg) among 1..n elements of travel time dt: element count m,
     impedance Z = mass / (m dt) (inside the extreme impedance bounds), and its efficiency by the same definition
     (run length for m elements; first pass only where m fits), each simulated by :func:`rodimpact.simulate`.
@@ -454,8 +455,8 @@ def uniform_reference(system: Any, dt: float, mass: float, v: float, cons: Const
         z = mass / (m * dt)
         if not lo * (1 - 1e-12) <= z <= hi * (1 + 1e-12):
             continue
-        if reloading:
-            k = _efficiency_steps(m, n_struck, dt, steps, duration)
+        if goal.reloading:
+            k = goal.run_steps(m, n_struck, dt)
         elif m <= arrival:
             k = 3 * arrival
         else:
@@ -470,30 +471,30 @@ def uniform_reference(system: Any, dt: float, mass: float, v: float, cons: Const
             "travel_time_s": m_best * dt, "by_elements": by}
 
 
-def _design_lengths(args: dict[str, Any], wall0: float) -> DesignResult:
+def _design_lengths(n: Any, limits: StrikerLimits, wall0: float,
+                    design_with: Callable[[int], DesignResult]) -> DesignResult:
     """Efficiency design over a range ``n = (n_lo, n_hi)`` of element counts (the piston's length varies, its
-    mass as given): the best uniform piston of the same mass is found over the range first; full designs run
-    at its count and at the two neighbouring counts inside the range and at n_hi; the best is returned, with
-    ``diagnostics["lengths"]`` = {count: efficiency} of every count designed."""
-    n = args["n"]
+    mass as given): the best uniform piston of the same mass is found over the range first; full designs
+    (``design_with(m)`` for m elements) run at its count and at the two neighbouring counts inside the range and
+    at n_hi; the best is returned, with ``diagnostics["lengths"]`` = {count: efficiency} of every count designed."""
     if (len(n) != 2 or any(isinstance(x, bool) or not isinstance(x, (int, np.integer)) for x in n)
             or not 1 <= n[0] <= n[1]):
-        raise ValueError(f"n: give a number of elements or, for objective='efficiency', a range (lo, hi) of "
+        raise ValueError(f"n: give a number of elements or, for the efficiency objective, a range (lo, hi) of "
                          f"integers with 1 <= lo <= hi; got {n!r}")
     lo_n, hi_n = int(n[0]), int(n[1])
-    if args["mass"] is None or isinstance(args["mass"], (tuple, list)):
-        raise ValueError("mass: a range of element counts n = (lo, hi) needs a prescribed striker mass (kg): "
-                         "the pistons of different lengths are compared at the same mass")
+    if limits.mass is None or isinstance(limits.mass, tuple):
+        raise ValueError("StrikerLimits.mass: a range of element counts n = (lo, hi) needs a prescribed striker mass "
+                         "(kg): the pistons of different lengths are compared at the same mass")
     for key in ("impedance_bounds", "diameter_bounds"):
-        b = args[key]
-        if b is not None and isinstance(b, (tuple, list)) and any(np.ndim(x) > 0 for x in b):
-            raise ValueError(f"{key}: with a range of element counts give one (lower, upper) pair for all "
-                             f"elements, not one per element")
+        b = getattr(limits, key)
+        if b is not None and any(isinstance(x, tuple) for x in b):
+            raise ValueError(f"StrikerLimits.{key}: with a range of element counts give one (lower, upper) pair for "
+                             f"all elements, not one per element")
     results: dict[int, DesignResult] = {}
 
     def run(m: int) -> DesignResult:
         if m not in results:
-            results[m] = design(**{**args, "n": m})
+            results[m] = design_with(m)
         return results[m]
 
     first = run(hi_n)
@@ -508,23 +509,19 @@ def _design_lengths(args: dict[str, Any], wall0: float) -> DesignResult:
     diag = dict(best.diagnostics)
     diag["lengths"] = {m: r.efficiency for m, r in sorted(results.items())}
     diag["uniform_reference"] = ref
-    import dataclasses
     return dataclasses.replace(best, diagnostics=diag, wall_time=_time.perf_counter() - wall0,
                                iterations=sum(r.iterations for r in results.values()))
 
 
-def _first_pass_steps(n: int, arrival: int, steps: Optional[int], duration: Optional[float]) -> int:
+def _first_pass_steps(n: int, arrival: int) -> int:
     """Steps of the first-pass efficiency run: 3 ``arrival`` (the wavefront reaches the bit after ``arrival``
     steps; the wave it reflects there is back at the impact face after 2 arrival and, reflected there, at the
     bit after 3 arrival). The striker's pulse of 2 n steps must arrive at the bit before that."""
-    if steps is not None or duration is not None:
-        raise ValueError("steps, duration: the first-pass efficiency (reloading=False) runs until the first "
-                         "reflected wave returns to the bit; omit them, or use reloading=True")
     if 2 * n > 2 * arrival:
-        raise ValueError(f"reloading: the first pass cannot be separated from the reloading here: the striker's "
-                         f"pulse (2 n = {2 * n} steps) outlasts the round trip through the struck system "
-                         f"({2 * arrival} steps), so reflected waves return while it still arrives; use "
-                         f"reloading=True, fewer elements or a longer struck system")
+        raise ValueError(f"EfficiencyObjective.reloading: the first pass cannot be separated from the reloading "
+                         f"here: the striker's pulse (2 n = {2 * n} steps) outlasts the round trip through the "
+                         f"struck system ({2 * arrival} steps), so reflected waves return while it still arrives; "
+                         f"use reloading=True, fewer elements or a longer struck system")
     return 3 * arrival
 
 
@@ -545,17 +542,17 @@ def _impedance_for_force(level: float, face_z: float, v: float, c: Constraints) 
     return float(np.clip(level * face_z / (face_z * v - level), np.min(c.lower), np.max(c.upper)))
 
 
-def _warm_start(target: Any, system: Any, v: float, n: int, nw: int, dt: float, position: Optional[float],
-                quantity: str, rule: str, backend: str, cons: Constraints, diag: dict[str, Any]) -> Optional[np.ndarray]:
-    """Run the recursive method on the same problem. Return its striker when all n elements exist inside the
-    bounds and the mass range; otherwise record the diagnosis and put its feasible prefix, clipped and extended
-    with its last value, into ``diag['recursive_prefix']``."""
+def _warm_start(goal: MatchObjective, system: Any, v: float, n: int, nw: int, dt: float, backend: str,
+                cons: Constraints, diag: dict[str, Any]) -> Optional[np.ndarray]:
+    """Run the recursive method on the same problem (the target, position, quantity and rule of ``goal``). Return
+    its striker when all n elements exist inside the bounds and the mass range; otherwise record the diagnosis and
+    put its feasible prefix, clipped and extended with its last value, into ``diag['recursive_prefix']``."""
     m_win = min(n, nw)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            res = synthesize(target, system, v, m_win, dt, position=position, quantity=quantity, rule=rule,
-                             backend=backend)
+            res = synthesize(goal.target, system, v, m_win, dt, position=goal.position, quantity=goal.quantity,
+                             rule=goal.rule, backend=backend)
         except ValueError as exc:
             diag["warm_start"] = f"the recursive method cannot start: {exc}"
             return None

@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional
 
 import numpy as np
 
+from .._moved import removed_method
+from ..direct.dataset import json_default
 from ..direct.result import SimulationResult
-from .._result_files import netcdf_engine, write_new_file
 from ..inverse.shape import MAX_DIAMETER_RATIO, StrikerShape
 from ..inverse.struck import Location, simulate_observed, with_striker
 from ..rods.material import STEEL, Material
@@ -38,16 +40,16 @@ class DesignResult:
     impedance:
         Z_1..Z_n from the impact face, N s/m, inside the bounds.
     striker_velocity:
-        Impact velocity, m/s (optimised when ``velocity_bounds`` was given).
+        Impact velocity, m/s (optimised when ``StrikerLimits.velocity_bounds`` was given).
     dt:
         Travel time of each element, s.
     objective:
-        "match" or "efficiency".
+        "match" (a :class:`~rodimpact.MatchObjective`) or "efficiency" (an :class:`~rodimpact.EfficiencyObjective`).
     time:
         Start times k dt of the run's steps, s (from the impact).
     achieved:
         The observed per-step quantity of the design's run: the contact force at the impact face, or the force /
-        incident wave at ``position`` (N, tension positive).
+        incident wave at the objective's ``position`` (N, tension positive).
     face_force:
         Contact force per step, N.
     target:
@@ -163,9 +165,9 @@ class DesignResult:
 
     # ------------------------------------------------------------------ export
     def to_xarray(self):
-        """Per-element and per-step arrays as an :class:`xarray.Dataset` (scalars and reports as attributes)."""
-        import json
-
+        """Per-element and per-step arrays as an :class:`xarray.Dataset` (scalars, the material, the observed
+        location and, as JSON, the constraint report and the diagnostics as attributes); read back by
+        :meth:`from_xarray`."""
         import xarray as xr
 
         data = {"impedance": ("element", self.impedance, {"units": "N s/m"}),
@@ -181,12 +183,44 @@ class DesignResult:
         attrs = {"objective": self.objective, "dt": self.dt, "striker_velocity": self.striker_velocity,
                  "mass": self.mass, "iterations": self.iterations, "wall_time": self.wall_time,
                  "quantity": self.quantity,
-                 "constraint_report": json.dumps(self.constraint_report)}
+                 "constraint_report": json.dumps(self.constraint_report),
+                 "material_E": self.material.youngs_modulus, "material_rho": self.material.density,
+                 "material_name": self.material.name,
+                 "diagnostics": json.dumps(self.diagnostics, default=json_default)}
         if self.misfit is not None:
             attrs["misfit"] = self.misfit
         if self.efficiency is not None:
             attrs["efficiency"] = self.efficiency
+        if self.location is not None:
+            attrs.update({f"location_{k}": v for k, v in vars(self.location).items()})
         return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    @classmethod
+    def from_xarray(cls, ds: Any) -> "DesignResult":
+        """The result in the dataset of :meth:`to_xarray` (what :func:`rodimpact.load` reads from a file). The
+        struck system is not stored: :meth:`verify` is unavailable on it. The diagnostics come back from JSON
+        (lists for arrays, text keys); files written before the material, the location and the diagnostics were
+        stored give steel, no location and no diagnostics."""
+        a = ds.attrs
+        location = None
+        if "location_used" in a:
+            location = Location(float(a["location_requested"]), float(a["location_used"]), int(a["location_rod"]),
+                                float(a["location_local"]), int(a["location_node"]), int(a["location_element_left"]))
+        material = (Material(float(a["material_E"]), float(a["material_rho"]), str(a["material_name"]))
+                    if "material_E" in a else STEEL)
+        return cls(impedance=np.asarray(ds["impedance"].values, dtype=float),
+                   striker_velocity=float(a["striker_velocity"]), dt=float(a["dt"]), objective=str(a["objective"]),
+                   time=np.asarray(ds["time"].values, dtype=float),
+                   achieved=np.asarray(ds["achieved"].values, dtype=float),
+                   face_force=np.asarray(ds["face_force"].values, dtype=float),
+                   target=np.asarray(ds["target"].values, dtype=float),
+                   compared=np.asarray(ds["compared_step"].values, dtype=np.int64),
+                   window_values=np.asarray(ds["window_values"].values, dtype=float),
+                   misfit=float(a["misfit"]) if "misfit" in a else None,
+                   efficiency=float(a["efficiency"]) if "efficiency" in a else None,
+                   constraint_report=json.loads(a["constraint_report"]), iterations=int(a["iterations"]),
+                   wall_time=float(a["wall_time"]), location=location, quantity=str(a["quantity"]),
+                   material=material, diagnostics=json.loads(a.get("diagnostics", "{}")))
 
     def to_csv(self, path: str | Path, material: Optional[Material] = None, bore: float = 0.0,
                overwrite: bool = False) -> Path:
@@ -197,6 +231,5 @@ class DesignResult:
         return self.shape(material, bore).to_csv(
             path, overwrite, note=f"designed striker ({self.objective}); impact velocity {self.striker_velocity!r} m/s")
 
-    def save(self, path: str | Path, overwrite: bool = False) -> Path:
-        """Write :meth:`to_xarray` to a netCDF file (refused if it exists unless ``overwrite``)."""
-        return write_new_file(path, lambda tmp: self.to_xarray().to_netcdf(tmp, engine=netcdf_engine()), overwrite)
+    save = removed_method("save every result with rodimpact.save(result, path) and read it back with "
+                          "rodimpact.load(path)")

@@ -29,7 +29,7 @@ from ..direct.problem import TimeGrid
 from ..inverse.struck import with_striker
 from ..rods.rod import Rod
 from .constraints import Constraints
-from .objectives import EfficiencyObjective, MatchObjective
+from .objectives import EfficiencyCost, MatchCost
 from .optimize import TV_EPSILON, total_variation
 
 #: candidates simulated per design (named starts, a ladder of uniform strikers, four families of random profiles)
@@ -129,7 +129,7 @@ def diverse(profiles: list[tuple[str, np.ndarray]], count: int, distance: float 
     return out
 
 
-def screen(struck: Any, dt: float, steps: int, objective: MatchObjective | EfficiencyObjective,
+def screen(struck: Any, dt: float, steps: int, objective: MatchCost | EfficiencyCost,
            pool: list[tuple[str, np.ndarray]], velocity: float, smoothness: float, z_ref: float) -> Screened:
     """Objective values (plus the smoothness penalty of :class:`~rodimpact.design.optimize.Evaluator`) of every
     candidate of ``pool`` (face first) from one :func:`rodimpact.simulate_batch` call of ``steps`` steps,
@@ -139,8 +139,8 @@ def screen(struck: Any, dt: float, steps: int, objective: MatchObjective | Effic
     n = zs.shape[1]
     template = with_striker(struck, Rod.from_impedance(np.ones(n), dt=dt), 1.0)
     batch = simulate_batch(template, zs[:, ::-1], np.full(zs.shape[0], velocity), TimeGrid.of(steps=steps, dt=dt),
-                           outputs=BatchOutputs(contact_force=isinstance(objective, MatchObjective)))
-    if isinstance(objective, MatchObjective):
+                           outputs=BatchOutputs(contact_force=isinstance(objective, MatchCost)))
+    if isinstance(objective, MatchCost):
         values = np.array([objective.evaluate(_Observed(row), z, velocity)[0]
                            for row, z in zip(batch.contact_force, zs)])
     else:

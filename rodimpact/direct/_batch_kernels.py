@@ -47,6 +47,7 @@ from numba import njit, prange
 
 from ._kernels import _rod_energy, node_updates, reflecting_blocks
 from .boundary import ACC_SLOTS, boundaries
+from .joints import STATE_COLUMNS
 
 _OPTS = dict(cache=True, error_model="numpy", nogil=True)
 
@@ -139,7 +140,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     end_state = np.zeros((2, 2))
     ends = (end_code, end_par[d].copy(), end_state, end_value)
     junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)),
-                 junction_par)
+                 junction_par, np.zeros((n_j, STATE_COLUMNS)))
     specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
     probes = (no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0))
     outputs = (junction_N, junction_contact, end_N, end_V)

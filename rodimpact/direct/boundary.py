@@ -13,9 +13,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .joints import joint_solve
+
 #: end-law codes (``end_code``) and junction codes (``junction_code``) of the kernel arrays
 FREE, FIXED, FORCE, VELOCITY, NONREFLECTING, SPRING, BITROCK = 0, 1, 2, 3, 4, 5, 6
-BONDED, CONTACT, SPRING_DASHPOT = 0, 1, 2
+BONDED, CONTACT, SPRING_DASHPOT, LAW_JOINT = 0, 1, 2, 3
 
 #: slots of the work and impulse accumulator ``acc``: [W_left, W_right, W_loads, W_friction, I_left, I_right,
 #: I_loads, I_friction, W_joints] (J and N s); joint forces act on both faces and carry no net impulse
@@ -110,7 +112,7 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
     arrays come grouped in tuples (see :func:`run_numba`) so that the compiler can inline this function into the
     step loop."""
     end_code, end_par, end_state, end_value = ends
-    junction_code, junction_state, gap, gap_tol, u_end, junction_par = junctions
+    junction_code, junction_state, gap, gap_tol, u_end, junction_par, junction_q = junctions
     sp_elem, sp_cap, sp_force, sp_F, sp_V = specials
     pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp = probes
     junction_N, junction_contact, end_N, end_V = outputs
@@ -149,15 +151,18 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
         va_free = v[a] - N[a] / za
         vb_free = v[b] + N[b] / zb
         code = junction_code[r]
-        if code == SPRING_DASHPOT:
-            # faces: V_a = va_free + N/za, V_b = vb_free - N/zb; shortening rate s = V_a - V_b = N mu + s0.
-            # Law at the step's midpoint: N = -(k (delta + s dt/2) + c s), delta = -gap (linear in N: exact)
-            k = junction_par[r, 0]
-            kc = k * 0.5 * dt + junction_par[r, 1]
+        if code == SPRING_DASHPOT or code == LAW_JOINT:
+            # faces: V_a = va_free + N/za, V_b = vb_free - N/zb; shortening rate s = V_a - V_b = N mu + s0
             s0 = va_free - vb_free
-            nj = -(k * (-gap[r]) + kc * s0) / (1.0 + kc * (1.0 / za + 1.0 / zb))
-            if junction_par[r, 2] != 0.0 and nj > 0.0:      # compression only: the faces separate
-                nj = 0.0
+            if code == SPRING_DASHPOT:
+                # law at the step's midpoint: N = -(k (delta + s dt/2) + c s), delta = -gap (linear in N: exact)
+                k = junction_par[r, 0]
+                kc = k * 0.5 * dt + junction_par[r, 1]
+                nj = -(k * (-gap[r]) + kc * s0) / (1.0 + kc * (1.0 / za + 1.0 / zb))
+                if junction_par[r, 2] != 0.0 and nj > 0.0:      # compression only: the faces separate
+                    nj = 0.0
+            else:   # a constitutive law: one monotone scalar equation, bracketed root (rodimpact.direct.joints)
+                nj = joint_solve(junction_par[r], junction_q[r], 1.0 / za + 1.0 / zb, s0, -gap[r], dt)
             rod_NR[r] = nj
             rod_NL[r + 1] = nj
             rod_VR[r] = va_free + nj / za

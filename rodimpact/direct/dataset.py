@@ -1,5 +1,5 @@
 """The one xarray layout of a :class:`~rodimpact.SimulationResult`: what :meth:`SimulationResult.to_xarray` returns
-and what ``result.nc`` holds (:func:`rodimpact.io.results.save` writes this dataset as it is).
+and what ``result.nc`` holds (:func:`rodimpact.save` writes this dataset as it is).
 
 Dimensions and their coordinates:
 

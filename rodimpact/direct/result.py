@@ -9,9 +9,11 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .._validate import finite
 from ..lattice.lattice import Lattice
-from ..rods.conditions import BitRockEnd
+from ..rods.conditions import BitRockEnd, DeformableJoint
+from ..rods.declared import check, quantity, text
+from ..rods.declared import rod as rod_index
+from ..rods.laws import FREW
 from ..rods.system import System
 from ._momentum import mean_velocities
 from .tables import SimulationTables
@@ -25,21 +27,12 @@ class Probe:
     are exact and constant during each step. ``strain`` uses the true E and A at ``position``.
     """
 
-    name: str
-    rod: int | str
-    position: float
+    name: str = text("Unique name (used in CSV headers and plots).")
+    rod: int | str = rod_index("The rod: its name or its index (0 = first rod).")
+    position: float = quantity("length", "Distance from the rod's left end.", bound="non_negative")
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise ValueError(f"Probe.name: must be a non-empty string, got {self.name!r}")
-        if isinstance(self.rod, str):
-            if not self.rod:
-                raise ValueError("Probe.rod: a rod name must not be empty")
-        elif isinstance(self.rod, bool) or not isinstance(self.rod, (int, np.integer)) or self.rod < 0:
-            raise ValueError(f"Probe.rod: must be a rod index >= 0 or a rod name, got {self.rod!r}")
-        else:
-            object.__setattr__(self, "rod", int(self.rod))
-        object.__setattr__(self, "position", finite("Probe.position", self.position, "m"))
+        check(self)
 
 
 @dataclass(frozen=True, repr=False)
@@ -228,6 +221,53 @@ def bit_rock_outcomes(system: System, end_state: np.ndarray, work_left: float, w
     return tuple(out)
 
 
+@dataclass(frozen=True)
+class JointOutcome:
+    """The state of a deformable joint (:class:`~rodimpact.Specimen`, :class:`~rodimpact.PulseShaper`) at the end
+    of a run, and the split of the work it absorbed.
+
+    ``shortening`` delta (m, positive when compressed); ``strain`` in the joint's measure (engineering
+    delta / L0, or true -ln(1 - delta / L0)); ``plastic_strain`` eps_p and ``accumulated_plastic_strain`` alpha of
+    the plastic laws; ``plastic_work`` (J) the work dissipated in plastic flow, sum of sigma_mid (eps_p,k+1 -
+    eps_p,k) A0 L0 over the steps; ``stored_energy`` (J) the elastic energy sigma^2 / (2 E) A0 L0 at the end
+    (plastic laws and the elastic law; ``nan`` for a loading-curve law such as Frew's, whose absorbed work is not
+    split). For a joint alone between two rods, ``plastic_work + stored_energy`` equals minus the joints' work
+    in :attr:`EnergyHistory.work_joints` (to the root finder's tolerance with engineering measures, to second
+    order in dt with true measures).
+    """
+
+    junction: int
+    shortening: float
+    strain: float
+    plastic_strain: float
+    accumulated_plastic_strain: float
+    plastic_work: float
+    stored_energy: float
+
+
+def joint_outcomes(system: System, gap: np.ndarray, state: np.ndarray) -> tuple[JointOutcome, ...]:
+    """A :class:`JointOutcome` for each deformable joint of ``system`` from the kernel's final gaps (m; the
+    shortening is minus the gap) and joint states ``state[r] = (eps_p, alpha, eps_max, plastic work)``."""
+    out = []
+    for r, j in enumerate(system.junctions):
+        if not isinstance(j, DeformableJoint):
+            continue
+        delta = -float(gap[r])
+        e = delta / j.initial_length
+        strain = -math.log1p(-e) if j.measure == "true" and e < 1.0 else e
+        e_mod = j.law.modulus
+        if j.law.code == FREW:
+            stored = math.nan
+        else:
+            sigma = e_mod * (strain - float(state[r, 0]))
+            if j.compression_only and sigma < 0.0:
+                sigma = 0.0
+            stored = sigma * sigma / (2.0 * e_mod) * j.area * j.initial_length
+        out.append(JointOutcome(r, delta, strain, float(state[r, 0]), float(state[r, 1]), float(state[r, 3]),
+                                stored))
+    return tuple(out)
+
+
 @dataclass(frozen=True, repr=False)
 class JunctionEvents:
     """Contact phases of one junction, taken at every time step (whatever the recording stride).
@@ -358,6 +398,7 @@ class SimulationResult(SimulationTables):
     n_steps: Optional[int] = None      # steps simulated (default: time.size, for record_every = 1)
     junction_events: Optional[tuple[JunctionEvents, ...]] = None   # default: from the histories
     bit_rock: tuple[BitRockOutcome, ...] = ()   # one per outer end with a BitRockEnd (left first)
+    joints: tuple[JointOutcome, ...] = ()       # one per deformable joint (Specimen, PulseShaper), left first
 
     def __post_init__(self) -> None:
         if isinstance(self.record_every, bool) or not isinstance(self.record_every, (int, np.integer)) \

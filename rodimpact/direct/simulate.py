@@ -18,7 +18,7 @@ from . import boundary as B
 from . import guards
 from .problem import Problem, wave_arrays
 from .recording import Recorder, Outputs
-from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes
+from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes, joint_outcomes
 
 Backend = Literal["numba", "numpy"]
 _MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-step input and output arrays
@@ -151,7 +151,8 @@ def _solve(problem: Problem, backend: Backend, progress: Optional[bool],
         energy=energy, final_force=N.copy(), final_velocity=v.copy(), diagnostics=diagnostics,
         record_every=recorder.stride, n_steps=n_steps, junction_events=recorder.junction_events(),
         bit_rock=bit_rock_outcomes(system, arrays["end_state"], energy.work_left[-1], energy.work_right[-1],
-                                   energy.kinetic[:, 0] + energy.strain[:, 0]))
+                                   energy.kinetic[:, 0] + energy.strain[:, 0]),
+        joints=joint_outcomes(system, arrays["gap"], arrays["junction_q"]))
 
 
 def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays: dict, state: dict,
@@ -172,7 +173,7 @@ def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays
     wave_state = (N, v, f, g)
     lattice = (z, reflection, touch, arrays["rod_start"], quiet)
     junctions = tuple(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end",
-                                                 "junction_par"))
+                                                 "junction_par", "junction_q"))
     n_sp = arrays["sp_elem"].size
     scratch = (np.zeros(n_sp), np.zeros(n_sp))      # resolved force and velocity of each special node
     chunk = recorder.chunk

@@ -75,7 +75,8 @@ def run_example(name: str, outdir: str | Path, *, overwrite: bool = False, plots
     per model. The whole folder is written atomically and never replaces existing results unless ``overwrite``;
     even then only a folder rodimpact wrote (:func:`rodimpact.io.results.check_output_folder`). ``overrides``
     are set in every model of the example (:func:`load_example`)."""
-    from ..io.results import AtomicFolder, save
+    from ..io.results import AtomicFolder
+    from ..output_folders import write_simulation
     from ..plotting import plot_energy_comparison
 
     ex = example(name)
@@ -86,9 +87,9 @@ def run_example(name: str, outdir: str | Path, *, overwrite: bool = False, plots
             result = model.simulate(progress=progress)
             # into the fresh temporary folder itself (it holds only AtomicFolder's marker) or a new sub-folder
             sub = tmp if len(ex.models) == 1 else tmp / Path(file).stem
-            save(result, sub, model=model, overwrite=True, plots=model.output.plots if plots else (),
-                 csv=model.output.csv, fields=model.output.fields,
-                 snapshot_times=list(model.output.snapshot_times) or None)
+            write_simulation(result, sub, model=model, overwrite=True, plots=model.output.plots if plots else (),
+                             csv=model.output.csv, fields=model.output.fields,
+                             snapshot_times=list(model.output.snapshot_times) or None)
             out.append((file, result, sub))
         if ex.compare_energy and plots:
             rod = out[0][1].system.rods[-1]

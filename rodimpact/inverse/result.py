@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numbers
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any, Optional
 
 import numpy as np
@@ -13,7 +12,7 @@ from ..direct.result import SimulationResult
 from ..direct.problem import Problem
 from ..direct.recording import Outputs
 from ..direct.simulate import simulate
-from .._result_files import netcdf_engine, write_new_file
+from .._moved import removed_method
 from ..rods.material import STEEL, Material
 from ..rods.rod import Rod
 from ..rods.system import System
@@ -354,41 +353,15 @@ class SynthesisResult(SynthesisTables):
             attrs[f"diag_{k}"] = str(v)
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
-    def save(self, path: str | Path, overwrite: bool = False) -> Path:
-        """Write :meth:`to_xarray` to a netCDF file (engine h5netcdf when h5py is installed, else netCDF4, else
-        scipy's NetCDF3 writer). An existing file is refused unless ``overwrite=True``; written atomically."""
-        return write_new_file(path, lambda tmp: self.to_xarray().to_netcdf(tmp, engine=netcdf_engine()), overwrite)
+    save = removed_method("save every result with rodimpact.save(result, path) and read it back with "
+                          "rodimpact.load(path)")
+    load = removed_method("read a saved result with rodimpact.load(path)")
 
     @classmethod
-    def load(cls, path: str | Path) -> "SynthesisResult":
-        """Read a result written by :meth:`save`. The struck system and the transformation are not stored:
-        :meth:`verify` is unavailable on a loaded result."""
-        import xarray as xr
-
-        p = Path(path)
-        if not p.exists():
-            raise FileNotFoundError(f"{p}: no such file (a synthesis result written by SynthesisResult.save)")
-        if p.is_dir():
-            raise IsADirectoryError(f"{p}: is a folder, not a synthesis result file (e.g. synthesis.nc)")
-        try:
-            with open(p, "rb") as fh:
-                magic = fh.read(4)
-            engine = "scipy" if magic.startswith(b"CDF") else netcdf_engine()
-            ds = xr.load_dataset(p, engine=engine)
-        except PermissionError:
-            raise PermissionError(f"{p}: no permission to read it") from None
-        except (OSError, ValueError, KeyError, IndexError, TypeError):
-            raise ValueError(f"{p}: not a rodimpact synthesis result (not readable as NetCDF); the file is "
-                             f"damaged or was not written by SynthesisResult.save") from None
-        try:
-            return cls._from_dataset(ds)
-        except (KeyError, IndexError, TypeError, ValueError) as exc:
-            what = f"no {exc}" if isinstance(exc, KeyError) else "malformed data"
-            raise ValueError(f"{p}: not a complete rodimpact synthesis result ({what}); the file is damaged or was "
-                             f"not written by SynthesisResult.save") from None
-
-    @classmethod
-    def _from_dataset(cls, ds) -> "SynthesisResult":
+    def from_xarray(cls, ds: Any) -> "SynthesisResult":
+        """The result in the dataset of :meth:`to_xarray` (what :func:`rodimpact.load` reads from a file). The
+        struck system and the transformation are not stored: :meth:`verify` is unavailable on it; the diagnostics
+        come back as text."""
         a = ds.attrs
         failure = None
         if "failure_element" in a:

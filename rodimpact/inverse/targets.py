@@ -43,9 +43,11 @@ RULES = ("start", "midpoint", "mean")
 _GAUSS = np.polynomial.legendre.leggauss(8)
 
 
-def _check_rule(rule: str) -> str:
+def checked_rule(rule: str, name: str = "rule") -> str:
+    """``rule`` after checking it is one of :data:`RULES` (how a continuous target becomes window values); the
+    message names ``name``."""
     if rule not in RULES:
-        raise ValueError(f"rule: must be one of {RULES} (how a target becomes window values), got {rule!r}")
+        raise ValueError(f"{name}: must be one of {RULES} (how a target becomes window values), got {rule!r}")
     return rule
 
 
@@ -64,7 +66,7 @@ class ForceTarget:
     window_dt: Optional[float] = None
 
     def __post_init__(self) -> None:
-        _check_rule(self.rule)
+        checked_rule(self.rule)
 
     # ------------------------------------------------------------------ constructors
     @classmethod
@@ -75,7 +77,7 @@ class ForceTarget:
             raise TypeError(f"target: must be callable f(t), got {type(force).__name__}")
         if duration is not None:
             duration = positive("target duration", duration, "s")
-        return cls("callable", force, _check_rule(rule), duration)
+        return cls("callable", force, checked_rule(rule), duration)
 
     @classmethod
     def from_samples(cls, t: Any, force: Any, rule: str = "midpoint") -> "ForceTarget":
@@ -91,7 +93,7 @@ class ForceTarget:
         if abs(ts[0]) > 1e-9 * (ts[-1] - ts[0]):
             raise ValueError(f"target time samples: must start at t = 0 (the impact, or the arrival at the "
                              f"position), got t[0] = {ts[0]!r} s")
-        return cls("samples", (ts, fs), _check_rule(rule), float(ts[-1]))
+        return cls("samples", (ts, fs), checked_rule(rule), float(ts[-1]))
 
     @classmethod
     def from_window_values(cls, values: Any, dt: Optional[float] = None) -> "ForceTarget":

@@ -77,11 +77,11 @@ class ForceTransformation:
         return float(np.max(np.abs(back - self.target)) / max(np.max(np.abs(self.target)), 1e-300))
 
 
-def checked_quantity(quantity: str) -> str:
+def checked_quantity(quantity: str, name: str = "quantity") -> str:
     """``quantity`` after checking it names what a target at a position prescribes: ``"force"`` (the normal force
-    at the node) or ``"incident"`` (the force wave arriving from the impact side)."""
+    at the node) or ``"incident"`` (the force wave arriving from the impact side); the message names ``name``."""
     if quantity not in QUANTITIES:
-        raise ValueError(f"quantity: must be one of {QUANTITIES} ('force' = normal force at the position, "
+        raise ValueError(f"{name}: must be one of {QUANTITIES} ('force' = normal force at the position, "
                          f"'incident' = force wave arriving from the impact side), got {quantity!r}")
     return quantity
 

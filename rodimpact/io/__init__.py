@@ -1,4 +1,6 @@
-"""File input/output: measurement-file readers, model files (TOML) and simulation results on disk.
+"""File input/output: measurement-file readers, model files (TOML) and results of every kind on disk
+(:func:`save`, :func:`load`). Data only: io never draws (the figures of the command line's output folders come from
+:mod:`rodimpact.output_folders`).
 
 Names are imported lazily (PEP 562) so that ``import rodimpact.io.model`` -- and with it the command line --
 does not pay for the readers' scipy.signal import, and the readers do not pay for pint and xarray.
@@ -31,9 +33,9 @@ _NAMES = {
     "ModelWriteError": "model",
     "SafeExpression": "expressions",
     "expression_area": "expressions",
-    # results on disk
-    "save": "results",
-    "load": "results",
+    # results on disk: every kind
+    "save": "storage",
+    "load": "storage",
     "summarize": "results",
     "format_summary": "results",
     "OutputExistsError": "results",

@@ -2,8 +2,11 @@
 
 A design spec is a synthesis spec (docs/cli.md: ``[[struck]]``, ``far_end``, ``[target]``, ``[materials]``,
 ``[parameters]``) plus the constraints of the striker (``[striker]``: velocity or its bounds, diameter or
-impedance bounds, bore, mass) and the ``[design]`` settings (objective, elements, dt, steps). :func:`run` calls
-:func:`rodimpact.design` and verifies the result with the direct solver; :func:`save` writes a folder.
+impedance bounds, bore, mass) and the ``[design]`` settings (objective, elements, dt, steps). Reading it makes
+the arguments of :func:`rodimpact.design`: the objective (``[target]`` or the efficiency), the struck
+:class:`~rodimpact.System`, the :class:`~rodimpact.StrikerLimits` and the :class:`~rodimpact.SearchOptions`.
+:func:`run` calls :func:`rodimpact.design` and verifies the result with the direct solver; :func:`write_files`
+writes its data files (the command line's folder with figures: :mod:`rodimpact.output_folders`).
 """
 
 from __future__ import annotations
@@ -15,15 +18,18 @@ from typing import Any, Mapping, Optional
 
 import numpy as np
 
-
+from ..design import EfficiencyObjective, MatchObjective, SearchOptions, StrikerLimits
 from ..rods.material import STEEL
+from ..rods.system import System
 from .dimensions import Parameters
 from .model import _material, _materials, parse_toml, read_text_file
+from .keypaths import DESIGN_KEYS, translated
 from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md, \
     validate_table
-from .synthesis_spec import TARGET_TYPES, _target, finish_folder, read_struck, write_plots
+from .storage import save
+from .synthesis_spec import TARGET_TYPES, _target, read_struck
 
 # ============================================================================================ schema
 STRIKER = Table("striker", "The striker to be designed and its constraints.", (
@@ -107,11 +113,10 @@ def spec_reference_markdown() -> str:
 # ============================================================================================ spec objects
 @dataclass(frozen=True, eq=False)
 class DesignSpec:
-    """A validated design spec: the keyword arguments of :func:`rodimpact.design` plus output settings."""
+    """A validated design spec: the arguments of :func:`rodimpact.design` (``target``: the objective, ``struck``,
+    ``striker_velocity``, ``n``, ``dt``, ``limits``, ``search``, ``backend``) plus output settings."""
 
     kwargs: dict[str, Any]
-    material: Any
-    bore: float
     plots: bool = True
     title: str = ""
     text: str = ""
@@ -119,7 +124,6 @@ class DesignSpec:
     def design(self):
         """Run :func:`rodimpact.design` with these settings."""
         from ..design import design
-        from .keypaths import DESIGN_KEYS, translated
 
         try:
             return design(**self.kwargs)
@@ -171,30 +175,43 @@ def _spec(raw: dict, base: Path, text: str) -> DesignSpec:
     if st["mass"] is not None and mb is not None:
         raise ModelError("striker.mass, striker.mass_min/mass_max: give a mass or a range, not both")
     t = d["target"]
-    if ds["objective"] == "match" and t is None:
+    match = ds["objective"] == "match"
+    if match and t is None:
         raise ModelError("target: the objective 'match' needs a [target] table")
-    if ds["objective"] == "efficiency" and t is not None:
+    if not match and t is not None:
         raise ModelError("target: the objective 'efficiency' takes no [target]; remove it")
-    kwargs: dict[str, Any] = dict(
-        target=None if t is None else _target(t, params, base), struck=list(rods), n=ds["elements"], dt=ds["dt"],
-        striker_velocity=st["velocity"], objective=ds["objective"], far_end=far_end, struck_velocity=list(vel),
-        junctions=junctions, loads=tuple(loads), initial=initial if any(s is not None for s in initial) else None,
-        position=None if t is None else t["position"], quantity="force" if t is None else t["quantity"],
-        rule="midpoint" if t is None else t["rule"], impedance_bounds=zb, diameter_bounds=db, material=mat,
-        bore=st["bore"], mass=st["mass"] if st["mass"] is not None else mb, velocity_bounds=vb,
-        max_steps=ds["max_steps"], smoothness=ds["smoothness"], duration=ds["duration"], starts=ds["starts"],
-        max_iterations=ds["max_iterations"], improvement=ds["improvement"], hops=ds["hops"],
-        reloading=ds["reloading"], backend=ds["backend"])
+    if match and not ds["reloading"]:
+        raise ModelError("design.reloading: chooses the definition of the efficiency; give it only with objective = "
+                         "\"efficiency\"")
+    if match and ds["duration"] is not None:
+        raise ModelError("design.duration: the length of the efficiency run; give it only with objective = "
+                         "\"efficiency\" (a match runs over the target's span)")
+    n = ds["elements"]
     if ds["elements_min"] is not None:
-        if ds["objective"] != "efficiency" or ds["elements"] is None:
+        if match or ds["elements"] is None:
             raise ModelError("design.elements_min: give it only with objective = \"efficiency\" and "
                              "design.elements (the longest piston)")
         if ds["elements_min"] > ds["elements"]:
             raise ModelError(f"design.elements_min: must not exceed design.elements ({ds['elements']}), got "
                              f"{ds['elements_min']}")
-        kwargs["n"] = (ds["elements_min"], ds["elements"])
+        n = (ds["elements_min"], ds["elements"])
+    target = None if t is None else _target(t, params, base)
+    try:
+        objective = (MatchObjective(target, position=t["position"], quantity=t["quantity"], rule=t["rule"]) if match
+                     else EfficiencyObjective(reloading=ds["reloading"], duration=ds["duration"]))
+        struck = System.struck(list(rods), far_end, list(vel), junctions=junctions, loads=tuple(loads),
+                               initial=initial if any(s is not None for s in initial) else None)
+        limits = StrikerLimits(impedance_bounds=zb, diameter_bounds=db, material=mat, bore=st["bore"],
+                               mass=st["mass"] if st["mass"] is not None else mb, velocity_bounds=vb,
+                               max_steps=ds["max_steps"], smoothness=ds["smoothness"])
+        search = SearchOptions(starts=ds["starts"], max_iterations=ds["max_iterations"],
+                               improvement=ds["improvement"], hops=ds["hops"])
+    except (ValueError, TypeError) as exc:     # errors name the spec's keys, not the Python arguments
+        raise translated(exc, DESIGN_KEYS) from None
+    kwargs: dict[str, Any] = dict(target=objective, struck=struck, striker_velocity=st["velocity"], n=n,
+                                  dt=ds["dt"], limits=limits, search=search, backend=ds["backend"])
     out = d["output"] or {"plots": True}
-    return DesignSpec(kwargs, mat, st["bore"], out["plots"], d["title"] or "", text)
+    return DesignSpec(kwargs, out["plots"], d["title"] or "", text)
 
 
 # ============================================================================================ running, saving
@@ -219,7 +236,8 @@ def run(spec: DesignSpec) -> DesignRun:
 def summarize_run(r: DesignRun, spec: DesignSpec) -> dict[str, Any]:
     """Key numbers of a design (JSON-ready, SI units)."""
     res = r.result
-    shape = res.shape(spec.material, spec.bore)
+    limits = spec.kwargs["limits"]
+    shape = res.shape(limits.material, limits.bore)
     diag = res.diagnostics
     out: dict[str, Any] = {
         "title": spec.title, "objective": res.objective, "elements": res.n_elements, "dt_s": res.dt,
@@ -306,31 +324,17 @@ def format_summary(s: dict[str, Any], spec: DesignSpec) -> str:
     return "\n".join(lines)
 
 
-def save(r: DesignRun, spec: DesignSpec, outdir: str | Path, *, overwrite: bool = False,
-         plots: bool = True) -> dict[str, Any]:
-    """Write a design to ``outdir`` (atomically, with the output-folder safety of
-    :func:`rodimpact.io.results.check_output_folder`): ``spec.toml``, ``striker.csv`` (profile listed left to
-    right, readable by ``[rods.elements] file``), ``design.nc``, ``summary.json``, ``plots/`` and
-    ``verification/`` (the direct simulation with its ``model.toml``). Returns the summary."""
-    from .results import AtomicFolder
-
+def write_files(r: DesignRun, spec: DesignSpec, folder: Path) -> list[str]:
+    """Write the data files of a design into the (new) ``folder`` and return their names: ``spec.toml``,
+    ``striker.csv`` (profile listed left to right, readable by ``[rods.elements] file``) and ``design.nc``. The
+    command line's output folder adds ``verification/`` (the direct simulation with its ``model.toml``),
+    ``plots/`` and ``summary.json`` (:func:`rodimpact.output_folders.write_spec_run`)."""
     res = r.result
-    with AtomicFolder(outdir, overwrite) as tmp:
-        (tmp / "spec.toml").write_text(spec.text, encoding="utf-8")
-        res.to_csv(tmp / "striker.csv", spec.material, spec.bore)
-        res.save(tmp / "design.nc")
-        summary = finish_folder(tmp, ["spec.toml", "striker.csv", "design.nc"], r.verification,
-                                plots and spec.plots, lambda: _plots(res, tmp / "plots"), summarize_run(r, spec))
-    return summary
-
-
-def _plots(res: Any, folder: Path) -> list[str]:
-    from ..plotting import design as dp
-
-    folder.mkdir(parents=True, exist_ok=True)
-    return write_plots(folder, [("force.png", lambda ax: dp.plot_design_force(res, ax=ax)),
-                                ("profile.png", lambda ax: dp.plot_design_profile(res, ax=ax)),
-                                ("convergence.png", lambda ax: dp.plot_convergence(res, ax=ax))])
+    (folder / "spec.toml").write_text(spec.text, encoding="utf-8")
+    limits = spec.kwargs["limits"]
+    res.to_csv(folder / "striker.csv", limits.material, limits.bore)
+    save(res, folder / "design.nc")
+    return ["spec.toml", "striker.csv", "design.nc"]
 
 
 # ============================================================================================ template

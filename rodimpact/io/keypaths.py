@@ -1,10 +1,10 @@
 """Key paths of model and spec files for errors raised by the Python API.
 
-The loaders hand the values of a file to :func:`rodimpact.simulate` and :func:`rodimpact.synthesize`, whose
-errors name their Python arguments (``dt: must be > 0``, ``initial[1].force: must be finite``, ``n: ...``). A
-user of a file knows only its keys, so :func:`translated` rewrites the leading argument name of such a
-message into the key path of the file (``synthesis.dt``, ``rods[1].initial.force``, ``striker.elements``)
-and returns a :class:`~rodimpact.io.quantities.ModelError`.
+The loaders hand the values of a file to :func:`rodimpact.simulate`, :func:`rodimpact.synthesize` and
+:func:`rodimpact.design` (and the objects they take), whose errors name their Python arguments or fields (``dt:
+must be > 0``, ``initial[1].force: must be finite``, ``n: ...``, ``StrikerLimits.mass: ...``). A user of a file
+knows only its keys, so :func:`translated` rewrites the leading argument name of such a message into the key path
+of the file (``synthesis.dt``, ``rods[1].initial.force``, ``striker.elements``, ``striker.mass``) and returns a :class:`~rodimpact.io.quantities.ModelError`.
 """
 
 from __future__ import annotations
@@ -55,15 +55,17 @@ def translated(exc: BaseException, keys: dict[str, Rule]) -> ModelError:
     return ModelError(translate(str(exc), keys))
 
 
-#: API argument of :func:`rodimpact.design` -> key path in a design spec (the struck-system keys as in
-#: :data:`SPEC_KEYS`).
+#: API argument of :func:`rodimpact.design`, or field of the objects it takes (``StrikerLimits.mass``,
+#: ``SearchOptions.starts``, ``MatchObjective.position``, ...) -> key path in a design spec (the struck-system keys
+#: as in :data:`SPEC_KEYS`).
 DESIGN_KEYS: dict[str, Rule] = {
     **{k: v for k, v in SPEC_KEYS.items() if k not in ("dt", "n", "backend")},
-    "dt": "design.dt", "n": "design.elements", "backend": "design.backend", "objective": "design.objective",
-    "max_steps": "design.max_steps", "smoothness": "design.smoothness", "duration": "design.duration",
-    "steps": "design.duration", "starts": "design.starts", "max_iterations": "design.max_iterations",
-    "diameter_bounds": "striker.diameter_min", "impedance_bounds": "striker.impedance_min",
-    "velocity_bounds": "striker.velocity_min", "mass": "striker.mass", "bore": "striker.bore",
-    "impedance": "striker.impedance_min",
-    "improvement": "design.improvement", "hops": "design.hops", "reloading": "design.reloading",
+    "dt": "design.dt", "n": "design.elements", "backend": "design.backend", "MatchObjective.target": "target",
+    **{f"MatchObjective.{k}": f"target.{k}" for k in ("position", "quantity", "rule")},
+    "EfficiencyObjective.reloading": "design.reloading", "EfficiencyObjective.duration": "design.duration",
+    **{f"SearchOptions.{k}": f"design.{k}" for k in ("starts", "max_iterations", "improvement", "hops")},
+    **{f"StrikerLimits.{k}": f"design.{k}" for k in ("max_steps", "smoothness")},
+    **{f"StrikerLimits.{k}": f"striker.{k}" for k in ("material", "bore", "mass")},
+    r"StrikerLimits\.(impedance|diameter|velocity)_bounds(?:\[([01])\])?":
+        lambda m: f"striker.{m.group(1)}_{'max' if m.group(2) == '1' else 'min'}",
 }

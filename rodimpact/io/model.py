@@ -671,8 +671,13 @@ def _element(family: str, d: dict | str, path: str, params: dict[str, float], ba
     ``Class.field: ...`` become the key paths ``path.field: ...``."""
     d = d if isinstance(d, dict) else {"type": d}
     cls = ELEMENTS[family][d["type"]]
-    values = {f.name: _history(d[f.name], f"{path}.{f.name}", params, base_dir, decl.dimension)
-              if decl.kind == "history" else d[f.name] for f, decl in declarations(cls)}
+    values = {}
+    for f, decl in declarations(cls):
+        where = f"{path}.{f.name}"
+        values[f.name] = (_history(d[f.name], where, params, base_dir, decl.dimension) if decl.kind == "history"
+                          else _element(decl.family, d[f.name], where, params, base_dir) if decl.kind == "part"
+                          else str(base_dir / d[f.name]) if decl.kind == "path" and d[f.name] is not None
+                          else d[f.name])
     return _wrap(path, lambda: cls(**values), cls.__name__)
 
 
@@ -883,6 +888,11 @@ class _Writer:
                 d[f.name] = self.rod_ref[value]
             elif decl.kind == "spans":
                 d[f.name] = [[float(a), float(b)] for a, b in value]
+            elif decl.kind == "part":
+                d[f.name] = self.element(value, f"{path}.{f.name}", inline=True)
+            elif decl.kind == "path" and value is None and hasattr(e, "plastic_strain"):
+                raise ModelWriteError(f"{path}: a table given as arrays cannot be written to a model file; give "
+                                      "it as a CSV file")
             elif has_default(f) and value == f.default:
                 continue
             elif decl.kind == "quantity":

@@ -5,8 +5,8 @@
 then runs :func:`rodimpact.sweep` (batched when only the striker and its velocity change). The summary quantities
 are :data:`rodimpact.direct.sweep.DEFAULT_METRICS` at the first contact (rod 0 | rod 1), with
 :data:`~rodimpact.direct.sweep.ROCK_METRICS` for a model with a bit-rock end; probes and snapshots are
-not recorded. :func:`save_sweep` writes one folder with the table (``sweep.csv``, ``sweep.nc``) and
-``summary.json``; :func:`format_sweep` gives the table as text.
+not recorded. :func:`write_files` writes the table (``sweep.csv``, ``sweep.nc``; the command line's folder adds the
+plot and ``summary.json``: :mod:`rodimpact.output_folders`); :func:`format_sweep` gives the table as text.
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ from .model import Model, load_model
 from .overrides import parse_assignment, parse_value
 from .preflight import check_run, run_size
 from .quantities import ModelError
+from .storage import save
 
 #: How the table shows each summary quantity: label, unit and factor from the SI value (as the sweep plots do).
 COLUMNS: dict[str, tuple[str, str, float]] = METRIC_DISPLAY
@@ -280,38 +281,14 @@ def summary(ds: Any, model: str | Path, overrides: Mapping[str, Any]) -> dict[st
             "rows": table_rows(ds)}
 
 
-def save_sweep(ds: Any, data: Mapping[str, Any], outdir: str | Path, *, overwrite: bool = False,
-               plots: bool = True, dpi: int = 120) -> dict[str, Any]:
-    """Write ``sweep.csv`` (one row per point: the key paths, then the quantities with their units in the header),
-    ``sweep.nc`` (the dataset), ``sweep.png`` (every quantity against every grid key,
-    :func:`rodimpact.plotting.plot_sweep`; not with ``plots=False``) and ``summary.json`` (``data`` plus the list
-    of files) into ``outdir``, atomically and with the output-folder safety of
-    :func:`rodimpact.io.results.check_output_folder`. Returns the summary."""
-    from .results import AtomicFolder, _engine, summary_json
-
-    files = ["sweep.csv", "sweep.nc"]
-    notes: list[str] = []
-    figure = None
-    if plots:
-        try:
-            from ..plotting import plot_sweep
-
-            figure = plot_sweep(ds)
-            files.append(PLOT_FILE)
-        except (ValueError, ImportError) as exc:        # the table is the result: never lose it for a plot
-            notes.append(f"plot {PLOT_FILE} skipped: {exc}")
-    out = {**data, "files": files + ["summary.json"], **({"notes": notes} if notes else {})}
-    with AtomicFolder(outdir, overwrite) as tmp:
-        _write_table(tmp / "sweep.csv", ds, data["rows"])
-        ds.to_netcdf(tmp / "sweep.nc", engine=_engine())
-        if figure is not None:
-            figure.savefig(tmp / PLOT_FILE, dpi=dpi)
-        (tmp / "summary.json").write_text(summary_json(out), encoding="utf-8")
-    return out
-
-
-#: The plot file of a sweep folder.
-PLOT_FILE = "sweep.png"
+def write_files(ds: Any, data: Mapping[str, Any], folder: Path) -> list[str]:
+    """Write the table of a sweep into the (new) ``folder`` and return the file names: ``sweep.csv`` (one row per
+    point: the key paths, then the quantities with their units in the header; ``data`` is :func:`summary`) and
+    ``sweep.nc`` (the dataset, :func:`rodimpact.io.storage.save`). The command line's output folder adds
+    ``sweep.png`` and ``summary.json`` (:func:`rodimpact.output_folders.write_sweep`)."""
+    _write_table(folder / "sweep.csv", ds, data["rows"])
+    save(ds, folder / "sweep.nc")
+    return ["sweep.csv", "sweep.nc"]
 
 
 def _write_table(path: Path, ds: Any, rows: Sequence[Mapping[str, Any]]) -> None:

@@ -1,5 +1,7 @@
-"""Simulation results on disk: :func:`save` writes a folder, :func:`load` reads it back into an identical
-:class:`~rodimpact.SimulationResult`; :func:`summarize` gives the key numbers.
+"""Simulation results on disk: :func:`save_simulation` writes a folder, :func:`simulation_from_dataset` reads its
+result file back into an identical :class:`~rodimpact.SimulationResult` (in Python: :func:`rodimpact.save` and
+:func:`rodimpact.load` of :mod:`rodimpact.io.storage`, which save and load every kind of result); :func:`summarize`
+gives the key numbers.
 
 Folder layout (all files are written into a temporary folder next to the target and moved into place at the
 end, so an interrupted run never leaves half-written results; an existing non-empty folder is only replaced
@@ -24,16 +26,16 @@ with ``overwrite=True``, and only if rodimpact wrote it: see :func:`check_output
     NetCDF with everything above plus the lattice, the field snapshots N(x), v(x), u(x) and the final state
     (xarray; engine h5netcdf when h5py is installed, else netCDF4, else scipy's NetCDF3 writer), in the layout of
     :meth:`SimulationResult.to_xarray` (:mod:`rodimpact.direct.dataset`: ``probe``, ``junction``, ``end``, ``rod``
-    and time coordinates). This is what :func:`load` reads (also format 1 and 2 files, which named the probes in
-    a JSON attribute); the CSV files are for people and spreadsheets.
+    and time coordinates). This is what :func:`simulation_from_dataset` reads (also format 1 and 2 files, which
+    named the probes in a JSON attribute); the CSV files are for people and spreadsheets.
 ``plots/``
-    PNG figures (and ``force.gif`` when the animation is requested and pillow is installed).
+    PNG figures (and ``force.gif``): not written here. io writes data only; the command line and the examples
+    draw the figures into the same folder (:mod:`rodimpact.output_folders`, above io and plotting).
 """
 
 from __future__ import annotations
 
 import errno
-import importlib.util
 import json
 import math
 import os
@@ -49,6 +51,7 @@ import numpy as np
 
 from .._version import __version__
 from .._permissions import normal_mode
+from .._result_files import netcdf_engine
 from .._validate import caller_stacklevel
 from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, json_default, result_dataset
 from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JunctionEvents, Probe, ProbeHistory,
@@ -622,29 +625,7 @@ def energy_columns(result: SimulationResult) -> tuple[list[str], list[np.ndarray
     return header, cols
 
 
-# ============================================================================================ NetCDF
-def _engine() -> str:
-    """The xarray engine for writing: h5netcdf if h5py is installed, else netCDF4, else scipy (NetCDF3)."""
-    if importlib.util.find_spec("h5netcdf") and importlib.util.find_spec("h5py"):
-        return "h5netcdf"
-    if importlib.util.find_spec("netCDF4"):
-        return "netcdf4"
-    return "scipy"
-
-
-def _read_engine(path: Path) -> str:
-    """An installed engine that reads ``path`` (NetCDF3 files start with b"CDF", NetCDF4 with the HDF5 mark)."""
-    with open(path, "rb") as fh:
-        magic = fh.read(4)
-    if magic.startswith(b"CDF"):
-        return "scipy"
-    if importlib.util.find_spec("h5netcdf") and importlib.util.find_spec("h5py"):
-        return "h5netcdf"
-    if importlib.util.find_spec("netCDF4"):
-        return "netcdf4"
-    raise RuntimeError(f"{path}: a NetCDF4 file; reading it needs h5py (pip install h5py) or netCDF4")
-
-
+# ============================================================================================ JSON
 def summary_json(obj: Any) -> str:
     """A summary as JSON text (indented, one trailing newline): numpy values as plain numbers, non-finite
     numbers as ``null`` (JSON has no NaN or infinity)."""
@@ -660,54 +641,70 @@ def summary_json(obj: Any) -> str:
 
 
 # ============================================================================================ save / load
-def save(result: SimulationResult, outdir: str | Path, *, model: Any = None, overwrite: bool = False,
-         plots: Sequence[str] = (), csv: bool = True, fields: bool = True,
-         snapshot_times: Optional[Sequence[float]] = None, engine: Optional[str] = None) -> Path:
-    """Write ``result`` to the folder ``outdir`` (layout in this module's docstring) and return its path.
+SUMMARY_FILE = "summary.json"
 
-    ``model`` (a :class:`~rodimpact.io.model.Model`) is written as ``model.toml``; by default one is built
-    from the result (:func:`~rodimpact.io.model.model_from_result`). ``plots`` names the figures to write
-    (see :func:`rodimpact.plotting.save_plots`). Refuses to replace a non-empty folder unless ``overwrite``, and
-    even then refuses a folder holding files rodimpact did not write, or the current working folder
-    (:class:`OutputExistsError`, see :func:`check_output_folder`).
-    ``engine``: the xarray NetCDF engine (default: h5netcdf with h5py, else netcdf4, else scipy).
-    """
+
+def write_simulation_files(result: SimulationResult, folder: Path, *, model: Any = None, csv: bool = True,
+                           fields: bool = True, engine: Optional[str] = None) -> tuple[list[str], list[str]]:
+    """Write the data files of a results folder into ``folder`` (``model.toml``, ``result.nc``, ``signals.csv``,
+    ``energy.csv``; layout in this module's docstring). Returns the files written and notes on what was left out
+    (a ``model.toml`` that cannot be written). ``model``, ``csv``, ``fields``, ``engine``: as
+    :func:`save_simulation`."""
     from .model import ModelWriteError, dump_model, model_from_result
 
-    names = [plots] if isinstance(plots, str) else list(plots)
-    for i, p in enumerate(names):          # checked before anything is written
-        if p in names[:i]:
-            raise ValueError(f"plots: {p!r} is listed twice")
     files: list[str] = []
     notes: list[str] = []
-    with AtomicFolder(outdir, overwrite) as tmp:
-        if model is None and result.system is not None:
-            model = model_from_result(result)
-        if model is not None:
-            try:
-                (tmp / "model.toml").write_text(dump_model(model), encoding="utf-8")
-                files.append("model.toml")
-            except ModelWriteError as exc:
-                notes.append(f"model.toml not written: {exc}")
-        ds = result_dataset(result, fields=fields)
-        ds.to_netcdf(tmp / RESULT_FILE, engine=engine or _engine())
-        files.append(RESULT_FILE)
-        if csv:
-            for name, (h, c) in (("signals.csv", signal_columns(result)), ("energy.csv", energy_columns(result))):
-                _write_csv(tmp / name, h, c)
-                files.append(name)
-        if plots:
-            from ..plotting import save_plots
+    if model is None and result.system is not None:
+        model = model_from_result(result)
+    if model is not None:
+        try:
+            (folder / "model.toml").write_text(dump_model(model), encoding="utf-8")
+            files.append("model.toml")
+        except ModelWriteError as exc:
+            notes.append(f"model.toml not written: {exc}")
+    ds = result_dataset(result, fields=fields)
+    ds.to_netcdf(folder / RESULT_FILE, engine=engine or netcdf_engine())
+    files.append(RESULT_FILE)
+    if csv:
+        for name, (h, c) in (("signals.csv", signal_columns(result)), ("energy.csv", energy_columns(result))):
+            _write_csv(folder / name, h, c)
+            files.append(name)
+    return files, notes
 
-            written, plot_notes = save_plots(result, tmp / "plots", plots, snapshot_times=snapshot_times)
-            files += [f"plots/{p.name}" for p in written]
-            notes += plot_notes
-        summary = summarize(result)
-        if model is not None and getattr(model, "title", ""):
-            summary["title"] = model.title
-        summary["files"] = files + ["summary.json"]
-        summary["notes"] = notes
-        (tmp / "summary.json").write_text(summary_json(summary), encoding="utf-8")
+
+def simulation_summary(result: SimulationResult, model: Any, files: Sequence[str],
+                       notes: Sequence[str]) -> dict[str, Any]:
+    """The ``summary.json`` of a results folder: :func:`summarize`, the title of ``model`` (if it has one), the
+    ``files`` in the folder (``summary.json`` added) and the ``notes`` on what was left out."""
+    summary = summarize(result)
+    if model is not None and getattr(model, "title", ""):
+        summary["title"] = model.title
+    summary["files"] = list(files) + [SUMMARY_FILE]
+    summary["notes"] = list(notes)
+    return summary
+
+
+def write_summary(folder: Path, summary: dict[str, Any]) -> dict[str, Any]:
+    """Write ``summary`` as ``summary.json`` into ``folder`` (:func:`summary_json`) and return it."""
+    (folder / SUMMARY_FILE).write_text(summary_json(summary), encoding="utf-8")
+    return summary
+
+
+def save_simulation(result: SimulationResult, outdir: str | Path, *, model: Any = None, overwrite: bool = False,
+                    csv: bool = True, fields: bool = True, engine: Optional[str] = None) -> Path:
+    """Write ``result`` to the folder ``outdir`` (layout in this module's docstring: the data files, no figures)
+    and return its path (what :func:`rodimpact.save` does with a simulation result).
+
+    ``model`` (a :class:`~rodimpact.io.model.Model`) is written as ``model.toml``; by default one is built
+    from the result (:func:`~rodimpact.io.model.model_from_result`). ``csv``: write ``signals.csv`` and
+    ``energy.csv``; ``fields``: keep the field snapshots in ``result.nc``. Refuses to replace a non-empty folder
+    unless ``overwrite``, and even then refuses a folder holding files rodimpact did not write, or the current
+    working folder (:class:`OutputExistsError`, see :func:`check_output_folder`).
+    ``engine``: the xarray NetCDF engine (default: h5netcdf with h5py, else netcdf4, else scipy).
+    """
+    with AtomicFolder(outdir, overwrite) as tmp:
+        files, notes = write_simulation_files(result, tmp, model=model, csv=csv, fields=fields, engine=engine)
+        write_summary(tmp, simulation_summary(result, model, files, notes))
     return Path(outdir)
 
 
@@ -726,44 +723,25 @@ def _events(v: dict[str, np.ndarray], n_j: int) -> tuple[JunctionEvents, ...]:
     return tuple(out)
 
 
-def load(outdir: str | Path) -> SimulationResult:
-    """Read a folder written by :func:`save` back into a :class:`~rodimpact.SimulationResult` with identical
-    arrays. The system is rebuilt from ``model.toml`` (``None`` when the folder has none)."""
-    folder = Path(outdir)
-    nc = folder / RESULT_FILE
-    if not nc.is_file():
-        raise FileNotFoundError(f"{folder}: no {RESULT_FILE} here; is this a folder written by rodimpact "
-                                f"simulate / rodimpact.save?")
-    ds = _open_result(nc)
+def simulation_from_dataset(ds: Any, nc: Path) -> SimulationResult:
+    """The :class:`~rodimpact.SimulationResult` in ``ds``, the dataset of the result file ``nc`` (the layout of
+    :mod:`rodimpact.direct.dataset`, also formats 1 and 2). The system is rebuilt from the ``model.toml`` beside
+    ``nc`` (``None`` when there is none). A file of a newer format, or one that lacks part of a result, gives a
+    ``ValueError`` naming ``nc``."""
     if int(ds.attrs.get("format_version", 0)) > FORMAT_VERSION:
         raise ValueError(f"{nc}: written by a newer rodimpact (format {ds.attrs['format_version']}); upgrade")
     try:
-        return _from_dataset(ds, folder, nc)
+        return _from_dataset(ds, nc)
     except (KeyError, IndexError, TypeError, json.JSONDecodeError) as exc:
         what = f"no {exc}" if isinstance(exc, KeyError) else "malformed data"
         raise ValueError(f"{nc}: not a complete rodimpact result ({what}); the file is damaged or was not written "
                          f"by rodimpact.save") from None
 
 
-def _open_result(nc: Path):
-    """``nc`` as an xarray Dataset; a file that is no NetCDF (or a damaged one) gives a ValueError naming it."""
-    import xarray as xr
-
-    try:
-        engine = _read_engine(nc)
-        return xr.load_dataset(nc, engine=engine, decode_times=False, decode_timedelta=False, mask_and_scale=False)
-    except PermissionError:
-        raise PermissionError(f"{nc}: no permission to read it") from None
-    except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
-        if isinstance(exc, FileNotFoundError):
-            raise FileNotFoundError(f"{nc}: no such file") from None
-        raise ValueError(f"{nc}: not a rodimpact result file (not readable as NetCDF); it is damaged or was not "
-                         f"written by rodimpact.save") from None
-
-
-def _from_dataset(ds, folder: Path, nc: Path) -> SimulationResult:
+def _from_dataset(ds: Any, nc: Path) -> SimulationResult:
     from .model import load_model
 
+    folder = nc.parent
     v = {k: ds[k].values for k in ds.variables}
     dt = float(ds.attrs["dt"])
     time = v["time"]

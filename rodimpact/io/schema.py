@@ -17,8 +17,9 @@ import sys
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from ..rods import conditions as _conditions, loads as _loads, segments as _segments  # noqa: F401  (registers)
+from ..rods import conditions as _conditions, laws as _laws, loads as _loads, segments as _segments  # noqa: F401
 from ..rods.declared import ELEMENTS as ELEMENT_CLASSES, declarations, has_default, summary
+from ..direct.result import Probe
 from ..rods.material import Material
 from . import _toml
 from .quantities import (DIMENSIONS, ModelError, check_sign, parse_quantity, pint_quantity, show_as_written,
@@ -83,7 +84,7 @@ class Variants:
 # ============================================================================================ the schema
 #: Field kinds of the element declarations (rodimpact.rods.declared) -> field kinds of the schema
 _DECLARED_KINDS = {"quantity": "quantity", "history": "history", "choice": "string", "flag": "boolean",
-                   "rod": "rod", "spans": "spans"}
+                   "rod": "rod", "spans": "spans", "path": "string", "text": "string"}
 
 
 def element_table(name: str, cls: type, example: str = "") -> Table:
@@ -93,6 +94,10 @@ def element_table(name: str, cls: type, example: str = "") -> Table:
     fields = []
     for f, d in declarations(cls):
         optional = has_default(f)
+        if d.kind == "part":               # a nested element, chosen by its type
+            fields.append(Field(f.name, "variant", d.doc, required=True,
+                                variants=Variants("type", element_tables(d.family))))
+            continue
         fields.append(Field(f.name, _DECLARED_KINDS[d.kind], d.doc,
                             dimension=d.dimension if d.kind in ("quantity", "history") else None,
                             sign=d.bound if d.kind == "quantity" else None, required=not optional,
@@ -207,6 +212,7 @@ MATERIAL = Table("materials", "Named materials (`[materials.NAME]`), used by `ma
 ), '[materials.heavy]\nbase = "steel"\nyoungs_factor = 1.5\ndensity_factor = 1.2')
 
 JUNCTION_TYPES = element_tables("junction")
+LAW_TYPES = element_tables("law")
 END_TYPES = element_tables("end")
 
 _END_VARIANTS = Variants("type", END_TYPES, aliases=(("non-reflecting", "nonreflecting"),))
@@ -219,12 +225,9 @@ ENDS = Table("ends", "Conditions at the outer left end of the first rod and the 
 
 LOAD_TYPES = element_tables("load")
 
-_ROD_REF = Field("rod", "rod", "The rod: its name or its index (0 = first rod).", required=True)
-PROBE = Table("probes", "An output request: force, velocity, displacement and strain histories at a position "
-                        "(e.g. a strain gauge).", (
-    Field("name", "string", "Unique name (used in CSV headers and plots).", required=True),
-    _ROD_REF, _q("position", "length", "Distance from the rod's left end.", sign="non_negative"),
-), '[[probes]]\nname = "SG1"\nrod = "bar"\nposition = "110 mm"')
+PROBE = dataclasses.replace(element_table("probes", Probe), doc="An output request: force, velocity, displacement "
+                            "and strain histories at a position (e.g. a strain gauge).",
+                            example='[[probes]]\nname = "SG1"\nrod = "bar"\nposition = "110 mm"')
 
 SIMULATION = Table("simulation", "How long and how finely to simulate. Give `duration` or `steps`.", (
     _q("duration", "time", "Simulated time.", required=False),
@@ -656,6 +659,11 @@ def reference_markdown() -> str:
                   "contact everywhere.", ""])
     for name, t in JUNCTION_TYPES.items():
         _table_md(f"type = \"{name}\"", t, 3, lines, key="type")
+    lines.extend(["### Constitutive laws (`law = { type = ... }`)", "", "The `law` of a `specimen` or "
+                  "`pulse-shaper`: stress and strain positive in compression, stresses in Pa "
+                  "(docs/shpb.md).", ""])
+    for name, t in LAW_TYPES.items():
+        _table_md(f"law type = \"{name}\"", t, 4, lines, key="type")
     _table_md("`[ends]`", ENDS, 2, lines)
     for name, t in END_TYPES.items():
         _table_md(f"type = \"{name}\"", t, 3, lines, key="type")

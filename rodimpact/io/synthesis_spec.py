@@ -4,7 +4,8 @@ A spec names the struck system (``[[struck]]`` rods listed from the impact face 
 ``[[rods]]`` of a model file), its far end, the striker's velocity and material, and the prescribed force
 (``[target]``: a thesis target, an expression of ``t``, samples, a CSV file or window values; optionally at a
 ``position`` inside the struck system). :func:`run` calls :func:`rodimpact.synthesize`, checks the result with
-the direct solver and derives the striker's shape; :func:`save` writes everything to a folder.
+the direct solver and derives the striker's shape; :func:`write_files` writes its data files (the command line's
+folder with figures: :mod:`rodimpact.output_folders`).
 
 Keys are listed in ``docs/cli.md`` (generated from :data:`SPEC` by :func:`spec_reference_markdown`).
 """
@@ -27,6 +28,7 @@ from .overrides import spec_with_overrides
 from .quantities import ModelError
 from .schema import (END_TYPES, JUNCTION_TYPES, LOAD_TYPES, MATERIAL, ROD, Field, Table, Variants, _q, _table_md,
                      validate_table)
+from .storage import save
 
 
 # ============================================================================================ schema
@@ -344,78 +346,23 @@ def format_summary(summary: dict[str, Any], spec: SynthesisSpec) -> str:
     return "\n".join(lines)
 
 
-def save(r: SynthesisRun, spec: SynthesisSpec, outdir: str | Path, *, overwrite: bool = False,
-         plots: bool = True) -> dict[str, Any]:
-    """Write a synthesis to ``outdir`` (atomically; refuses a non-empty folder unless ``overwrite``, and even then
-    one holding files rodimpact did not write, see :func:`rodimpact.io.results.check_output_folder`):
-    ``spec.toml`` (the spec as given), ``report.txt`` (per-element table, thesis Tabs. 4.3/4.4),
-    ``striker.csv`` (profile listed left to right, impact face last: :meth:`StrikerShape.to_csv`; a model file
-    reads it as a rod), ``synthesis.nc`` (all per-element arrays), ``summary.json``, ``plots/`` and,
-    when verified, ``verification/`` -- the direct simulation of the synthesized striker hitting the struck
-    system, with its ``model.toml`` ready for ``rodimpact simulate``. Returns the summary."""
-    from .results import AtomicFolder
-
-    files: list[str] = []
+def write_files(r: SynthesisRun, spec: SynthesisSpec, folder: Path) -> list[str]:
+    """Write the data files of a synthesis into the (new) ``folder`` and return their names: ``spec.toml`` (the
+    spec as given), ``report.txt`` (per-element table, thesis Tabs. 4.3/4.4), ``striker.csv`` (profile listed left
+    to right, impact face last: :meth:`StrikerShape.to_csv`; a model file reads it as a rod) and ``synthesis.nc``
+    (all per-element arrays). The command line's output folder adds ``verification/``, ``plots/`` and
+    ``summary.json`` (:func:`rodimpact.output_folders.write_spec_run`)."""
     res = r.result
-    with AtomicFolder(outdir, overwrite) as tmp:
-        (tmp / "spec.toml").write_text(spec.text, encoding="utf-8")
-        (tmp / "report.txt").write_text(res.report() + "\n", encoding="utf-8")
-        files += ["spec.toml", "report.txt"]
-        if r.shape is not None:
-            r.shape.to_csv(tmp / "striker.csv",
-                           note=f"synthesized striker; impact velocity {res.striker_velocity!r} m/s")
-            files.append("striker.csv")
-        res.save(tmp / "synthesis.nc")
-        files.append("synthesis.nc")
-        summary = finish_folder(tmp, files, r.verification, plots and spec.plots, lambda: _plots(r, tmp / "plots"),
-                                summarize_run(r, spec))
-    return summary
-
-
-def finish_folder(tmp: Path, files: list[str], verification: Any, plots: bool, draw: Any,
-                  summary: dict[str, Any]) -> dict[str, Any]:
-    """The common end of a synthesis or design output folder ``tmp``: ``verification/`` (the direct simulation
-    of the striker, with its ``model.toml``, and its force and profile plots when ``plots``), ``plots/`` (the
-    files ``draw()`` writes there), and ``summary.json`` (``summary`` with the list of ``files``)."""
-    from .results import summary_json
-    from .results import save as save_result
-
-    files = list(files)
-    if verification is not None:
-        save_result(verification.simulation, tmp / "verification", overwrite=True,
-                    plots=("forces", "profile") if plots else (), snapshot_times=None)
-        files.append("verification/")
-    if plots:
-        files += [f"plots/{p}" for p in draw()]
-    summary["files"] = files + ["summary.json"]
-    (tmp / "summary.json").write_text(summary_json(summary), encoding="utf-8")
-    return summary
-
-
-def _plots(r: SynthesisRun, folder: Path) -> list[str]:
-    """The synthesis plots of :mod:`rodimpact.plotting.synthesis`, drawn on pyplot-free figures (headless)."""
-    from ..plotting import synthesis as sp
-
-    folder.mkdir(parents=True, exist_ok=True)
-    jobs = [("impedance.png", lambda ax: sp.plot_impedance(r.result, ax=ax)),
-            ("force.png", lambda ax: sp.plot_force(r.result, r.verification, ax=ax)),
-            ("existence.png", lambda ax: sp.plot_existence(r.result, ax=ax))]
+    (folder / "spec.toml").write_text(spec.text, encoding="utf-8")
+    (folder / "report.txt").write_text(res.report() + "\n", encoding="utf-8")
+    files = ["spec.toml", "report.txt"]
     if r.shape is not None:
-        jobs.append(("shape.png", lambda ax: sp.plot_shape(r.shape, ax=ax)))
-    return write_plots(folder, jobs)
-
-
-def write_plots(folder: Path, jobs: list) -> list[str]:
-    """Draw each ``(file name, draw(ax))`` job on its own pyplot-free figure (headless) into ``folder``."""
-    from ..plotting import new_axes
-
-    written = []
-    for name, draw in jobs:
-        fig, ax = new_axes(None)
-        draw(ax)
-        fig.savefig(folder / name, dpi=120)
-        written.append(name)
-    return written
+        r.shape.to_csv(folder / "striker.csv",
+                       note=f"synthesized striker; impact velocity {res.striker_velocity!r} m/s")
+        files.append("striker.csv")
+    save(res, folder / "synthesis.nc")
+    files.append("synthesis.nc")
+    return files
 
 
 # ============================================================================================ template

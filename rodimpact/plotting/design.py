@@ -111,7 +111,8 @@ def plot_incident_wave(result: Any, loading_stiffness: float, rod_impedance: flo
     arrival)."""
     _check(result)
     if result.location is None or result.quantity != "incident":
-        raise ValueError("result: needs a design whose run records the incident wave (objective='efficiency')")
+        raise ValueError("result: needs a design whose run records the incident wave (ri.EfficiencyObjective(), or "
+                         "ri.MatchObjective(target, position=..., quantity='incident'))")
     _, ax = new_axes(ax)
     d = result.location.node
     end = min(2 * result.n_elements, result.time.size - d)      # the striker's pulse: 2 n steps

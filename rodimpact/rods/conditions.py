@@ -9,11 +9,13 @@ below are described in these terms so the same law applies at either end.
 from __future__ import annotations
 
 import difflib
+import math
 
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from .declared import check, choice, element, flag, history, quantity
+from .declared import check, choice, element, flag, history, part, quantity
+from .laws import FREW, Law
 from .history import HistoryLike
 
 
@@ -226,6 +228,89 @@ class SpringDashpot(Junction):
 
     def __post_init__(self) -> None:
         check(self)
+
+
+class DeformableJoint(Junction):
+    """A short, massless deformable body between the end faces of two rods, carrying the force of its
+    constitutive law (:mod:`rodimpact.rods.laws`) at its strain and strain rate: a specimen or a pulse shaper.
+
+    It is in force equilibrium at every instant (both faces carry the same force), which holds when its elastic
+    transit time is small against the loading's rise time. Strain eps = delta / L0 from the shortening delta;
+    with ``measure="true"`` the law sees true strain and rate and the area grows as A0 / (1 - eps)
+    (incompressible flow), with ``"engineering"`` it sees eps and the area stays A0. The solver's equation and
+    rule: docs/shpb.md and :mod:`rodimpact.direct.joints`.
+    """
+
+    code = 3
+    law: Law
+    diameter: float
+    measure: str
+    compression_only: bool
+
+    @property
+    def initial_length(self) -> float:
+        """Length L0 of the undeformed body along the rods, m."""
+        raise NotImplementedError
+
+    @property
+    def area(self) -> float:
+        """Initial cross-section area A0 = pi d^2 / 4, m^2."""
+        return 0.25 * math.pi * self.diameter ** 2
+
+    def _check_joint(self) -> None:
+        check(self)
+        if self.law.compression_only and not self.compression_only:
+            raise ValueError(f"{type(self).__name__}.compression_only: the {type(self.law).__name__} law describes "
+                             f"compression only; set compression_only=True")
+        if self.law.code == FREW and self.measure != "engineering":
+            raise ValueError(f"{type(self).__name__}.measure: the Frew-Forrestal-Chen law is fitted in engineering "
+                             f"measures (its strain term includes the area change); set measure='engineering'")
+
+
+_MEASURE = ("Strain and stress measures: `true` (large strain, area A0 / (1 - eps)) or `engineering` (area A0).",
+            ("true", "engineering"))
+_COMPRESSION = "Push only, never pull: the faces lift off instead of stretching the body."
+
+
+@element("junction", "specimen")
+@dataclass(frozen=True)
+class Specimen(DeformableJoint):
+    """A specimen between the incident and transmitted bars of a split-Hopkinson (Kolsky) bar."""
+
+    law: Law = part("law", "Constitutive law of the specimen.")
+    diameter: float = quantity("length", "Diameter.")
+    length: float = quantity("length", "Initial length L0 (along the bars).")
+    measure: str = choice(*_MEASURE, "true")
+    compression_only: bool = flag(_COMPRESSION, True)
+    density: Optional[float] = quantity("density", "Density; with it a Kolsky-bar prediction warns when the elastic "
+                                                   "transit time L0 / c is not small against the pulse's rise.",
+                                        default=None)
+
+    def __post_init__(self) -> None:
+        self._check_joint()
+
+    @property
+    def initial_length(self) -> float:
+        return self.length
+
+
+@element("junction", "pulse-shaper")
+@dataclass(frozen=True)
+class PulseShaper(DeformableJoint):
+    """A thin disc between the striker and the incident bar that shapes the incident pulse (copper, paper)."""
+
+    law: Law = part("law", "Constitutive law of the disc (e.g. `frew`).")
+    diameter: float = quantity("length", "Diameter.")
+    thickness: float = quantity("length", "Initial thickness L0.")
+    measure: str = choice(*_MEASURE, "engineering")
+    compression_only: bool = flag(_COMPRESSION, True)
+
+    def __post_init__(self) -> None:
+        self._check_joint()
+
+    @property
+    def initial_length(self) -> float:
+        return self.thickness
 
 
 def as_junction(value: Any, where: str) -> Junction:

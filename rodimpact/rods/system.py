@@ -9,7 +9,7 @@ import numpy as np
 
 from .._units import array_to_si
 from .._validate import finite
-from .conditions import Bonded, Contact, EndCondition, Junction, as_end_condition, as_junction
+from .conditions import Bonded, Contact, DeformableJoint, EndCondition, Junction, as_end_condition, as_junction
 from .loads import Bearings, NodalForce
 from .plausibility import check_strikers
 from .rod import Rod
@@ -81,6 +81,13 @@ class System:
         if len(juncs) != n_j:
             raise ValueError(f"junctions: need one per neighbouring pair ({n_j}), got {len(juncs)}")
         juncs = tuple(as_junction(j, f"junctions[{i}]") for i, j in enumerate(juncs))
+        for i, j in enumerate(juncs):
+            if isinstance(j, DeformableJoint):
+                faces = min(float(rods[i].area(rods[i].length)), float(rods[i + 1].area(0.0)))
+                if j.area > faces * (1.0 + 1e-12):
+                    raise ValueError(f"junctions[{i}].diameter: the {type(j).__name__.lower()} ({j.diameter * 1e3:.6g} "
+                                     f"mm, {j.area:.6g} m^2) is wider than the rod faces it joins ({faces:.6g} m^2): "
+                                     "the 1-D joint needs the bars to cover it")
         loads = tuple(self.loads)
         for i, ld in enumerate(loads):
             if not isinstance(ld, (NodalForce, Bearings)):

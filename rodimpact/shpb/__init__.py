@@ -1,8 +1,13 @@
-"""The split-Hopkinson (Kolsky) bar: data reduction of recorded or simulated gauge signals (docs/shpb.md).
+"""The split-Hopkinson (Kolsky) bar (docs/shpb.md): the forward model with specimens and pulse shapers between the
+bars, and the data reduction of recorded or simulated gauge signals.
 
 An application layer above the solvers and the measurement layer, below files, figures and the command line
 (docs/architecture.md). SI units; bar strains and forces positive in tension, specimen stress, strain and
 strain rate positive in compression.
+
+Forward model: :class:`KolskyBar`, :class:`Gauge`, :class:`KolskyPrediction`, :func:`incident_for_constant_rate`.
+
+Data reduction:
 
 * :class:`Bar`, :class:`SpecimenGeometry` - the bars with their gauge distances, the specimen's initial size;
 * :class:`GaugeSignals` - the incident-bar and transmitted-bar gauge strains (from arrays or a
@@ -14,6 +19,7 @@ strain rate positive in compression.
 
 from .equilibrium import PASS_LIMIT, REVIEW_LIMIT, EquilibriumCheck, check_equilibrium
 from .gauge_signals import GaugeSignals
+from .kolsky import Gauge, KolskyBar, KolskyPrediction, incident_for_constant_rate
 from .parts import Bar, SpecimenGeometry
 from .reduction import face_pulses, reduce_shot, specimen_responses
 from .result import ANALYSES, ShpbReduction, SpecimenResponse
@@ -23,7 +29,10 @@ __all__ = [
     "ANALYSES",
     "Bar",
     "EquilibriumCheck",
+    "Gauge",
     "GaugeSignals",
+    "KolskyBar",
+    "KolskyPrediction",
     "PASS_LIMIT",
     "PulseWindows",
     "REVIEW_LIMIT",
@@ -34,6 +43,7 @@ __all__ = [
     "check_equilibrium",
     "face_pulses",
     "find_windows",
+    "incident_for_constant_rate",
     "reduce_shot",
     "specimen_responses",
 ]

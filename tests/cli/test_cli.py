@@ -105,7 +105,7 @@ def test_simulate_writes_results_plots_and_a_summary(tmp_path):
     j = summary["junctions"][0]
     assert j["peak_compressive_force_N"] == pytest.approx(-z * 5.0 / 2, rel=1e-12)       # equal impedances
     assert j["contact_duration_s"] == pytest.approx(0.8 / C, abs=2.1e-6)
-    from rodimpact.io.results import load
+    from rodimpact.io import load
     back = load(out)
     assert np.array_equal(back.probe("SG1").force, json_free_probe(out))
     again = tomllib.loads((out / "model.toml").read_text())
@@ -191,7 +191,7 @@ def test_readme_first_command_writes_results_and_plots(tmp_path, capsys, monkeyp
     assert {"snapshots.png", "xt.png", "forces.png", "profile.png", "energy.png"} <= \
         {f.name for f in (out / "plots").iterdir()}
     assert "separation at         0.2705 ms" in p.stdout
-    from rodimpact.io.results import load
+    from rodimpact.io import load
     res = load(out)
     assert res.contact_force[0] == pytest.approx(-255e3, rel=1e-12)        # -Z0 v / 2 (Tab. 3.1, v = 10 m/s)
     code, _, err = main_in_process(["examples", "run", "first-example", "-o", "results/first-example"], tmp_path,

@@ -62,7 +62,8 @@ def test_small_spec_options(tmp_path):
     spec = loads_spec(SMALL.replace('velocity = "12 m/s"', 'velocity = "12 m/s"\nvelocity_min = "8 m/s"\n'
                                                            'velocity_max = "14 m/s"\nmass = "0.05 kg"')
                       .replace("# max_steps = 3", "max_steps = 2"))
-    assert spec.kwargs["velocity_bounds"] == (8.0, 14.0) and spec.kwargs["mass"] == pytest.approx(0.05)
+    limits = spec.kwargs["limits"]
+    assert limits.velocity_bounds == (8.0, 14.0) and limits.mass == pytest.approx(0.05) and limits.max_steps == 2
     d = spec.design()
     assert d.mass == pytest.approx(0.05, rel=1e-12) and d.steps <= 2 and 8.0 <= d.striker_velocity <= 14.0
 
@@ -78,6 +79,11 @@ def test_small_spec_options(tmp_path):
     (('elements = 6', 'element = 6'), "design.element: unknown key"),
     (('max_iterations = 3', 'max_iterations = 3\nimprovement = 2'), "design.improvement: must be"),
     (('max_iterations = 3', 'max_iterations = 3\nreloading = false'), "design.reloading: chooses the definition of the efficiency"),
+    (('max_iterations = 3', 'max_iterations = 3\nduration = "1 ms"'), "design.duration: the length of the efficiency run"),
+    (('velocity = "12 m/s"', 'velocity = "12 m/s"\nvelocity_min = "14 m/s"\nvelocity_max = "8 m/s"'),
+     "striker.velocity_min: the lower bound 14 m/s exceeds the upper bound 8 m/s"),
+    (('bore = "0 mm"', 'bore = "5 mm"'), "striker.diameter_min: the smallest diameter 0.005 m must exceed the bore"),
+    (('starts = 1', 'starts = 1\nmax_steps = 0'), "design.max_steps"),
     (('force = "-80e3 * sin(pi * t / 24e-6)"', 'force = "-80e3 / (t - 6e-6)"'),
      "target.force: the expression '-80e3 / (t - 6e-6)' gives -inf at t = 6e-06; it must be finite"),
 ])
@@ -129,7 +135,7 @@ def test_efficiency_spec_first_pass_length_range_and_uniform_reference(tmp_path)
                         'unloading_stiffness = "900 MN/m" }')
     text = text.replace('bore = "0 mm"', 'bore = "0 mm"\nmass = "0.02 kg"')
     spec = loads_spec(text)
-    assert spec.kwargs["reloading"] is False and spec.kwargs["n"] == (3, 6)
+    assert spec.kwargs["target"] == ri.EfficiencyObjective(reloading=False) and spec.kwargs["n"] == (3, 6)
     r = run(spec)
     s = summarize_run(r, spec)
     text_summary = format_summary(s, spec)

@@ -12,8 +12,9 @@ import pytest
 
 import rodimpact as ri
 from rodimpact import cli
-from rodimpact.inverse import SynthesisResult, lundberg_lesser_impedance
-from rodimpact.io.synthesis_spec import TEMPLATE, loads_spec, run, save, spec_reference_markdown
+from rodimpact.inverse import lundberg_lesser_impedance
+from rodimpact.io.synthesis_spec import TEMPLATE, loads_spec, run, spec_reference_markdown
+from rodimpact.output_folders import write_spec_run
 
 RODIMPACT = [sys.executable, "-m", "rodimpact"]
 
@@ -38,7 +39,7 @@ def test_init_synthesize_then_synthesize_reproduces_lundberg_lesser(tmp_path):
     assert {"spec.toml", "report.txt", "striker.csv", "synthesis.nc", "summary.json", "plots", "verification"} <= \
         {f.name for f in out.iterdir()}
     assert {"impedance.png", "force.png", "existence.png", "shape.png"} <= {f.name for f in (out / "plots").iterdir()}
-    res = SynthesisResult.load(out / "synthesis.nc")
+    res = ri.load(out / "synthesis.nc")
     z_bar = ri.STEEL.impedance(math.pi / 4 * 0.05**2)
     assert res.impedance[0] == pytest.approx(1.0 / (6.0 / 239e3 - 1.0 / z_bar), rel=1e-12)     # eq. 4.4
     exact = lundberg_lesser_impedance(res.theta, 239e3, 0.383e-3, z_bar, 6.0)
@@ -99,7 +100,7 @@ def test_percussion_drilling_spec_round_trip_at_machine_precision(tmp_path):
     r = run(spec)
     assert r.result.n_feasible == 100 and r.result.feasible
     assert r.verification.max_deviation < 1e-13
-    summary = save(r, spec, tmp_path / "drill", plots=False)
+    summary = write_spec_run(r, spec, tmp_path / "drill", plots=False)
     assert summary["position_m"] == pytest.approx(2.0)
     assert summary["striker"]["length_m"] == pytest.approx(0.5, rel=1e-9)
 

@@ -9,7 +9,7 @@ from scipy.optimize import minimize
 
 import rodimpact as ri
 from rodimpact.design.constraints import build_constraints
-from rodimpact.design.objectives import MatchObjective
+from rodimpact.design.objectives import MatchCost
 
 DT = 1e-6
 Z_BAR = 1.27e4
@@ -29,8 +29,8 @@ def test_an_active_lower_mass_bound_is_met_at_the_best_misfit():
     bar = _bar()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ri.SynthesisWarning)
-        d = ri.design(target, struck=bar, striker_velocity=v, dt=DT, far_end="nonreflecting", mass=(m_lo, 0.1),
-                      impedance_bounds=(500.0, 1e5))
+        d = ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), v, dt=DT,
+                      limits=ri.StrikerLimits(mass=(m_lo, 0.1), impedance_bounds=(500.0, 1e5)))
     assert d.constraint_report["mass_active"] == "lower"
     assert d.mass == pytest.approx(m_lo, rel=1e-5)
     ref = np.repeat(target, 2)
@@ -52,8 +52,9 @@ def test_a_step_of_a_stepped_striker_takes_the_tightest_bound_of_its_elements():
     lower = np.array([500.0] * 5 + [5000.0] * 5)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ri.SynthesisWarning)
-        d = ri.design(np.full(10, -8e3), struck=_bar(), striker_velocity=12.0, dt=DT, far_end="nonreflecting",
-                      impedance_bounds=(lower, 1e5), max_steps=1, max_iterations=20, starts=1)
+        d = ri.design(np.full(10, -8e3), ri.System.struck(_bar(), far_end="nonreflecting"), 12.0, dt=DT,
+                      limits=ri.StrikerLimits(impedance_bounds=(lower, 1e5), max_steps=1),
+                      search=ri.SearchOptions(max_iterations=20, starts=1))
     assert d.steps == 1
     assert np.all(d.impedance >= lower), d.impedance
 
@@ -61,7 +62,7 @@ def test_a_step_of_a_stepped_striker_takes_the_tightest_bound_of_its_elements():
 def test_per_step_weights_at_a_position_are_those_of_the_window_starts():
     """At a position the compared samples are the window starts (steps d + 2(j-1)); with one weight per step the
     weight of window j is that of its first step: [1,0, 1,0, 1,0, 0,5] -> [1, 1, 1, 0]."""
-    obj = MatchObjective.build(-np.ones(4), 3, [1, 0, 1, 0, 1, 0, 0, 5], DT)
+    obj = MatchCost.build(-np.ones(4), 3, [1, 0, 1, 0, 1, 0, 0, 5], DT)
     np.testing.assert_array_equal(obj.weights, [1.0, 1.0, 1.0, 0.0])
     np.testing.assert_array_equal(obj.index, [3, 5, 7, 9])
 
@@ -69,7 +70,7 @@ def test_per_step_weights_at_a_position_are_those_of_the_window_starts():
 def test_the_constraint_report_numbers_elements_from_1_on_both_lists():
     """Element 1 (at the impact face) at its lower bound and element 3 at its upper bound are reported as [1] and
     [3]."""
-    c = build_constraints(3, DT, Z_BAR, impedance_bounds=(1e3, 1e5), striker_velocity=5.0)
+    c = build_constraints(3, DT, Z_BAR, ri.StrikerLimits(impedance_bounds=(1e3, 1e5)), 5.0)
     rep = c.report(np.array([1e3, 5e4, 1e5]), 5.0)
     assert rep["elements_at_lower_bound"] == [1]
     assert rep["elements_at_upper_bound"] == [3]

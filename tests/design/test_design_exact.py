@@ -16,10 +16,9 @@ def _exact(problem):
         return problem.solve()
 
 
-def _design_of(problem, **kw):
-    o = dict(problem.options)
-    return ri.design(problem.target, struck=problem.struck, striker_velocity=problem.striker_velocity, n=problem.n,
-                     dt=problem.dt, far_end=problem.far_end, rule=o.pop("rule"), **o, **kw)
+def _design_of(problem, limits, search=None, backend="numba"):
+    return ri.design(ri.MatchObjective(problem.target, **problem.options), problem.struck_system,
+                     problem.striker_velocity, problem.n, problem.dt, limits=limits, search=search, backend=backend)
 
 
 def _check(d, ref):
@@ -34,7 +33,7 @@ def _check(d, ref):
 def test_thesis_example_1():
     p = academic_example(1)
     z = 79.7e3
-    _check(_design_of(p, impedance_bounds=(z / 50, z * 50)), _exact(p))
+    _check(_design_of(p, ri.StrikerLimits(impedance_bounds=(z / 50, z * 50))), _exact(p))
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
@@ -51,8 +50,8 @@ def test_lundberg_lesser_random_parameters(seed):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ri.SynthesisWarning)
         ref = ri.synthesize(target, ri.System.struck(bar, far_end="nonreflecting"), v, n, dt)
-    d = ri.design(target, struck=bar, striker_velocity=v, n=n, dt=dt, far_end="nonreflecting",
-                  impedance_bounds=(1.0, 1e9))
+    d = ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), v, n, dt,
+                  limits=ri.StrikerLimits(impedance_bounds=(1.0, 1e9)))
     _check(d, ref)
     # and the closed form (second order at the element midpoints): a loose independent check of the answer
     exact = ri.inverse.lundberg_lesser_impedance(dt * (np.arange(n) + 0.5), peak, t0, zt, v)
@@ -61,7 +60,7 @@ def test_lundberg_lesser_random_parameters(seed):
 
 def test_percussion_drilling_example():
     p = percussion_drilling_example()
-    d = _design_of(p, impedance_bounds=(1e3, 1e7))
+    d = _design_of(p, ri.StrikerLimits(impedance_bounds=(1e3, 1e7)))
     ref = _exact(p)
     _check(d, ref)
     assert d.location is not None and d.quantity == "incident"
@@ -73,7 +72,7 @@ def test_bounds_that_exclude_the_exact_striker_force_optimisation():
     p = academic_example(1, n=12)
     ref = _exact(p)
     hi = 0.9 * ref.impedance.max()
-    d = _design_of(p, impedance_bounds=(1e3, hi), max_iterations=15, starts=1)
+    d = _design_of(p, ri.StrikerLimits(impedance_bounds=(1e3, hi)), ri.SearchOptions(max_iterations=15, starts=1))
     assert d.impedance.max() <= hi * (1 + 1e-12)
     assert not d.diagnostics["warm_start"].startswith("exact")
     assert d.constraint_report["elements_at_upper_bound"]
@@ -84,7 +83,7 @@ def test_optimiser_alone_finds_the_exact_striker():
     """Without the warm start the gradient-based optimiser reaches the recursive method's striker too."""
     p = academic_example(1, n=10)
     ref = _exact(p)
-    d = _design_of(p, impedance_bounds=(1e3, 1e7), warm_start=False)
+    d = _design_of(p, ri.StrikerLimits(impedance_bounds=(1e3, 1e7)), ri.SearchOptions(warm_start=False))
     assert d.misfit < 1e-7
     assert np.max(np.abs(d.impedance / ref.impedance - 1)) < 1e-6
 
@@ -92,7 +91,8 @@ def test_optimiser_alone_finds_the_exact_striker():
 def test_numpy_and_numba_backends_agree():
     """Through the optimiser: the upper bound excludes the exact striker."""
     p = academic_example(2, n=6)
-    kw = dict(impedance_bounds=(1e3, 0.9 * _exact(p).impedance.max()), max_iterations=3, starts=2)
+    kw = dict(limits=ri.StrikerLimits(impedance_bounds=(1e3, 0.9 * _exact(p).impedance.max())),
+              search=ri.SearchOptions(max_iterations=3, starts=2))
     a = _design_of(p, backend="numba", **kw)
     b = _design_of(p, backend="numpy", **kw)
     assert np.allclose(a.impedance, b.impedance, rtol=1e-9, atol=0)

@@ -18,8 +18,9 @@ def _half_sine(n):
 @pytest.fixture(scope="module")
 def small():
     bar = ri.Rod.from_impedance([ZS] * 6, DT)
-    return ri.design(_half_sine(8), struck=bar, striker_velocity=12.0, n=8, dt=DT, far_end="nonreflecting",
-                     impedance_bounds=(500.0, 1e5), max_iterations=10, starts=1)
+    return ri.design(_half_sine(8), ri.System.struck(bar, far_end="nonreflecting"), 12.0, n=8, dt=DT,
+                     limits=ri.StrikerLimits(impedance_bounds=(500.0, 1e5)),
+                     search=ri.SearchOptions(max_iterations=10, starts=1))
 
 
 def test_verify_reproduces_the_design_run(small):
@@ -77,17 +78,24 @@ def test_xarray_and_netcdf(small, tmp_path):
     ds = small.to_xarray()
     assert np.array_equal(ds["impedance"].values, small.impedance)
     assert ds.attrs["misfit"] == small.misfit
-    p = small.save(tmp_path / "design.nc")
+    p = ri.save(small, tmp_path / "design.nc")
     with pytest.raises(FileExistsError):
-        small.save(p)
+        ri.save(small, p)
+    back = ri.load(p)                       # the arrays, the report and the diagnostics of a real design
+    for name in ("impedance", "time", "achieved", "face_force", "target", "compared", "window_values"):
+        assert np.array_equal(getattr(back, name), getattr(small, name)), name
+    assert (back.misfit, back.constraint_report, back.material, back.location) == \
+        (small.misfit, small.constraint_report, small.material, small.location)
+    assert back.convergence == small.convergence
 
 
 def test_mass_and_velocity_bounds():
     """A prescribed mass is met exactly and reported; a free velocity stays inside its bounds."""
     bar = ri.Rod.from_impedance([ZS] * 6, DT)
     m = 8 * DT * 4000.0
-    d = ri.design(_half_sine(8), struck=bar, striker_velocity=10.0, n=8, dt=DT, far_end="nonreflecting",
-                  impedance_bounds=(500.0, 1e5), mass=m, velocity_bounds=(6.0, 14.0), max_iterations=10, starts=1)
+    d = ri.design(_half_sine(8), ri.System.struck(bar, far_end="nonreflecting"), 10.0, n=8, dt=DT,
+                  limits=ri.StrikerLimits(impedance_bounds=(500.0, 1e5), mass=m, velocity_bounds=(6.0, 14.0)),
+                  search=ri.SearchOptions(max_iterations=10, starts=1))
     assert d.mass == pytest.approx(m, rel=1e-12)
     assert d.constraint_report["mass_active"] == "prescribed"
     assert 6.0 <= d.striker_velocity <= 14.0
@@ -99,7 +107,8 @@ def test_weights_change_the_misfit_definition():
     """Zero weight on the second half: the reported misfit only measures the first half."""
     bar = ri.Rod.from_impedance([ZS] * 6, DT)
     w = np.r_[np.ones(4), np.zeros(4)]
-    d = ri.design(_half_sine(8), struck=bar, striker_velocity=12.0, n=8, dt=DT, far_end="nonreflecting",
-                  impedance_bounds=(500.0, 1e5), weights=w, max_iterations=5, starts=1)
+    d = ri.design(ri.MatchObjective(_half_sine(8), weights=w), ri.System.struck(bar, far_end="nonreflecting"), 12.0,
+                  n=8, dt=DT, limits=ri.StrikerLimits(impedance_bounds=(500.0, 1e5)),
+                  search=ri.SearchOptions(max_iterations=5, starts=1))
     x = np.repeat(_half_sine(8).window_values(8, DT), 2)[:8]
     assert d.misfit == pytest.approx(np.linalg.norm(d.face_force[:8] - x) / np.linalg.norm(x), rel=1e-12)

@@ -12,7 +12,7 @@ from scipy.optimize import minimize_scalar
 
 import rodimpact as ri
 from rodimpact.design._adjoint import ImpactProblem
-from rodimpact.design.objectives import EfficiencyObjective
+from rodimpact.design.objectives import EfficiencyCost
 
 
 def eta_closed_form(x):
@@ -33,7 +33,7 @@ def _lattice_eta(n, x, z=50e3, v=10.0, dt=1e-6):
     s = ri.System.struck(ri.Rod.from_impedance([z] * (4 * n), dt), far_end=ri.BitRockEnd(k, 1e6 * k))
     steps = 8 * n
     fw = ImpactProblem(s, dt, n, steps).forward(np.full(n, z), v)
-    return EfficiencyObjective(dt, steps).efficiency(fw, np.full(n, z), v)
+    return EfficiencyCost(dt, steps).efficiency(fw, np.full(n, z), v)
 
 
 @pytest.mark.parametrize("x", [0.5, 1.2564, 3.0])
@@ -62,8 +62,9 @@ def test_design_beats_the_uniform_piston_of_the_same_mass_and_length():
     beats the only uniform piston of that mass (computed independently with simulate)."""
     n = 10
     rod, end, dt, m = _drilling(n)
-    d = ri.design(None, objective="efficiency", struck=rod, far_end=end, striker_velocity=10.0, n=n, dt=dt,
-                  diameter_bounds=(0.02, 0.08), mass=m, max_iterations=8, starts=1)
+    d = ri.design(ri.EfficiencyObjective(), ri.System.struck(rod, far_end=end), 10.0, n, dt,
+                  limits=ri.StrikerLimits(diameter_bounds=(0.02, 0.08), mass=m),
+                  search=ri.SearchOptions(max_iterations=8, starts=1))
     assert d.mass == pytest.approx(m, rel=1e-10)
     assert d.constraint_report["mass_active"] == "prescribed"
     uniform = ri.Rod.from_impedance(np.full(n, m / (n * dt)), dt)
@@ -78,5 +79,6 @@ def test_design_beats_the_uniform_piston_of_the_same_mass_and_length():
 
 def test_efficiency_needs_a_bit_rock_end():
     rod = ri.Rod.from_impedance([50e3] * 10, 1e-6)
-    with pytest.raises(ValueError, match="far_end.*BitRockEnd"):
-        ri.design(None, objective="efficiency", struck=rod, far_end="free", striker_velocity=10.0, n=5, dt=1e-6)
+    with pytest.raises(ValueError, match=r"struck.right: .*needs a BitRockEnd far end, e.g. "
+                                         r"ri.System.struck\(rods, far_end=ri.BitRockEnd\(k1, k2\)\); got FreeEnd"):
+        ri.design(ri.EfficiencyObjective(), ri.System.struck(rod, far_end="free"), 10.0, n=5, dt=1e-6)

@@ -21,9 +21,9 @@ def _uniform_piston(x, reloading, n=100, z=50e3, dt=1e-6, unloading=1e6, piston=
     only)."""
     k = x * z / (2 * n * dt)
     rod = ri.Rod.from_impedance([z] * (2 * n), dt)
-    return ri.design(None, objective="efficiency", struck=rod, far_end=ri.BitRockEnd(k, unloading * k),
-                     striker_velocity=10.0, n=n, dt=dt, impedance_bounds=(piston * z, piston * z), max_iterations=1, starts=1,
-                     reloading=reloading)
+    return ri.design(ri.EfficiencyObjective(reloading=reloading), ri.System.struck(rod, far_end=ri.BitRockEnd(
+        k, unloading * k)), 10.0, n, dt, limits=ri.StrikerLimits(impedance_bounds=(piston * z, piston * z)),
+        search=ri.SearchOptions(max_iterations=1, starts=1))
 
 
 @pytest.mark.parametrize("x", [1.2564, 3.0])
@@ -47,12 +47,26 @@ def test_reloading_counts_the_work_of_the_reflected_waves():
 
 
 def test_first_pass_refuses_a_pulse_longer_than_the_round_trip_and_a_run_length():
-    rod = ri.Rod.from_impedance([50e3] * 4, 1e-6)
-    kw = dict(objective="efficiency", struck=rod, far_end=ri.BitRockEnd(1e9), striker_velocity=10.0, dt=1e-6,
-              max_iterations=1, starts=1, reloading=False)
-    with pytest.raises(ValueError, match="reloading: the first pass"):
-        ri.design(None, n=6, **kw)
-    with pytest.raises(ValueError, match="steps, duration"):
-        ri.design(None, n=2, steps=50, **kw)
-    with pytest.raises(TypeError, match="reloading"):
-        ri.design(None, n=2, **{**kw, "reloading": "no"})
+    struck = ri.System.struck(ri.Rod.from_impedance([50e3] * 4, 1e-6), far_end=ri.BitRockEnd(1e9))
+    first_pass = ri.EfficiencyObjective(reloading=False)
+    with pytest.raises(ValueError, match="EfficiencyObjective.reloading: the first pass cannot be separated"):
+        ri.design(first_pass, struck, 10.0, n=6, dt=1e-6, search=ri.SearchOptions(max_iterations=1, starts=1))
+    with pytest.raises(ValueError, match="EfficiencyObjective.steps: the first-pass efficiency .* omit it"):
+        ri.EfficiencyObjective(reloading=False, steps=50)
+    with pytest.raises(ValueError, match="EfficiencyObjective.duration: the first-pass efficiency"):
+        ri.EfficiencyObjective(reloading=False, duration=1e-4)
+    with pytest.raises(TypeError, match="EfficiencyObjective.reloading: must be True"):
+        ri.EfficiencyObjective(reloading="no")
+
+
+def test_the_run_length_of_the_efficiency_is_validated_and_computed_in_one_place():
+    assert ri.EfficiencyObjective().run_steps(5, 40, 1e-6) == 2 * 5 + 2 * 3 * 40
+    assert ri.EfficiencyObjective(steps=np.int64(77)).run_steps(5, 40, 1e-6) == 77
+    assert ri.EfficiencyObjective(duration=50.4e-6).run_steps(5, 40, 1e-6) == 50
+    for kw, error, match in ((dict(steps=10, duration=1e-5), ValueError, "EfficiencyObjective.steps, duration: give "
+                                                                         "one of them"),
+                             (dict(steps=0), ValueError, "EfficiencyObjective.steps: must be an integer >= 1"),
+                             (dict(duration=-1e-3), ValueError, "EfficiencyObjective.duration: must be > 0"),
+                             (dict(duration="x"), TypeError, "EfficiencyObjective.duration")):
+        with pytest.raises(error, match=match):
+            ri.EfficiencyObjective(**kw)

@@ -21,8 +21,8 @@ def test_the_half_sine_design_is_within_half_a_percent_of_the_best_known_misfit(
     target = ri.inverse.ForceTarget.from_callable(lambda t: -80e3 * np.sin(np.pi * t / span), duration=span)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        d = ri.design(target, struck=bar, striker_velocity=12.0, n=n, dt=dt, far_end="nonreflecting",
-                      diameter_bounds=(0.005, 0.060), material=ri.STEEL)
+        d = ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), 12.0, n, dt,
+                      limits=ri.StrikerLimits(diameter_bounds=(0.005, 0.060), material=ri.STEEL))
     assert d.misfit <= 1.005 * BEST_KNOWN, d.misfit
     values = d.diagnostics["local_optima"]["values"]
     assert min(values) == pytest.approx(d.misfit, rel=1e-9) and max(values) > d.misfit    # the spread is reported

@@ -7,7 +7,7 @@ import pytest
 
 import rodimpact as ri
 from rodimpact.design._adjoint import ImpactProblem
-from rodimpact.design.objectives import EfficiencyObjective, MatchObjective
+from rodimpact.design.objectives import EfficiencyCost, MatchCost
 from rodimpact.design.optimize import Evaluator, total_variation
 from rodimpact.inverse.struck import locate
 
@@ -44,7 +44,7 @@ def test_match_at_the_face_with_weights(seed):
     z, zs, v = _random(seed)
     s = ri.System.struck(ri.Rod.from_impedance(zs, DT), far_end="fixed")
     x = -np.linspace(30e3, 60e3, 8)
-    obj = MatchObjective.build(x, None, np.linspace(1, 2, 8), DT)
+    obj = MatchCost.build(x, None, np.linspace(1, 2, 8), DT)
     ev = Evaluator(ImpactProblem(s, DT, z.size, obj.steps), obj)
     _fd_check(ev, z, v)
 
@@ -53,7 +53,7 @@ def test_match_incident_at_a_position_on_bit_rock():
     z, zs, v = _random(3)
     s = ri.System.struck(ri.Rod.from_impedance(zs, DT), far_end=ri.BitRockEnd(2e9, 4e9))
     loc = locate(s, 5 * DT * ri.STEEL.wave_speed, DT)
-    obj = MatchObjective.build(-np.linspace(20e3, 40e3, 6), loc.node, None, DT)
+    obj = MatchCost.build(-np.linspace(20e3, 40e3, 6), loc.node, None, DT)
     ev = Evaluator(ImpactProblem(s, DT, z.size, obj.steps, location=loc, quantity="incident"), obj)
     _fd_check(ev, z, v)
 
@@ -62,7 +62,7 @@ def test_efficiency_with_smoothing_penalty():
     z, zs, v = _random(4)
     s = ri.System.struck(ri.Rod.from_impedance(zs, DT), far_end=ri.BitRockEnd(3e9, 6e9))
     steps = 40
-    ev = Evaluator(ImpactProblem(s, DT, z.size, steps), EfficiencyObjective(DT, steps), smoothness=0.1,
+    ev = Evaluator(ImpactProblem(s, DT, z.size, steps), EfficiencyCost(DT, steps), smoothness=0.1,
                    z_ref=1e4)
     _fd_check(ev, z, v)
 

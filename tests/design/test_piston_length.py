@@ -35,8 +35,9 @@ def test_a_design_over_a_range_of_lengths_beats_every_uniform_piston_of_the_same
     rod, end, mass = _case()
     uniform = _uniform_efficiencies(rod, end, mass, range(6, 21))
     m_best = max(uniform, key=uniform.get)
-    d = ri.design(None, objective="efficiency", struck=rod, far_end=end, striker_velocity=V, n=(6, 20), dt=DT,
-                  diameter_bounds=(0.02, 0.08), mass=mass, max_iterations=30, starts=2)
+    d = ri.design(ri.EfficiencyObjective(), ri.System.struck(rod, far_end=end), V, n=(6, 20), dt=DT,
+                  limits=ri.StrikerLimits(diameter_bounds=(0.02, 0.08), mass=mass),
+                  search=ri.SearchOptions(max_iterations=30, starts=2))
     assert d.mass == pytest.approx(mass, rel=1e-9)
     assert d.efficiency >= uniform[m_best] - 1e-9
     assert d.n_elements < 20
@@ -49,8 +50,9 @@ def test_a_design_over_a_range_of_lengths_beats_every_uniform_piston_of_the_same
 
 def test_every_efficiency_design_reports_the_best_uniform_piston_of_its_mass():
     rod, end, mass = _case()
-    d = ri.design(None, objective="efficiency", struck=rod, far_end=end, striker_velocity=V, n=14, dt=DT,
-                  diameter_bounds=(0.02, 0.08), mass=mass, max_iterations=5, starts=1)
+    d = ri.design(ri.EfficiencyObjective(), ri.System.struck(rod, far_end=end), V, n=14, dt=DT,
+                  limits=ri.StrikerLimits(diameter_bounds=(0.02, 0.08), mass=mass),
+                  search=ri.SearchOptions(max_iterations=5, starts=1))
     uniform = _uniform_efficiencies(rod, end, mass, range(1, 15))
     admissible = {m: e for m, e in uniform.items()
                   if ri.STEEL.impedance(np.pi / 4 * 0.02 ** 2) <= mass / (m * DT)
@@ -62,8 +64,11 @@ def test_every_efficiency_design_reports_the_best_uniform_piston_of_its_mass():
 
 def test_a_range_of_lengths_needs_a_prescribed_mass():
     rod, end, _ = _case()
-    with pytest.raises(ValueError, match="mass: a range of element counts"):
-        ri.design(None, objective="efficiency", struck=rod, far_end=end, striker_velocity=V, n=(6, 20), dt=DT)
+    struck = ri.System.struck(rod, far_end=end)
+    with pytest.raises(ValueError, match="StrikerLimits.mass: a range of element counts"):
+        ri.design(ri.EfficiencyObjective(), struck, V, n=(6, 20), dt=DT)
     with pytest.raises(ValueError, match="n: give"):
-        ri.design(None, objective="efficiency", struck=rod, far_end=end, striker_velocity=V, n=(20, 6), dt=DT,
-                  mass=0.1)
+        ri.design(ri.EfficiencyObjective(), struck, V, n=(20, 6), dt=DT, limits=ri.StrikerLimits(mass=0.1))
+    with pytest.raises(ValueError, match="StrikerLimits.impedance_bounds: with a range of element counts give one"):
+        ri.design(ri.EfficiencyObjective(), struck, V, n=(6, 20), dt=DT,
+                  limits=ri.StrikerLimits(mass=0.1, impedance_bounds=([1e4] * 20, 1e5)))

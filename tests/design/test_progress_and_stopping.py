@@ -14,13 +14,14 @@ from rodimpact.plotting.design import plot_convergence
 DT = 2e-6
 
 
-def _half_sine(**kw):
+def _half_sine(progress=None, **search):
     bar = ri.Rod.from_impedance([6e4] * 8, DT)
     target = ri.inverse.ForceTarget.from_callable(lambda t: -5e4 * np.sin(np.pi * t / 40e-6), duration=40e-6)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ri.SynthesisWarning)
-        return ri.design(target, struck=bar, striker_velocity=8.0, n=10, dt=DT, far_end="nonreflecting",
-                         impedance_bounds=(5e3, 2e5), **kw)
+        return ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), 8.0, n=10, dt=DT,
+                         limits=ri.StrikerLimits(impedance_bounds=(5e3, 2e5)), search=ri.SearchOptions(**search),
+                         progress=progress)
 
 
 class _Terminal(io.StringIO):
@@ -51,21 +52,21 @@ def test_a_looser_improvement_criterion_stops_earlier():
     z_bar = ri.STEEL.impedance(np.pi / 4 * 0.02 ** 2)
     bar = ri.Rod.from_impedance([z_bar] * 8, 100e-6 / 60)
     target = ri.inverse.ForceTarget.from_callable(lambda t: -80e3 * np.sin(np.pi * t / 100e-6), duration=100e-6)
-    kw = dict(struck=bar, striker_velocity=12.0, n=30, dt=100e-6 / 60, far_end="nonreflecting",
-              diameter_bounds=(0.005, 0.06), max_iterations=150, starts=1)
+    kw = dict(struck=ri.System.struck(bar, far_end="nonreflecting"), striker_velocity=12.0, n=30, dt=100e-6 / 60,
+              limits=ri.StrikerLimits(diameter_bounds=(0.005, 0.06)))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ri.SynthesisWarning)
-        full = ri.design(target, improvement=0.0, **kw)
-        early = ri.design(target, improvement=1e-2, **kw)
+        full = ri.design(target, search=ri.SearchOptions(improvement=0.0, max_iterations=150, starts=1), **kw)
+        early = ri.design(target, search=ri.SearchOptions(improvement=1e-2, max_iterations=150, starts=1), **kw)
     assert early.iterations < full.iterations
     h = np.asarray(early.convergence[0])
     best = np.minimum.accumulate(h)
     assert best[-11] - best[-1] <= 1e-2 * best[-11]          # the criterion held where it stopped
     assert early.diagnostics["optimizer_message"].startswith("CONVERGED: the best objective improved")
-    with pytest.raises(ValueError, match="improvement"):
-        _half_sine(improvement=-1.0)
-    with pytest.raises(TypeError, match="improvement"):
-        _half_sine(improvement="1e-3")
+    with pytest.raises(ValueError, match="SearchOptions.improvement"):
+        ri.SearchOptions(improvement=-1.0)
+    with pytest.raises(TypeError, match="SearchOptions.improvement"):
+        ri.SearchOptions(improvement="1e-3")
 
 
 def test_the_convergence_plot_says_why_there_are_more_runs_than_starts():

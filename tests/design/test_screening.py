@@ -10,7 +10,7 @@ import pytest
 import rodimpact as ri
 from rodimpact.design._adjoint import ImpactProblem
 from rodimpact.design.constraints import build_constraints
-from rodimpact.design.objectives import EfficiencyObjective, MatchObjective
+from rodimpact.design.objectives import EfficiencyCost, MatchCost
 from rodimpact.design.screening import POOL_SIZE, candidate_pool, screen
 
 DT = 1e-6
@@ -33,7 +33,7 @@ def test_face_match_values_equal_the_design_forward_runs():
     struck = ri.System.struck([ri.Rod.from_impedance([3e4] * 10 + [6e4] * 15, DT),
                                ri.Rod.from_impedance([5e4] * 20, DT)], far_end="nonreflecting")
     windows = -6e4 * np.sin(np.pi * (np.arange(n) + 0.5) / n)
-    obj = MatchObjective.build(windows, None, None, DT)
+    obj = MatchCost.build(windows, None, None, DT)
     strikers = _strikers(n, 6)
     pool = [(f"s{i}", z) for i, z in enumerate(strikers)]
     ranked = screen(struck, DT, obj.steps, obj, pool, 7.0, 0.0, 1.0)
@@ -48,7 +48,7 @@ def test_efficiency_values_equal_the_design_forward_runs():
     n = 10
     struck = ri.System.struck(ri.Rod.from_impedance([4e4] * 40, DT), far_end=ri.BitRockEnd(2e9, 2e10))
     steps = 2 * n + 6 * 40
-    obj = EfficiencyObjective(DT, steps)
+    obj = EfficiencyCost(DT, steps)
     strikers = _strikers(n, 5, seed=8)
     ranked = screen(struck, DT, steps, obj, [(f"s{i}", z) for i, z in enumerate(strikers)], 9.0, 0.0, 1.0)
     expected = _independent_values(ImpactProblem(struck, DT, n, steps), obj, strikers, 9.0)
@@ -59,7 +59,7 @@ def test_efficiency_values_equal_the_design_forward_runs():
 def test_the_smoothness_penalty_is_added_as_in_the_optimiser():
     n = 8
     struck = ri.System.struck(ri.Rod.from_impedance([4e4] * 20, DT), far_end="nonreflecting")
-    obj = MatchObjective.build(np.full(n // 2, -5e4), None, None, DT)
+    obj = MatchCost.build(np.full(n // 2, -5e4), None, None, DT)
     z = np.linspace(2e4, 6e4, n)
     plain = screen(struck, DT, obj.steps, obj, [("ramp", z)], 5.0, 0.0, 1.0).values[0]
     smooth = screen(struck, DT, obj.steps, obj, [("ramp", z)], 5.0, 0.5, 4e4).values[0]
@@ -71,7 +71,7 @@ def test_the_smoothness_penalty_is_added_as_in_the_optimiser():
 
 def test_candidate_pool_is_feasible_reproducible_and_keeps_the_named_starts_first():
     n = 30
-    cons = build_constraints(n, DT, 4e4, impedance_bounds=(1e4, 1e5), mass=(0.9, 1.5), striker_velocity=5.0)
+    cons = build_constraints(n, DT, 4e4, ri.StrikerLimits(impedance_bounds=(1e4, 1e5), mass=(0.9, 1.5)), 5.0)
     named = [("a", np.full(n, 3e4)), ("b", np.linspace(2e4, 9e4, n))]
     pool = candidate_pool(named, cons)
     again = candidate_pool(named, cons)
@@ -84,11 +84,11 @@ def test_candidate_pool_is_feasible_reproducible_and_keeps_the_named_starts_firs
     assert len({tuple(np.round(z, 6)) for _, z in pool}) == POOL_SIZE     # all different
 
 
-def _half_sine_design(**kw):
+def _half_sine_design():
     bar = ri.Rod.from_impedance([6e4] * 8, 2e-6)
     target = ri.inverse.ForceTarget.from_callable(lambda t: -5e4 * np.sin(np.pi * t / 40e-6), duration=40e-6)
-    return ri.design(target, struck=bar, striker_velocity=8.0, n=10, dt=2e-6, far_end="nonreflecting",
-                     impedance_bounds=(5e3, 2e5), max_iterations=12, **kw)
+    return ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), 8.0, n=10, dt=2e-6,
+                     limits=ri.StrikerLimits(impedance_bounds=(5e3, 2e5)), search=ri.SearchOptions(max_iterations=12))
 
 
 def test_design_starts_from_the_screened_pool_at_the_face():
@@ -103,6 +103,7 @@ def test_design_starts_from_the_screened_pool_at_the_face():
 def test_design_at_a_position_uses_the_named_starts():
     bar = ri.Rod.from_impedance([6e4] * 30, 2e-6)
     target = ri.inverse.ForceTarget.from_callable(lambda t: -5e4 * np.sin(np.pi * t / 40e-6), duration=40e-6)
-    d = ri.design(target, struck=bar, striker_velocity=8.0, n=10, dt=2e-6, far_end="nonreflecting",
-                  position=0.05, impedance_bounds=(5e3, 2e5), max_iterations=5)
+    d = ri.design(ri.MatchObjective(target, position=0.05), ri.System.struck(bar, far_end="nonreflecting"), 8.0, n=10,
+                  dt=2e-6, limits=ri.StrikerLimits(impedance_bounds=(5e3, 2e5)),
+                  search=ri.SearchOptions(max_iterations=5))
     assert "screened" not in d.diagnostics

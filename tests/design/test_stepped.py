@@ -35,8 +35,9 @@ def test_stepped_half_sine_with_three_steps():
     bar = ri.Rod.from_impedance([1.27e4] * 4, dt)
     target = ri.inverse.ForceTarget.from_callable(lambda t: -60e3 * np.sin(np.pi * t / (2 * n * dt)),
                                                   duration=2 * n * dt)
-    d = ri.design(target, struck=bar, striker_velocity=12.0, n=n, dt=dt, far_end="nonreflecting",
-                  impedance_bounds=(500.0, 1e5), max_steps=3, max_iterations=20, starts=1)
+    d = ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), 12.0, n, dt,
+                  limits=ri.StrikerLimits(impedance_bounds=(500.0, 1e5), max_steps=3),
+                  search=ri.SearchOptions(max_iterations=20, starts=1))
     assert d.steps <= 3
     free = d.diagnostics["free_profile"]
     assert free["misfit"] <= d.misfit * (1 + 1e-9)      # the free profile includes every stepped one

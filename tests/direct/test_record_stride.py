@@ -10,7 +10,8 @@ from hypothesis import strategies as st
 import rodimpact as ri
 from rodimpact.direct import simulate as simulate_module
 from rodimpact.direct.result import EventTracker, junction_events_from_history
-from rodimpact.io.results import load, save, summarize
+from rodimpact.io import load, save
+from rodimpact.io.results import summarize
 
 DT = 1e-6
 

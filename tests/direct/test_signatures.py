@@ -14,7 +14,7 @@ from rodimpact.direct import simulate as simulate_module
 DT = 1e-6
 
 #: most parameters each public solver function may take (the catch of moved keywords adds none)
-LIMITS = {"simulate": 9, "simulate_batch": 9, "synthesize": 12, "transform_force": 9}
+LIMITS = {"simulate": 9, "simulate_batch": 9, "synthesize": 12, "transform_force": 9, "design": 9}
 
 
 def bars():
@@ -164,3 +164,62 @@ def test_a_sweep_takes_dicts_and_problems_alike():
     b = ri.sweep(as_problem, {"velocity": [3.0, 5.0]}, metrics, workers=1)
     np.testing.assert_array_equal(a["gauge"].values, b["gauge"].values)
     assert a.attrs["runner"] == b.attrs["runner"] == "simulate"
+
+
+def _design_fields():
+    """Fields of the objects design receives: the struck System, the objectives, StrikerLimits, SearchOptions."""
+    import dataclasses
+
+    classes = (ri.System, ri.MatchObjective, ri.EfficiencyObjective, ri.StrikerLimits, ri.SearchOptions)
+    return {f.name for cls in classes for f in dataclasses.fields(cls)}
+
+
+def test_no_design_parameter_is_a_field_of_an_object_it_receives():
+    params = set(inspect.signature(ri.design).parameters)
+    assert not params & (_design_fields() - {"target"})       # MatchObjective.target is design's first argument
+    assert set(ri.design.moved_keywords) <= _design_fields() | {"far_end", "struck_velocity", "objective"}
+
+
+def test_the_short_notebook_form_of_design_runs():
+    """A target, the struck rod, the velocity, n and dt: matched at the impact face, default limits and search."""
+    bar = ri.Rod.from_impedance([51e3] * 20, DT)
+    short = ri.design(-np.linspace(20e3, 40e3, 4), bar, striker_velocity=6.0, n=4, dt=DT,
+                      search=ri.SearchOptions(max_iterations=2, starts=1, hops=0))
+    assert short.objective == "match" and short.n_elements == 4 and short.striker_velocity == 6.0
+    assert short.struck.right == ri.FreeEnd() and short.material == ri.STEEL
+
+
+@pytest.mark.parametrize("keyword, value, where", [
+    ("far_end", "nonreflecting", r"far_end: give the struck system as one System: ri.System.struck\(rods, far_end="),
+    ("struck_velocity", 1.0, r"struck_velocity: give the struck system as one System: ri.System.struck\(rods, "
+                             r"velocity=...\)"),
+    ("junctions", [], r"junctions: give the struck system as one System"),
+    ("loads", (), r"loads: give the struck system as one System"),
+    ("initial", None, r"initial: give the struck system as one System"),
+    ("objective", "efficiency", r"objective: give the objective as the first argument: "
+                                r"ri.design\(ri.EfficiencyObjective\(\), struck, ...\) or "
+                                r"ri.design\(ri.MatchObjective\(target, position=...\), struck, ...\)"),
+    ("position", 0.1, r"position: give the objective as the first argument: "
+                      r"ri.design\(ri.MatchObjective\(target, position=...\), struck, ...\)"),
+    ("quantity", "incident", r"quantity: .*ri.MatchObjective\(target, quantity=...\)"),
+    ("rule", "start", r"rule: .*ri.MatchObjective\(target, rule=...\)"),
+    ("weights", None, r"weights: .*ri.MatchObjective\(target, weights=...\)"),
+    ("reloading", False, r"reloading: give the objective as the first argument: "
+                         r"ri.design\(ri.EfficiencyObjective\(reloading=...\), struck, ...\)"),
+    ("steps", 100, r"steps: .*ri.EfficiencyObjective\(steps=...\)"),
+    ("duration", 1e-4, r"duration: .*ri.EfficiencyObjective\(duration=...\)"),
+    *[(key, None, rf"{key}: give the striker's limits as one StrikerLimits: ri.design\(target, struck, ..., "
+                  rf"limits=ri.StrikerLimits\({key}=...\)\)")
+      for key in ("impedance_bounds", "diameter_bounds", "material", "bore", "mass", "velocity_bounds", "max_steps",
+                  "smoothness")],
+    *[(key, None, rf"{key}: give the search options as one SearchOptions: ri.design\(target, struck, ..., "
+                  rf"search=ri.SearchOptions\({key}=...\)\)")
+      for key in ("starts", "max_iterations", "tolerance", "improvement", "pool", "hops", "warm_start")],
+])
+def test_a_moved_design_keyword_says_where_it_went(keyword, value, where):
+    bar = ri.Rod.from_impedance([51e3] * 20, DT)
+    with pytest.raises(TypeError, match=where) as info:
+        ri.design(-np.linspace(20e3, 40e3, 4), bar, 6.0, n=4, dt=DT, **{keyword: value})
+    assert "unexpected keyword" not in str(info.value)
+    with pytest.raises(TypeError, match=where):        # the old efficiency form, too
+        ri.design(None, struck=bar, striker_velocity=6.0, n=4, dt=DT, **{keyword: value})

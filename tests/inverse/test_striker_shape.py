@@ -96,7 +96,7 @@ def test_exports_never_overwrite_silently(tmp_path):
         res.shape().to_csv(csv_path)
     assert csv_path.read_text() == before
     res.shape().to_csv(csv_path, overwrite=True)
-    nc = res.save(tmp_path / "synthesis.nc")
+    nc = ri.save(res, tmp_path / "synthesis.nc")
     with pytest.raises(FileExistsError, match="synthesis.nc: exists"):
-        res.save(nc)
+        ri.save(res, nc)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["striker.csv", "synthesis.nc"]   # no temp files left

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import rodimpact as ri
-from rodimpact.inverse import SynthesisResult, SynthesisWarning, academic_example, synthesize
+from rodimpact.inverse import SynthesisWarning, academic_example, synthesize
 
 
 def test_table_and_report_contain_the_failing_element():
@@ -44,7 +44,7 @@ def test_xarray_save_load(tmp_path):
         res = academic_example(2).solve()
     ds = res.to_xarray()
     assert ds["impedance"].dims == ("element",) and ds.sizes["element"] == 78 and ds.sizes["window"] == 100
-    back = SynthesisResult.load(res.save(tmp_path / "syn.nc"))
+    back = ri.load(ri.save(res, tmp_path / "syn.nc"))
     np.testing.assert_array_equal(back.impedance, res.impedance)
     np.testing.assert_array_equal(back.force_difference, res.force_difference)
     assert back.failure == res.failure

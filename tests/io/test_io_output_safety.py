@@ -10,7 +10,8 @@ import pytest
 
 import rodimpact as ri
 from rodimpact.io.model import loads_model
-from rodimpact.io.results import MARKER, AtomicFolder, OutputExistsError, load, save, write_text_atomic
+from rodimpact.io import load, save
+from rodimpact.io.results import MARKER, AtomicFolder, OutputExistsError, write_text_atomic
 
 
 def small_result():
@@ -131,19 +132,17 @@ def test_load_of_a_damaged_or_foreign_result_file_says_so(tmp_path):
         load(out)
 
 
-def test_synthesis_result_load_of_missing_or_foreign_files(tmp_path):
-    from rodimpact.inverse import SynthesisResult
-
-    with pytest.raises(FileNotFoundError, match="missing.nc: no such file"):
-        SynthesisResult.load(tmp_path / "missing.nc")
+def test_load_of_missing_or_foreign_files(tmp_path):
+    with pytest.raises(FileNotFoundError, match="missing.nc: no such file or folder"):
+        load(tmp_path / "missing.nc")
     (tmp_path / "afile.txt").write_text("hello\n")
-    with pytest.raises(ValueError, match="afile.txt: not a rodimpact synthesis result"):
-        SynthesisResult.load(tmp_path / "afile.txt")
+    with pytest.raises(ValueError, match="afile.txt: not a rodimpact result file"):
+        load(tmp_path / "afile.txt")
     (tmp_path / "h5.nc").write_bytes(b"\x89HDF\r\n\x1a\n" + b"\0" * 40)
-    with pytest.raises(ValueError, match="h5.nc: not a rodimpact synthesis result"):
-        SynthesisResult.load(tmp_path / "h5.nc")
-    with pytest.raises(IsADirectoryError, match="is a folder"):
-        SynthesisResult.load(tmp_path)
+    with pytest.raises(ValueError, match="h5.nc: not a rodimpact result file"):
+        load(tmp_path / "h5.nc")
+    with pytest.raises(FileNotFoundError, match="no result here"):
+        load(tmp_path)
 
 
 # ------------------------------------------------------------------------------------------- model files

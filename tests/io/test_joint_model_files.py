@@ -72,3 +72,36 @@ def test_impossible_joints_are_refused_by_key_path(replace: str, message: str) -
            'type = "spring-dashpot"': 'type = "spring-dashpt"'}[replace]
     with pytest.raises(ModelError, match=message):
         loads_model(MODEL.replace(replace, bad))
+
+
+SPECIMEN = MODEL.replace('''[[junctions]]
+type = "spring-dashpot"
+stiffness = "250 MN/m"
+damping = "2 kN s/m"
+compression_only = true''', '''[[junctions]]
+type = "specimen"
+law = { type = "johnson-cook", youngs_modulus = "117 GPa", a = "90 MPa", b = "292 MPa", n = 0.31, c = 0.025 }
+diameter = "30 mm"
+length = "5 mm"''')
+
+
+def test_a_specimen_with_its_law_round_trips() -> None:
+    model = loads_model(SPECIMEN)
+    joint = model.system.junctions[0]
+    assert isinstance(joint, ri.Specimen) and isinstance(joint.law, ri.JohnsonCook)
+    assert (joint.law.a, joint.law.b, joint.diameter, joint.length) == (90e6, 292e6, 0.03, 0.005)
+    again = loads_model(dump_model(model))
+    assert again.system.junctions == model.system.junctions
+    assert np.array_equal(model.simulate().contact_force, again.simulate().contact_force)
+
+
+@pytest.mark.parametrize("replace, bad, message", [
+    ('b = "292 MPa"', 'b = "-292 MPa"', r"junctions\[0\]\.law\.b: must be >= 0, got -292 MPa"),
+    ('type = "johnson-cook"', 'type = "johnson-cok"', r"junctions\[0\]\.law\.type: unknown type 'johnson-cok' "
+                                                       r"\(did you mean 'johnson-cook'\?\)"),
+    ('length = "5 mm"', 'length = "-5 mm"', r"junctions\[0\]\.length: must be > 0"),
+    ('diameter = "30 mm"', 'diameter = "60 mm"', r"junctions\[0\]\.diameter: the specimen \(60 mm.* wider"),
+])
+def test_an_impossible_specimen_is_refused_by_key_path(replace: str, bad: str, message: str) -> None:
+    with pytest.raises(ModelError, match=message):
+        loads_model(SPECIMEN.replace(replace, bad))

@@ -81,7 +81,7 @@ def test_specs_take_overrides_and_record_what_ran():
     assert again.striker_velocity == 7.0 and again.n == spec.n and again.target == spec.target
     assert synthesis_spec.loads_spec(synthesis_spec.TEMPLATE).text == synthesis_spec.TEMPLATE
     design = design_spec.loads_spec(design_spec.TEMPLATE, overrides={"design.starts": 1})
-    assert design.kwargs["starts"] == 1 and design_spec.loads_spec(design.text).kwargs["starts"] == 1
+    assert design.kwargs["search"].starts == 1 and design_spec.loads_spec(design.text).kwargs["search"].starts == 1
     with pytest.raises(ModelError, match=r"design.starts: .*\(set by the override design.starts = 0\)"):
         design_spec.loads_spec(design_spec.TEMPLATE, overrides={"design.starts": 0})
 
@@ -162,8 +162,9 @@ def test_every_exclusive_pair_of_a_rod_is_replaced():
 def test_a_design_striker_takes_impedance_bounds_or_a_mass_range_in_place_of_the_file_s():
     spec = design_spec.loads_spec(design_spec.TEMPLATE, overrides={"striker.impedance_min": "2 kN s/m",
                                                                    "striker.impedance_max": "50 kN s/m"})
-    assert spec.kwargs["impedance_bounds"] == (2e3, 5e4) and spec.kwargs["diameter_bounds"] is None
-    assert design_spec.loads_spec(spec.text).kwargs["impedance_bounds"] == (2e3, 5e4)      # as it ran
+    limits = spec.kwargs["limits"]
+    assert limits.impedance_bounds == (2e3, 5e4) and limits.diameter_bounds is None
+    assert design_spec.loads_spec(spec.text).kwargs["limits"].impedance_bounds == (2e3, 5e4)      # as it ran
     ranged = design_spec.loads_spec(design_spec.TEMPLATE.replace("[striker]\n", '[striker]\nmass = "1 kg"\n'),
                                     overrides={"striker.mass_min": "1 kg", "striker.mass_max": "2 kg"})
-    assert ranged.kwargs["mass"] == (1.0, 2.0)
+    assert ranged.kwargs["limits"].mass == (1.0, 2.0)

@@ -12,7 +12,7 @@ import xarray as xr
 
 import rodimpact as ri
 from rodimpact.io.model import load_model
-from rodimpact.io.results import load, save
+from rodimpact.io import load, save
 
 OLD = Path(__file__).resolve().parents[1] / "data" / "result-format2"
 ENGINES = ["scipy"] + [e for e, mod in (("netcdf4", "netCDF4"), ("h5netcdf", "h5py")) if importlib.util.find_spec(mod)]

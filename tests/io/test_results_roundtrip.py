@@ -11,7 +11,8 @@ import pytest
 
 import rodimpact as ri
 from rodimpact.io.model import Model, OutputSpec
-from rodimpact.io.results import OutputExistsError, load, save, summarize
+from rodimpact.io import load, save
+from rodimpact.io.results import OutputExistsError, summarize
 
 C = ri.STEEL.wave_speed
 ENGINES = ["scipy"] + [e for e, mod in (("netcdf4", "netCDF4"), ("h5netcdf", "h5py")) if importlib.util.find_spec(mod)]
@@ -186,5 +187,17 @@ def test_python_callables_give_results_without_model_file(tmp_path):
 
 
 def test_load_of_a_folder_without_results_says_so(tmp_path):
-    with pytest.raises(FileNotFoundError, match="no result.nc here"):
+    with pytest.raises(FileNotFoundError, match=r"no result here \(none of result.nc, synthesis.nc, design.nc"):
         load(tmp_path)
+
+
+def test_save_writes_data_only_and_says_where_the_figures_went(tmp_path):
+    """io never draws (issue 21): the figures of a results folder come from rodimpact.output_folders."""
+    res = three_rod_result()
+    with pytest.raises(TypeError, match=r"plots: .*rodimpact.output_folders.write_simulation\(result, outdir"):
+        save(res, tmp_path / "out", plots=["forces"])
+    with pytest.raises(TypeError, match="snapshot_times: a setting of the snapshot plot"):
+        save(res, tmp_path / "out", snapshot_times=[1e-4])
+    assert not (tmp_path / "out").exists()
+    save(res, tmp_path / "out")
+    assert not (tmp_path / "out" / "plots").exists()

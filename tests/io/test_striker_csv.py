@@ -8,7 +8,7 @@ import pytest
 
 import rodimpact as ri
 from rodimpact import cli
-from rodimpact.inverse import SynthesisResult, academic_example
+from rodimpact.inverse import academic_example
 from rodimpact.io.quantities import ModelError
 
 MODEL = """
@@ -42,7 +42,7 @@ def test_synthesize_csv_model_simulate_reproduces_the_synthesized_force(tmp_path
     monkeypatch.chdir(tmp_path)
     assert cli.main(["init", "synthesize", "--quiet"]) == 0
     assert cli.main(["synthesize", "synthesis.toml", "-o", "out", "--no-plots", "--quiet"]) == 0
-    res = SynthesisResult.load(tmp_path / "out" / "synthesis.nc")
+    res = ri.load(tmp_path / "out" / "synthesis.nc")
     assert res.n_feasible == 100
     (tmp_path / "model.toml").write_text(MODEL.format(extra=""))
     assert cli.main(["simulate", "model.toml", "-o", "sim", "--no-plots", "--quiet"]) == 0
@@ -121,8 +121,9 @@ def test_design_and_synthesis_write_one_format(tmp_path):
     dt = 2e-6
     bar = ri.Rod.from_impedance([1.27e4] * 6, dt)
     target = ri.inverse.ForceTarget.from_callable(lambda t: -60e3 * np.sin(np.pi * t / (16 * dt)), duration=16 * dt)
-    d = ri.design(target, struck=bar, striker_velocity=12.0, n=8, dt=dt, far_end="nonreflecting",
-                  impedance_bounds=(500.0, 1e5), max_iterations=3, starts=1)
+    d = ri.design(target, ri.System.struck(bar, far_end="nonreflecting"), 12.0, n=8, dt=dt,
+                  limits=ri.StrikerLimits(impedance_bounds=(500.0, 1e5)),
+                  search=ri.SearchOptions(max_iterations=3, starts=1))
     d.to_csv(tmp_path / "design.csv")
     d.shape().to_csv(tmp_path / "shape.csv")
     a = pd.read_csv(tmp_path / "design.csv", comment="#")

@@ -11,8 +11,9 @@ from rodimpact.plotting._common import new_axes
 @pytest.fixture(scope="module")
 def match():
     bar = ri.Rod.from_impedance([1.27e4] * 4, 2e-6)
-    return ri.design(-np.linspace(10e3, 30e3, 4), struck=bar, striker_velocity=12.0, dt=2e-6,
-                     far_end="nonreflecting", impedance_bounds=(500.0, 1e5), max_iterations=2, starts=1)
+    return ri.design(-np.linspace(10e3, 30e3, 4), ri.System.struck(bar, far_end="nonreflecting"), 12.0, dt=2e-6,
+                     limits=ri.StrikerLimits(impedance_bounds=(500.0, 1e5)),
+                     search=ri.SearchOptions(max_iterations=2, starts=1))
 
 
 def test_force_profile_convergence(match):
@@ -39,8 +40,9 @@ def test_wrong_object():
 def test_incident_wave_beside_the_exponential():
     rod = ri.Rod.from_impedance([60e3] * 6, 2e-6)
     k = 60e3 / (2 * 3 * 2e-6)
-    d = ri.design(None, objective="efficiency", struck=rod, far_end=ri.BitRockEnd(k), striker_velocity=10.0, n=3,
-                  dt=2e-6, impedance_bounds=(2e4, 2e5), max_iterations=1, starts=1)
+    d = ri.design(ri.EfficiencyObjective(), ri.System.struck(rod, far_end=ri.BitRockEnd(k)), 10.0, n=3, dt=2e-6,
+                  limits=ri.StrikerLimits(impedance_bounds=(2e4, 2e5)),
+                  search=ri.SearchOptions(max_iterations=1, starts=1))
     ax = plot_incident_wave(d, k, 60e3)
     step, expo = ax.get_lines()[:2]
     t = expo.get_xdata() / 1e3

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import rodimpact as ri
-from rodimpact import io as rio
+from rodimpact.output_folders import write_simulation
 from rodimpact.plotting import (animate_force, plot_energy, plot_energy_comparison, plot_forces, plot_profile,
                                 plot_snapshots, plot_strain, plot_xt, save_plots)
 
@@ -138,9 +138,9 @@ def test_saving_snapshot_plots_at_unrecorded_times_is_refused(result, tmp_path):
         save_plots(result, tmp_path / "p", ["forces", "snapshots"], snapshot_times=[5.0])
     assert not (tmp_path / "p").exists()
     with pytest.raises(ValueError, match="snapshot_times: 5 s"):
-        rio.save(result, tmp_path / "out", plots=["snapshots"], snapshot_times=[5.0])
+        write_simulation(result, tmp_path / "out", plots=["snapshots"], snapshot_times=[5.0])
     assert not (tmp_path / "out").exists()
-    rio.save(result, tmp_path / "ok", plots=["snapshots"], snapshot_times=[2e-5, 8e-5])
+    write_simulation(result, tmp_path / "ok", plots=["snapshots"], snapshot_times=[2e-5, 8e-5])
     assert (tmp_path / "ok" / "plots" / "snapshots.png").exists()
 
 

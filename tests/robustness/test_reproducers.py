@@ -30,6 +30,7 @@ from rodimpact.io.model import loads_model
 from rodimpact.io.quantities import ModelError
 from rodimpact.io.recordings import read_lanl_raw, read_tdms
 from rodimpact.io.templates import TEMPLATES
+from rodimpact.output_folders import write_simulation
 
 from robust_inputs import DT_LINE, ROOT, small_model
 
@@ -264,7 +265,7 @@ def test_duplicate_plot_names_are_refused_before_the_run(tmp_path):
           r"output\.plots\[2\]: 'forces' is listed twice")
     res = ri.simulate([ri.Rod([ri.Cylinder(0.1, 0.04)]), ri.Rod([ri.Cylinder(0.2, 0.04)])], [1.0, 0.0], steps=20)
     with pytest.raises(ValueError, match="plots: 'xt' is listed twice"):
-        ri.save(res, tmp_path / "out", plots=["xt", "xt"])
+        write_simulation(res, tmp_path / "out", plots=["xt", "xt"])
     assert not (tmp_path / "out").exists()
 
 
