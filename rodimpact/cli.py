@@ -343,12 +343,9 @@ def cmd_design(args: argparse.Namespace) -> int:
 
 
 # ============================================================================================ shpb
-#: The plots of ``shpb reduce``: file name -> drawing function of :mod:`rodimpact.plotting.shpb`.
-SHPB_PLOTS = ("pulses", "stress_strain", "strain_rate", "equilibrium")
-
-
 def cmd_shpb_reduce(args: argparse.Namespace) -> int:
     from .io import shpb_spec
+    from .output_folders import write_shpb_reduction
 
     overrides: dict[str, Any] = {}
     for role in ("incident_bar", "transmitted_bar"):
@@ -367,35 +364,10 @@ def cmd_shpb_reduce(args: argparse.Namespace) -> int:
         reduction = _input_phase(lambda: shpb_spec.run(spec, shot))
         summary = shpb_spec.summarize_run(reduction, spec, shot)
         if out is not None:
-            _write_shpb(out, reduction, spec, summary, args.force, spec.plots and not args.no_plots)
+            write_shpb_reduction(reduction, spec, summary, out, overwrite=args.force, plots=not args.no_plots)
     _report(summary, shpb_spec.format_summary(summary), args, f"results written to {out}" if out else "",
             summary["warnings"])
     return EXIT_OK
-
-
-def _write_shpb(out: Path, reduction: Any, spec: Any, summary: dict, force: bool, plots: bool) -> None:
-    """The output folder of ``shpb reduce``, written atomically: ``reduction.csv``, ``reduction.nc``, the spec as
-    it ran (``spec.toml``, when there was one or options set keys), ``plots/*.png`` and ``summary.json``."""
-    from .io.results import AtomicFolder, summary_json
-    from .plotting import new_axes
-    from .plotting import shpb as shpb_plots
-
-    with AtomicFolder(out, force) as tmp:
-        reduction.to_csv(tmp / "reduction.csv")
-        reduction.to_netcdf(tmp / "reduction.nc")
-        files = ["reduction.csv", "reduction.nc"]
-        if spec.text.strip():
-            (tmp / "spec.toml").write_text(spec.text, encoding="utf-8")
-            files.append("spec.toml")
-        if plots:
-            (tmp / "plots").mkdir()
-            for name in SHPB_PLOTS:
-                fig, ax = new_axes(None)
-                getattr(shpb_plots, f"plot_{name}")(reduction, ax=ax)
-                fig.savefig(tmp / "plots" / f"{name}.png", dpi=120)
-                files.append(f"plots/{name}.png")
-        summary["files"] = files + ["summary.json"]
-        (tmp / "summary.json").write_text(summary_json(summary), encoding="utf-8")
 
 
 # ============================================================================================ docs

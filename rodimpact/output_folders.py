@@ -2,8 +2,8 @@
 figures of :mod:`rodimpact.plotting` in one folder, written atomically.
 
 io writes data only and plotting only draws; neither imports the other (docs/architecture.md, layers). This
-module sits above both and puts them together for ``rodimpact simulate``, ``sweep``, ``synthesize`` and
-``design`` and for :func:`rodimpact.examples.run_example`. Every folder is written into a temporary folder and
+module sits above both and puts them together for ``rodimpact simulate``, ``sweep``, ``synthesize``, ``design``
+and ``shpb reduce`` and for :func:`rodimpact.examples.run_example`. Every folder is written into a temporary folder and
 moved into place at the end (:class:`rodimpact.io.results.AtomicFolder`: an existing folder is replaced only with
 ``overwrite=True`` and only if rodimpact wrote it), so its ``summary.json`` lists the figures too. A result's
 data alone: :func:`rodimpact.save`.
@@ -17,6 +17,7 @@ from typing import Any, Callable, Optional, Sequence
 from .io import design_spec, model_sweep, synthesis_spec
 from .io.results import AtomicFolder, simulation_summary, write_simulation_files, write_summary
 from .plotting import design as design_plots
+from .plotting import shpb as shpb_plots
 from .plotting import new_axes, plot_sweep, save_plots
 from .plotting import synthesis as synthesis_plots
 
@@ -92,6 +93,29 @@ def write_sweep(ds: Any, data: dict[str, Any], outdir: str | Path, *, overwrite:
             figure.savefig(tmp / SWEEP_PLOT_FILE, dpi=DPI)
             files.append(SWEEP_PLOT_FILE)
         return write_summary(tmp, {**data, "files": files + ["summary.json"], **({"notes": notes} if notes else {})})
+
+
+def write_shpb_reduction(reduction: Any, spec: Any, summary: dict[str, Any], outdir: str | Path, *,
+                         overwrite: bool = False, plots: bool = True) -> dict[str, Any]:
+    """Write the output folder of ``rodimpact shpb reduce``: the data files
+    (:func:`rodimpact.io.shpb_spec.write_files`: ``reduction.csv``, ``reduction.nc``, ``spec.toml``), ``plots/``
+    (the pulses, stress-strain, strain-rate and equilibrium figures of :mod:`rodimpact.plotting.shpb`; not with
+    ``plots=False`` or ``plots = false`` in the spec) and ``summary.json`` (``summary`` with the list of files).
+    Returns the summary."""
+    from .io import shpb_spec            # the split-Hopkinson-bar package loads on use (scipy.integrate)
+
+    with AtomicFolder(outdir, overwrite) as tmp:
+        files = shpb_spec.write_files(reduction, spec, tmp)
+        if plots and spec.plots:
+            files += [f"plots/{name}" for name in _draw(tmp / "plots", _shpb_plots(reduction))]
+        summary["files"] = files + ["summary.json"]
+        return write_summary(tmp, summary)
+
+
+def _shpb_plots(reduction: Any) -> list[Job]:
+    """The figures of :mod:`rodimpact.plotting.shpb` for a split-Hopkinson-bar reduction."""
+    return [(f"{name}.png", lambda ax, draw=getattr(shpb_plots, f"plot_{name}"): draw(reduction, ax=ax))
+            for name in ("pulses", "stress_strain", "strain_rate", "equilibrium")]
 
 
 def _synthesis_plots(run: Any) -> list[Job]:

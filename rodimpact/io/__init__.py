@@ -40,6 +40,7 @@ _NAMES = {
     "format_summary": "results",
     "OutputExistsError": "results",
     "claim_output": "results",
+    "save_reduction_csv": "shpb_spec",
 }
 
 __all__ = list(_NAMES)

@@ -7,17 +7,22 @@ channels, a HopPyBar/LANL input sheet, the bars and their gauges, the specimen a
 (docs/cli.md, ``rodimpact docs shpb``). Everything is optional where a sheet supplies it.
 
 :func:`read_shot` turns a spec and the recording files into the reduction's inputs, :func:`run` reduces the shot
-(:func:`rodimpact.shpb.reduce_shot`), :func:`summarize_run` and :func:`format_summary` report it.
+(:func:`rodimpact.shpb.reduce_shot`), :func:`summarize_run` and :func:`format_summary` report it and
+:func:`write_files` writes its data files (the figures: :func:`rodimpact.output_folders.write_shpb_reduction`).
 """
 
 from __future__ import annotations
 
+import csv
 import math
 import os
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence
 
+import numpy as np
+
+from .._result_files import write_new_file
 from ..rods.material import Material
 from ..shpb import Bar, GaugeSignals, ShpbReduction, SpecimenGeometry, find_windows, reduce_shot
 from ..signals.gauges import Bridge, GaugedBar
@@ -328,6 +333,10 @@ def _sheet_length(sheet: Optional[dict], entry: str, key: str) -> float:
 
 
 # ============================================================================================ running
+#: The data files of a reduction's output folder.
+CSV_FILE, NETCDF_FILE, SPEC_FILE = "reduction.csv", "reduction.nc", "spec.toml"
+
+
 def run(spec: ShpbSpec, shot: ShotInput) -> ShpbReduction:
     """Reduce the shot with the spec's windows and settings (:func:`rodimpact.shpb.reduce_shot`)."""
     r = spec.values["reduction"]
@@ -376,3 +385,35 @@ def format_summary(summary: dict[str, Any]) -> str:
     lines.append("specimen stress, strain and strain rate are positive in compression")
     return "\n".join(lines)
 
+
+def save_reduction_csv(reduction: ShpbReduction, path: str | Path, *, overwrite: bool = False) -> Path:
+    """Write the time series of a reduction as one CSV table (:meth:`ShpbReduction.table`: a header row of
+    ``name [unit]``, then one row per sample, numbers as Python writes them back exactly). An existing file is
+    refused (``FileExistsError`` naming it) unless ``overwrite=True``; written under a temporary name and moved
+    into place."""
+    if not isinstance(reduction, ShpbReduction):
+        raise TypeError(f"reduction: must be a rodimpact.shpb.ShpbReduction, got {type(reduction).__name__}")
+    header, columns = reduction.table()
+
+    def write(tmp: Path) -> None:
+        with open(tmp, "w", encoding="utf-8", newline="") as fh:
+            out = csv.writer(fh, lineterminator="\n")
+            out.writerow(header)
+            out.writerows(np.column_stack(columns).tolist())
+
+    return write_new_file(path, write, overwrite)
+
+
+def write_files(reduction: ShpbReduction, spec: ShpbSpec, folder: Path) -> list[str]:
+    """Write the data files of a reduction into ``folder``: ``reduction.csv`` (:func:`save_reduction_csv`),
+    ``reduction.nc`` (:func:`rodimpact.save`, read back by :func:`rodimpact.load`) and ``spec.toml`` (the spec as
+    it ran, when there was a spec file or options set keys); returns their names."""
+    from .storage import save
+
+    save_reduction_csv(reduction, folder / CSV_FILE)
+    save(reduction, folder / NETCDF_FILE)
+    files = [CSV_FILE, NETCDF_FILE]
+    if spec.text.strip():
+        (folder / SPEC_FILE).write_text(spec.text, encoding="utf-8")
+        files.append(SPEC_FILE)
+    return files

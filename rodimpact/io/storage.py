@@ -10,6 +10,8 @@ synthesis     one netCDF file (:meth:`SynthesisResult          the :class:`~rodi
 design        one netCDF file (:meth:`DesignResult.to_xarray`)  the :class:`~rodimpact.DesignResult`, likewise
 sweep         one netCDF file (the ``xarray.Dataset`` of        that ``xarray.Dataset``
               :func:`rodimpact.sweep`)
+shpb          one netCDF file (:meth:`ShpbReduction             the :class:`~rodimpact.shpb.ShpbReduction`
+reduction     .to_xarray`: a split-Hopkinson-bar reduction)
 ============  ===============================================  ================================================
 
 This module owns the reading and writing; the result classes own their layout (``to_xarray`` and
@@ -17,7 +19,7 @@ This module owns the reading and writing; the result classes own their layout (`
 silently: an existing file or non-empty folder is refused unless ``overwrite=True`` (and a folder only if
 rodimpact wrote it), and every file or folder is written under a temporary name and moved into place when
 complete. :func:`load` recognises the kind: a folder by the result file it holds (the output folders of
-``rodimpact simulate``, ``synthesize``, ``design`` and ``sweep``), a single file by its attributes.
+``rodimpact simulate``, ``synthesize``, ``design``, ``sweep`` and ``shpb reduce``), a single file by its attributes.
 """
 
 from __future__ import annotations
@@ -35,14 +37,18 @@ from .results import RESULT_FILE, save_simulation, simulation_from_dataset
 if TYPE_CHECKING:
     import xarray
 
-Result = Union[SimulationResult, SynthesisResult, DesignResult, "xarray.Dataset"]
+    from ..shpb.result import ShpbReduction
+
+Result = Union[SimulationResult, SynthesisResult, DesignResult, "ShpbReduction", "xarray.Dataset"]
 """What :func:`save` takes and :func:`load` returns (the ``xarray.Dataset`` of a sweep)."""
 
 #: The file that holds each kind of result in an output folder.
-FOLDER_FILES = {"simulation": RESULT_FILE, "synthesis": "synthesis.nc", "design": "design.nc", "sweep": "sweep.nc"}
+FOLDER_FILES = {"simulation": RESULT_FILE, "synthesis": "synthesis.nc", "design": "design.nc", "sweep": "sweep.nc",
+                "shpb reduction": "reduction.nc"}
 #: The attributes by which :func:`load` recognises the kind of a netCDF file (every file rodimpact wrote has them).
 KIND_ATTRIBUTES = {"simulation": ("format_version", "rod_methods"), "synthesis": ("n_requested", "impact_force_n0"),
-                   "design": ("objective", "constraint_report"), "sweep": ("points", "runner")}
+                   "design": ("objective", "constraint_report"), "sweep": ("points", "runner"),
+                   "shpb reduction": ("specimen_length", "pass_limit")}
 #: What :func:`save` no longer takes, and where it went: io writes data files only (docs/architecture.md, layers).
 FIGURES_MOVED = {
     "plots": "plots: rodimpact.save writes the data files only; the folder with figures, as the command line "
@@ -57,7 +63,8 @@ FIGURES_MOVED = {
 @moved(FIGURES_MOVED)
 def save(result: Result, path: str | Path, *, overwrite: bool = False, engine: Optional[str] = None,
          model: Any = None, csv: Optional[bool] = None, fields: Optional[bool] = None) -> Path:
-    """Write ``result`` (a simulation, synthesis or design result, or the dataset of :func:`rodimpact.sweep`) to
+    """Write ``result`` (a simulation, synthesis or design result, a split-Hopkinson-bar reduction, or the dataset
+    of :func:`rodimpact.sweep`) to
     ``path`` and return the path: a folder for a simulation, one netCDF file otherwise (this module's docstring).
 
     An existing file, or a non-empty folder, is refused (``FileExistsError``; :class:`OutputExistsError` for a
@@ -81,7 +88,7 @@ def save(result: Result, path: str | Path, *, overwrite: bool = False, engine: O
 
 def load(path: str | Path) -> Result:
     """Read a result written by :func:`save` (or the output folder of ``rodimpact simulate``, ``synthesize``,
-    ``design`` or ``sweep``, or the result file in it) back: identical arrays, of the kind it was saved as (this
+    ``design``, ``sweep`` or ``shpb reduce``, or the result file in it) back: identical arrays, of the kind it was saved as (this
     module's docstring). A path that holds no rodimpact result gives a ``FileNotFoundError`` or a ``ValueError``
     that names it."""
     p = Path(path)
@@ -90,7 +97,7 @@ def load(path: str | Path) -> Result:
             if (p / name).is_file():
                 return _from_file(p / name, kind)
         raise FileNotFoundError(f"{p}: no result here (none of {', '.join(FOLDER_FILES.values())}); is this a folder "
-                                f"written by rodimpact (simulate, synthesize, design, sweep) or rodimpact.save?")
+                                f"written by rodimpact (simulate, synthesize, design, sweep, shpb reduce) or rodimpact.save?")
     if not p.exists():
         raise FileNotFoundError(f"{p}: no such file or folder")
     return _from_file(p)
@@ -108,7 +115,8 @@ def _from_file(p: Path, kind: Optional[str] = None) -> Result:
     found = kind_of(ds.attrs)
     kind = kind or found
     if kind is None:
-        raise ValueError(f"{p}: a netCDF file, but no rodimpact result (simulation, synthesis, design or sweep); "
+        raise ValueError(f"{p}: a netCDF file, but no rodimpact result (simulation, synthesis, design, sweep or "
+                         f"shpb reduction); "
                          f"it was not written by rodimpact.save")
     if kind == "simulation":            # also the files of formats 1 and 2, with their own checks
         return simulation_from_dataset(ds, p)
@@ -119,9 +127,19 @@ def _from_file(p: Path, kind: Optional[str] = None) -> Result:
 
         return xr.decode_cf(ds, decode_times=False, decode_timedelta=False)
     try:
-        return (SynthesisResult if kind == "synthesis" else DesignResult).from_xarray(ds)
+        return _result_class(kind).from_xarray(ds)
     except (KeyError, IndexError, TypeError, ValueError) as exc:
         raise _incomplete(p, kind, f"no {exc}" if isinstance(exc, KeyError) else "malformed data") from None
+
+
+def _result_class(kind: str) -> Any:
+    """The class that reads a result of ``kind`` from its dataset (the reduction's imported on use: the
+    split-Hopkinson-bar package loads scipy.integrate and the Kolsky-bar model)."""
+    if kind == "shpb reduction":
+        from ..shpb.result import ShpbReduction
+
+        return ShpbReduction
+    return SynthesisResult if kind == "synthesis" else DesignResult
 
 
 def _incomplete(p: Path, kind: str, what: str) -> ValueError:
@@ -131,14 +149,19 @@ def _incomplete(p: Path, kind: str, what: str) -> ValueError:
 
 
 def _dataset(result: Any) -> "xarray.Dataset":
-    """The dataset a synthesis, design or sweep result is saved as; anything else is refused naming its type."""
+    """The dataset a synthesis, design, sweep or split-Hopkinson-bar result is saved as; anything else is refused
+    naming its type."""
     import xarray as xr
 
     if isinstance(result, (SynthesisResult, DesignResult)):
         return result.to_xarray()
     if isinstance(result, xr.Dataset) and kind_of(result.attrs) == "sweep":
         return result
+    from ..shpb.result import ShpbReduction      # loaded already if result is one (only a wrong type pays for it)
+
+    if isinstance(result, ShpbReduction):
+        return result.to_xarray()
     what = ("an xarray.Dataset that rodimpact.sweep did not make (save it with its to_netcdf)"
             if isinstance(result, xr.Dataset) else type(result).__name__)
-    raise TypeError(f"result: must be a SimulationResult, SynthesisResult, DesignResult or the xarray.Dataset of "
-                    f"rodimpact.sweep, got {what}")
+    raise TypeError(f"result: must be a SimulationResult, SynthesisResult, DesignResult, ShpbReduction or the "
+                    f"xarray.Dataset of rodimpact.sweep, got {what}")

@@ -1,5 +1,7 @@
 """The result of a split-Hopkinson-bar data reduction, :class:`ShpbReduction`, and the specimen response of one
-analysis, :class:`SpecimenResponse`; as an ``xarray.Dataset``, a CSV table and a netCDF file.
+analysis, :class:`SpecimenResponse`, and their layout as an ``xarray.Dataset`` and as a table. The classes know
+nothing about files (docs/architecture.md): :func:`rodimpact.save` and :func:`rodimpact.load` store the dataset as
+a netCDF file, :func:`rodimpact.io.save_reduction_csv` the table.
 
 Two sign conventions meet here, and every array says which it follows (docstrings, ``sign`` attributes):
 bar strains and face forces are **positive in tension** (the package's convention); specimen stress, strain and
@@ -9,14 +11,11 @@ a positive stress-strain curve.
 
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .._result_files import netcdf_engine, write_new_file
 from ..rods.material import Material
 from .equilibrium import BANDS, EquilibriumCheck, check_equilibrium
 from .parts import Bar, SpecimenGeometry
@@ -65,7 +64,8 @@ class ShpbReduction:
     specimen faces (tension positive; dispersion-corrected if ``dispersion_corrected``). ``one_wave``,
     ``two_wave``, ``three_wave``: the specimen responses (compression positive). ``equilibrium``: R(t) and its
     verdict. ``windows``: the pulse windows in the gauge records. The bars, the specimen and the source file
-    complete it.
+    complete it. Save it with ``rodimpact.save(reduction, "shot.nc")`` (read back by ``rodimpact.load``), the
+    time series as a CSV table with ``rodimpact.io.save_reduction_csv(reduction, "shot.csv")``.
     """
 
     time: np.ndarray
@@ -185,7 +185,7 @@ class ShpbReduction:
 
     @classmethod
     def from_xarray(cls, ds: Any) -> "ShpbReduction":
-        """The reduction a :meth:`to_xarray` dataset holds (as read back from :meth:`to_netcdf`)."""
+        """The reduction a :meth:`to_xarray` dataset holds (:func:`rodimpact.load` reads a saved one with it)."""
         a = ds.attrs
         if a.get("kind") != "shpb-reduction":
             raise ValueError("ds: not a split-Hopkinson-bar reduction (no attribute kind = 'shpb-reduction')")
@@ -211,17 +211,10 @@ class ShpbReduction:
                    bool(a["dispersion_corrected"]), str(a["source"]))
 
     # -- files ------------------------------------------------------------------------------------------------
-    def to_netcdf(self, path: str | Path, overwrite: bool = False) -> Path:
-        """Write :meth:`to_xarray` to a netCDF file (read it back with ``xarray.open_dataset`` and
-        :meth:`from_xarray`). An existing file is refused (``FileExistsError`` naming it) unless
-        ``overwrite=True``; written atomically."""
-        ds = self.to_xarray()
-        return write_new_file(path, lambda tmp: ds.to_netcdf(tmp, engine=netcdf_engine()), overwrite)
-
-    def to_csv(self, path: str | Path, overwrite: bool = False) -> Path:
-        """Write the time series as one CSV table: a header row of ``name [unit]`` (specimen columns
-        ``3-wave.stress [Pa]`` and so on, compression positive; bar strains and face forces tension positive),
-        then one row per sample. An existing file is refused unless ``overwrite=True``; written atomically."""
+    def table(self) -> tuple[list[str], list[np.ndarray]]:
+        """The time series as the columns of one table: headers ``name [unit]`` (specimen columns
+        ``3-wave.stress [Pa]`` and so on, compression positive; bar strains and face forces tension positive) and
+        the arrays, one value per sample (written as CSV by :func:`rodimpact.io.save_reduction_csv`)."""
         header = ["time [s]", "incident [-]", "reflected [-]", "transmitted [-]", "front_force [N]",
                   "back_force [N]", "equilibrium_ratio [-]"]
         eq = self.equilibrium
@@ -232,14 +225,7 @@ class ShpbReduction:
                             ("true_strain", "-"), ("true_strain_rate", "1/s")):
                 header.append(f"{name}.{q} [{unit}]")
                 columns.append(getattr(r, q))
-
-        def write(tmp: Path) -> None:
-            with open(tmp, "w", encoding="utf-8", newline="") as fh:
-                out = csv.writer(fh, lineterminator="\n")
-                out.writerow(header)
-                out.writerows(np.column_stack(columns).tolist())
-
-        return write_new_file(path, write, overwrite)
+        return header, columns
 
 
 def _attrs(units: str, sign: str, long_name: str) -> dict[str, str]:

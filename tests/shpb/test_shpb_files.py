@@ -1,5 +1,6 @@
-"""A reduction as an xarray dataset, a CSV table and a netCDF file: units and signs in the attributes, an exact
-round trip, and never a silent overwrite."""
+"""A reduction as an xarray dataset, a netCDF file (rodimpact.save and rodimpact.load) and a CSV table
+(rodimpact.io.save_reduction_csv): units and signs in the attributes, exact round trips, never a silent
+overwrite."""
 
 import csv
 
@@ -8,6 +9,8 @@ import pytest
 import xarray as xr
 from shpb_synthetic import SPECIMEN, build_shot, ti_bar
 
+import rodimpact as ri
+from rodimpact.io import save_reduction_csv
 from rodimpact.shpb import ANALYSES, ShpbReduction, find_windows, reduce_shot
 
 
@@ -32,9 +35,9 @@ def test_dataset_has_units_and_signs(reduction):
 
 
 def test_netcdf_round_trip_and_no_overwrite(reduction, tmp_path):
-    path = reduction.to_netcdf(tmp_path / "shot.nc")
-    with xr.open_dataset(path) as ds:
-        back = ShpbReduction.from_xarray(ds.load())
+    path = ri.save(reduction, tmp_path / "shot.nc")
+    back = ri.load(path)
+    assert isinstance(back, ShpbReduction)
     for name in ("time", "incident", "reflected", "transmitted"):
         np.testing.assert_array_equal(getattr(back, name), getattr(reduction, name))
     for a in ANALYSES:
@@ -45,15 +48,17 @@ def test_netcdf_round_trip_and_no_overwrite(reduction, tmp_path):
     assert back.equilibrium.equilibrium_time == reduction.equilibrium.equilibrium_time
     before = path.read_bytes()
     with pytest.raises(FileExistsError, match="shot.nc: exists; choose another file name or pass overwrite=True"):
-        reduction.to_netcdf(path)
+        ri.save(reduction, path)
     assert path.read_bytes() == before
-    reduction.to_netcdf(path, overwrite=True)
+    ri.save(reduction, path, overwrite=True)
+    with pytest.raises(TypeError, match="csv: an option of a simulation's results folder; a shpb reduction result"):
+        ri.save(reduction, tmp_path / "other.nc", csv=True)
     with pytest.raises(ValueError, match="ds: not a split-Hopkinson-bar reduction"):
         ShpbReduction.from_xarray(xr.Dataset())
 
 
 def test_csv_table_and_no_overwrite(reduction, tmp_path):
-    path = reduction.to_csv(tmp_path / "shot.csv")
+    path = save_reduction_csv(reduction, tmp_path / "shot.csv")
     with open(path, newline="", encoding="utf-8") as fh:
         rows = list(csv.reader(fh))
     header = rows[0]
@@ -65,9 +70,11 @@ def test_csv_table_and_no_overwrite(reduction, tmp_path):
     np.testing.assert_array_equal(data[:, 0], reduction.time)
     path.write_text("my notes\n")
     with pytest.raises(FileExistsError, match="shot.csv: exists"):
-        reduction.to_csv(path)
+        save_reduction_csv(reduction, path)
     assert path.read_text() == "my notes\n"
-    reduction.to_csv(path, overwrite=True)
+    save_reduction_csv(reduction, path, overwrite=True)
+    with pytest.raises(TypeError, match="reduction: must be a rodimpact.shpb.ShpbReduction"):
+        save_reduction_csv(reduction.to_xarray(), tmp_path / "x.csv")
     assert path.read_text().startswith("time [s],")
 
 
