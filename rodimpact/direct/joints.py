@@ -20,7 +20,8 @@ Strain measures (``par[6]``): engineering, strain eps = delta / L0, rate s / L0,
 force is F = sigma A0 / (1 - eps).
 
 Array layout per joint r: ``junction_par[r]`` = (k, c, compression_only, law code, L0, A0, true measure, 0,
-law parameters p0..p7 (:meth:`rodimpact.rods.laws.Law.kernel`)); ``junction_q[r]`` = (eps_p, alpha, eps_max,
+then the law's vector :meth:`rodimpact.rods.laws.Law.kernel`: parameters p0..p7 and, for a tabulated law, its
+table; the array is as wide as the widest law of the system); ``junction_q[r]`` = (eps_p, alpha, eps_max,
 plastic work): the plastic strain, the accumulated plastic strain, the largest strain reached (loading curves)
 and the plastic work done so far, J (sigma dEps_p V0 in the law's strain measure).
 """
@@ -31,10 +32,53 @@ import math
 
 from numba import njit
 
-from ..rods.laws import COWPER_SYMONDS, ELASTIC, FREW, JOHNSON_COOK, PLASTIC
+from ..rods.laws import ELASTIC, FREW, JOHNSON_COOK, N_PARAMS, PLASTIC, TABULATED
 
-#: columns of ``junction_par`` and ``junction_q``
-PAR_COLUMNS, STATE_COLUMNS = 16, 4
+#: columns of ``junction_par`` before the law's vector, and of ``junction_q``
+HEADER_COLUMNS, STATE_COLUMNS = 8, 4
+
+
+@njit(inline="always", error_model="numpy", cache=True)
+def _interpolate(x, xs, ys):
+    """Linear interpolation of (xs, ys) at x, held constant beyond the ends (xs increasing)."""
+    if x <= xs[0]:
+        return ys[0]
+    n = xs.size
+    if x >= xs[n - 1]:
+        return ys[n - 1]
+    lo = 0
+    hi = n - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if xs[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    w = (x - xs[lo]) / (xs[hi] - xs[lo])
+    return ys[lo] + w * (ys[hi] - ys[lo])
+
+
+@njit(inline="always", error_model="numpy", cache=True)
+def tabulated_flow(p, alpha, rate):
+    """Flow stress of a tabulated law (Pa): each rate's curve interpolated in the plastic strain, then between
+    the rates linearly in log(rate) (held beyond the first and last rate). Table layout after the N_PARAMS
+    parameters (p[1] points, p[2] rates): rates, plastic strains, stresses rate by rate."""
+    n_points = int(p[1])
+    n_rates = int(p[2])
+    rates = p[N_PARAMS:N_PARAMS + n_rates]
+    strains = p[N_PARAMS + n_rates:N_PARAMS + n_rates + n_points]
+    stress = p[N_PARAMS + n_rates + n_points:N_PARAMS + n_rates + n_points * (n_rates + 1)]
+    if n_rates == 1 or rate <= rates[0]:
+        return _interpolate(alpha, strains, stress[:n_points])
+    if rate >= rates[n_rates - 1]:
+        return _interpolate(alpha, strains, stress[(n_rates - 1) * n_points:])
+    j = 0
+    while rates[j + 1] < rate:
+        j += 1
+    low = _interpolate(alpha, strains, stress[j * n_points:(j + 1) * n_points])
+    high = _interpolate(alpha, strains, stress[(j + 1) * n_points:(j + 2) * n_points])
+    w = math.log(rate / rates[j]) / math.log(rates[j + 1] / rates[j])
+    return low + w * (high - low)
 
 
 @njit(inline="always", error_model="numpy", cache=True)
@@ -42,11 +86,13 @@ def flow_stress(code, p, alpha, rate):
     """Yield stress of the plastic laws, Pa, at accumulated plastic strain ``alpha`` and |strain rate| ``rate``."""
     if code == PLASTIC:
         return p[1] + p[2] * alpha
+    if code == TABULATED:
+        return tabulated_flow(p, alpha, rate)
     if code == JOHNSON_COOK:
         r = rate / p[5]
         factor = 1.0 + p[4] * math.log(r) if r > 1.0 else 1.0
         return (p[1] + p[2] * alpha ** p[3]) * factor * p[6]
-    # COWPER_SYMONDS
+    # COWPER_SYMONDS (the last plastic law)
     return (p[1] + p[2] * alpha) * (1.0 + (rate / p[3]) ** (1.0 / p[4]))
 
 
@@ -111,7 +157,7 @@ def joint_point(par, q, n, mu, s0, delta, dt):
     code = int(par[3])
     if par[2] != 0.0 and (e <= q[0] if code != FREW else e <= 0.0):
         return 0.0, 0.0, q[0], q[1], q[2], e   # compression only: the faces have lifted off the specimen
-    sigma, ep, al, em = law_stress(code, par[8:16], e, rate, q)
+    sigma, ep, al, em = law_stress(code, par[HEADER_COLUMNS:], e, rate, q)
     f = sigma * area
     if par[2] != 0.0 and f < 0.0:
         return 0.0, 0.0, q[0], q[1], q[2], e

@@ -21,11 +21,12 @@ from .._validate import positive
 from ..lattice.lattice import Lattice, build_lattice, default_time_step
 from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
                                DeformableJoint, SpringDashpot, SpringEnd, VelocityEnd)
+from ..rods.laws import N_PARAMS
 from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
 from ..rods.system import InitialState, System
 from . import boundary as B
-from .joints import PAR_COLUMNS, STATE_COLUMNS
+from .joints import HEADER_COLUMNS, STATE_COLUMNS
 from .recording import Outputs, check_probes
 from .result import Probe
 
@@ -320,14 +321,15 @@ def kernel_arrays(system: System, lat: Lattice, N: np.ndarray, v: np.ndarray, pr
     codes, pars, end_values = (left[0], right[0]), (left[1], right[1]), (left[2], right[2])
     junction_code = np.array([j.code for j in system.junctions], dtype=np.int64)
     gap = np.array([getattr(j, "gap", 0.0) for j in system.junctions], dtype=float)
-    junction_par = np.zeros((len(system.junctions), PAR_COLUMNS))
+    laws = [j.law.kernel() if isinstance(j, DeformableJoint) else np.zeros(0) for j in system.junctions]
+    junction_par = np.zeros((len(system.junctions), HEADER_COLUMNS + max([w.size for w in laws] + [N_PARAMS])))
     for r, j in enumerate(system.junctions):
         if isinstance(j, SpringDashpot):
             junction_par[r, :3] = j.stiffness, j.damping, float(j.compression_only)
         elif isinstance(j, DeformableJoint):
             junction_par[r, 2:7] = (float(j.compression_only), j.law.code, j.initial_length, j.area,
                                     float(j.measure == "true"))
-            junction_par[r, 8:] = j.law.kernel()
+            junction_par[r, HEADER_COLUMNS:HEADER_COLUMNS + laws[r].size] = laws[r]
     rs = lat.rod_start.tolist()
     length = lat.element_length
     gap_tol = np.array([1e-9 * min(length[a - 1], length[a]) for a in rs[1:-1]], dtype=float)

@@ -9,9 +9,10 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .._validate import finite
 from ..lattice.lattice import Lattice
 from ..rods.conditions import BitRockEnd, DeformableJoint
+from ..rods.declared import check, quantity, text
+from ..rods.declared import rod as rod_index
 from ..rods.laws import FREW
 from ..rods.system import System
 from ._momentum import mean_velocities
@@ -26,21 +27,12 @@ class Probe:
     are exact and constant during each step. ``strain`` uses the true E and A at ``position``.
     """
 
-    name: str
-    rod: int | str
-    position: float
+    name: str = text("Unique name (used in CSV headers and plots).")
+    rod: int | str = rod_index("The rod: its name or its index (0 = first rod).")
+    position: float = quantity("length", "Distance from the rod's left end.", bound="non_negative")
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise ValueError(f"Probe.name: must be a non-empty string, got {self.name!r}")
-        if isinstance(self.rod, str):
-            if not self.rod:
-                raise ValueError("Probe.rod: a rod name must not be empty")
-        elif isinstance(self.rod, bool) or not isinstance(self.rod, (int, np.integer)) or self.rod < 0:
-            raise ValueError(f"Probe.rod: must be a rod index >= 0 or a rod name, got {self.rod!r}")
-        else:
-            object.__setattr__(self, "rod", int(self.rod))
-        object.__setattr__(self, "position", finite("Probe.position", self.position, "m"))
+        check(self)
 
 
 @dataclass(frozen=True, repr=False)

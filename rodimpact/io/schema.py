@@ -19,6 +19,7 @@ from typing import Any, Optional
 
 from ..rods import conditions as _conditions, laws as _laws, loads as _loads, segments as _segments  # noqa: F401
 from ..rods.declared import ELEMENTS as ELEMENT_CLASSES, declarations, has_default, summary
+from ..direct.result import Probe
 from ..rods.material import Material
 from . import _toml
 from .quantities import (DIMENSIONS, ModelError, check_sign, parse_quantity, pint_quantity, show_as_written,
@@ -83,7 +84,7 @@ class Variants:
 # ============================================================================================ the schema
 #: Field kinds of the element declarations (rodimpact.rods.declared) -> field kinds of the schema
 _DECLARED_KINDS = {"quantity": "quantity", "history": "history", "choice": "string", "flag": "boolean",
-                   "rod": "rod", "spans": "spans"}
+                   "rod": "rod", "spans": "spans", "path": "string", "text": "string"}
 
 
 def element_table(name: str, cls: type, example: str = "") -> Table:
@@ -224,12 +225,9 @@ ENDS = Table("ends", "Conditions at the outer left end of the first rod and the 
 
 LOAD_TYPES = element_tables("load")
 
-_ROD_REF = Field("rod", "rod", "The rod: its name or its index (0 = first rod).", required=True)
-PROBE = Table("probes", "An output request: force, velocity, displacement and strain histories at a position "
-                        "(e.g. a strain gauge).", (
-    Field("name", "string", "Unique name (used in CSV headers and plots).", required=True),
-    _ROD_REF, _q("position", "length", "Distance from the rod's left end.", sign="non_negative"),
-), '[[probes]]\nname = "SG1"\nrod = "bar"\nposition = "110 mm"')
+PROBE = dataclasses.replace(element_table("probes", Probe), doc="An output request: force, velocity, displacement "
+                            "and strain histories at a position (e.g. a strain gauge).",
+                            example='[[probes]]\nname = "SG1"\nrod = "bar"\nposition = "110 mm"')
 
 SIMULATION = Table("simulation", "How long and how finely to simulate. Give `duration` or `steps`.", (
     _q("duration", "time", "Simulated time.", required=False),

@@ -29,6 +29,8 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any, Callable, Iterator, Optional, TypeVar
 
+import numpy as np
+
 from .._quantities import DIMENSIONS
 from .._validate import finite, non_negative, positive
 from .history import as_history
@@ -46,8 +48,9 @@ class Declaration:
     """What a field declares.
 
     ``kind``: ``quantity`` (a float in SI), ``history`` (a time history of ``dimension``), ``choice`` (one of
-    ``choices``), ``flag`` (true/false), ``rod`` (a rod index, written as a rod name in files), ``spans``
-    (pairs of lengths) or ``part`` (an element of the registered ``family``, e.g. a specimen's law). ``dimension`` names an entry of :data:`rodimpact._quantities.DIMENSIONS` (``length``,
+    ``choices``), ``flag`` (true/false), ``text`` (a name), ``rod`` (a rod index or name), ``spans``
+    (pairs of lengths), ``path`` (a file name) or ``part`` (an element of the registered ``family``, e.g. a
+    specimen's law). ``dimension`` names an entry of :data:`rodimpact._quantities.DIMENSIONS` (``length``,
     ``stiffness``, ...), which gives its SI unit. ``bound``: ``positive``, ``non_negative`` or ``None`` (any
     finite value).
     """
@@ -109,6 +112,16 @@ def spans(doc: str) -> Any:
     return _field(Declaration("spans", doc, "length"), REQUIRED)
 
 
+def text(doc: str) -> Any:
+    """A required non-empty string (a name)."""
+    return _field(Declaration("text", doc), REQUIRED)
+
+
+def path(doc: str) -> Any:
+    """An optional file name (model files read it relative to the model file's folder)."""
+    return _field(Declaration("path", doc), None)
+
+
 def part(family: str, doc: str) -> Any:
     """A required element of the registered ``family`` (a nested table with its ``type`` in model files)."""
     return _field(Declaration("part", doc, family=family), REQUIRED)
@@ -146,8 +159,17 @@ def check(obj: Any) -> None:
             raise ValueError(f"{owner}.{f.name}: must be one of {', '.join(map(repr, d.choices))}, got {value!r}")
         elif d.kind == "flag" and not isinstance(value, bool):
             raise TypeError(f"{owner}.{f.name}: must be True or False, got {value!r}")
-        elif d.kind == "rod" and (isinstance(value, bool) or not isinstance(value, int) or value < 0):
-            raise ValueError(f"{owner}.{f.name}: must be a rod index >= 0, got {value!r}")
+        elif d.kind == "text" and (not isinstance(value, str) or not value):
+            raise ValueError(f"{owner}.{f.name}: must be a non-empty string, got {value!r}")
+        elif d.kind == "rod" and isinstance(value, str):
+            if not value:
+                raise ValueError(f"{owner}.{f.name}: a rod name must not be empty")
+        elif d.kind == "rod" and (isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0):
+            raise ValueError(f"{owner}.{f.name}: must be a rod index >= 0 or a rod name, got {value!r}")
+        elif d.kind == "rod":
+            object.__setattr__(obj, f.name, int(value))
+        elif d.kind == "path" and value is not None and not isinstance(value, str):
+            raise TypeError(f"{owner}.{f.name}: must be a file name (a string), got {type(value).__name__}")
         elif d.kind == "part" and type(value) not in ELEMENTS.get(d.family, {}).values():
             names = ", ".join(cls.__name__ for cls in ELEMENTS.get(d.family, {}).values())
             raise TypeError(f"{owner}.{f.name}: must be one of {names}, got {type(value).__name__}")

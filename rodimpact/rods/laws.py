@@ -9,7 +9,7 @@ Each law is a frozen dataclass with declared fields (:mod:`rodimpact.rods.declar
 ``law`` so that model files name it by its type (``law = { type = "johnson-cook", ... }``). ``kernel()`` gives
 the law's code and parameter vector for the compiled solver (layout in :mod:`rodimpact.direct.joints`).
 
-Plasticity (``elastic-plastic``, ``johnson-cook``, ``cowper-symonds``) is the 1-D return mapping
+Plasticity (``elastic-plastic``, ``johnson-cook``, ``cowper-symonds``, ``tabulated``) is the 1-D return mapping
 with isotropic hardening: sigma = E (eps - eps_p), yield when |sigma| > sigma_y(alpha, rate) with alpha the
 accumulated plastic strain; the viscoplastic laws take the rate of the total strain as their rate argument
 (the specimen's strain rate, as SHPB reduction reports it). ``frew`` is a loading curve in total strain (pulse
@@ -20,12 +20,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from typing import Any, Optional
+
 import numpy as np
 
-from .declared import check, element, quantity
+from .._units import to_si
+from .._validate import finite_array
+from .declared import check, element, path, quantity
 
 #: law codes of the compiled solver (rodimpact.direct.joints)
-ELASTIC, PLASTIC, JOHNSON_COOK, COWPER_SYMONDS, FREW = 0, 1, 2, 3, 4
+ELASTIC, PLASTIC, JOHNSON_COOK, COWPER_SYMONDS, FREW, TABULATED = 0, 1, 2, 3, 4, 5
 
 #: number of parameters a law passes to the kernel (unused ones are 0)
 N_PARAMS = 8
@@ -157,10 +161,10 @@ class FrewShaper(Law):
     sigma = sigma_0 eps^n / (1 - eps^m) in compression (engineering measures: the law's fit includes the area
     change), elastic unloading with E from the largest strain reached; compression only."""
 
-    stress: float = quantity("pressure", "Stress constant sigma_0 (annealed C11000 copper: 360 MPa, Frew et al.).")
-    n: float = quantity("dimensionless", "Exponent n (copper: 0.3).")
-    m: float = quantity("dimensionless", "Exponent m (copper: 2.0).")
-    youngs_modulus: float = quantity("pressure", "Unloading modulus E (copper: 117 GPa).", default=117e9)
+    stress: float = quantity("pressure", "Stress constant sigma_0 (fitted per shaper material, Frew et al. 2002).")
+    n: float = quantity("dimensionless", "Exponent n.")
+    m: float = quantity("dimensionless", "Exponent m.")
+    youngs_modulus: float = quantity("pressure", "Unloading modulus E (default: copper, 117 GPa).", default=117e9)
     code = FREW
     compression_only = True
 
@@ -169,3 +173,106 @@ class FrewShaper(Law):
 
     def kernel(self) -> np.ndarray:
         return _params(self.youngs_modulus, self.stress, self.n, self.m)
+
+
+@element("law", "tabulated")
+@dataclass(frozen=True, eq=False)
+class TabulatedLaw(Law):
+    """Flow stress tabulated against the accumulated plastic strain, optionally one curve per strain rate
+    (interpolated linearly in the plastic strain and in log(rate), held beyond the table), with elastic modulus
+    E: for flow curves measured in earlier tests. From a CSV ``file`` (first column the plastic strain, then one
+    stress column per rate, headed ``stress [MPa]`` for a single curve or ``<rate> 1/s [MPa]``; lines starting
+    with ``#`` are comments) or from arrays (``plastic_strain``, ``stress`` rate by rate, ``rates`` in 1/s).
+    Every curve must start at plastic strain 0 and must not decrease, and a faster rate must not give a lower
+    stress: otherwise the joint's equation would have several solutions."""
+
+    youngs_modulus: float = quantity("pressure", "Young's modulus E (elastic loading and unloading).")
+    file: Optional[str] = path("CSV file: plastic strain, then one flow-stress column per strain rate.")
+    plastic_strain: Any = None
+    stress: Any = None
+    rates: Any = None
+    code = TABULATED
+
+    def __post_init__(self) -> None:
+        check(self)
+        if (self.file is None) == (self.plastic_strain is None):
+            raise ValueError("TabulatedLaw: give either file or plastic_strain with stress")
+        if self.file is not None:
+            strain, stress, rates = _read_flow_table(self.file)
+        else:
+            strain = finite_array("TabulatedLaw.plastic_strain", self.plastic_strain, min_size=2)
+            stress = np.atleast_2d(finite_array("TabulatedLaw.stress", self.stress, ndim=np.ndim(self.stress),
+                                                unit="Pa"))
+            rates = np.ones(1) if self.rates is None else finite_array("TabulatedLaw.rates", self.rates,
+                                                                        unit="1/s")
+        _check_flow_table(strain, stress, rates)
+        object.__setattr__(self, "plastic_strain", strain)
+        object.__setattr__(self, "stress", stress)
+        object.__setattr__(self, "rates", rates)
+
+    def kernel(self) -> np.ndarray:
+        head = _params(self.youngs_modulus, self.plastic_strain.size, self.rates.size)
+        return np.concatenate([head, self.rates, self.plastic_strain, self.stress.ravel()])
+
+
+def _check_flow_table(strain: np.ndarray, stress: np.ndarray, rates: np.ndarray) -> None:
+    """Refuse a table whose flow stress could decrease (in plastic strain or with the rate), by name."""
+    if strain[0] != 0.0 or np.any(np.diff(strain) <= 0.0):
+        raise ValueError("TabulatedLaw.plastic_strain: must start at 0 and increase strictly")
+    if stress.shape != (rates.size, strain.size):
+        raise ValueError(f"TabulatedLaw.stress: needs {rates.size} curve(s) of {strain.size} values (one per "
+                         f"rate and plastic strain), got shape {stress.shape}")
+    if np.any(rates <= 0.0) or np.any(np.diff(rates) <= 0.0):
+        raise ValueError("TabulatedLaw.rates: must be > 0 and increase strictly")
+    for i in range(rates.size):
+        if stress[i, 0] <= 0.0:
+            raise ValueError(f"TabulatedLaw.stress: the yield stress of curve {i} must be > 0, got {stress[i, 0]:.6g} Pa")
+        drops = np.flatnonzero(np.diff(stress[i]) < 0.0)
+        if drops.size:
+            k = int(drops[0]) + 1
+            raise ValueError(f"TabulatedLaw.stress: not monotone: curve {i} (rate {rates[i]:.6g} 1/s) falls from "
+                             f"{stress[i, k - 1]:.6g} Pa to {stress[i, k]:.6g} Pa at plastic strain {strain[k]:.6g}; "
+                             "a softening table makes the joint's solution ambiguous")
+    slower = np.flatnonzero(np.any(np.diff(stress, axis=0) < 0.0, axis=1))
+    if slower.size:
+        raise ValueError(f"TabulatedLaw.stress: the curve at {rates[slower[0] + 1]:.6g} 1/s lies below the one at "
+                         f"{rates[slower[0]]:.6g} 1/s: a faster rate must not give a lower flow stress")
+
+
+def _read_flow_table(file: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Plastic strains, stresses (rates x points, Pa) and rates (1/s) of a flow-table CSV file."""
+    import pandas as pd
+
+    where = f"TabulatedLaw.file: {file!r}"
+    try:
+        table = pd.read_csv(file, comment="#", skipinitialspace=True)
+    except (OSError, ValueError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{where}: cannot be read as a CSV table ({type(exc).__name__}: {str(exc)[:200]})") \
+            from None
+    if table.shape[1] < 2 or table.shape[0] < 2:
+        raise ValueError(f"{where}: needs a plastic-strain column and at least one stress column, two rows or more")
+    rates, stresses = [], []
+    for name in table.columns[1:]:
+        head, _, unit = str(name).partition("[")
+        unit = unit.rstrip("] ") or "Pa"
+        head = head.strip()
+        rate = 1.0 if head.lower() == "stress" else _rate(head, where)
+        rates.append(rate)
+        factor = to_si(f"{where} column {name!r}", f"1 {unit}", "Pa")     # e.g. MPa -> 1e6
+        if factor is None:
+            raise ValueError(f"{where}: the unit of column {name!r} is not a stress unit, got {unit!r}")
+        stresses.append(factor * finite_array(f"{where} column {name!r}",
+                                              table[name].to_numpy(dtype=float, na_value=np.nan)))
+    strain = finite_array(f"{where} column {table.columns[0]!r}", table.iloc[:, 0].to_numpy(dtype=float,
+                                                                                        na_value=np.nan))
+    order = np.argsort(rates)
+    return strain, np.array(stresses)[order], np.array(rates)[order]
+
+
+def _rate(head: str, where: str) -> float:
+    text = head.replace("1/s", "").strip()
+    try:
+        return float(text)
+    except ValueError:
+        raise ValueError(f"{where}: a stress column is headed 'stress [unit]' or '<rate> 1/s [unit]', got "
+                         f"{head!r}") from None

@@ -170,3 +170,44 @@ def test_a_specimen_wider_than_the_bar_is_refused() -> None:
     with pytest.raises(ValueError, match=r"junctions\[0\]\.diameter: the specimen \(6 mm.*is wider than the rod "
                                          r"faces"):
         ri.System(bars, [0.0, 0.0], [ri.Specimen(ri.LinearElastic(1e9), 6e-3, L0)])
+
+
+def test_a_linear_flow_table_is_the_elastic_plastic_law() -> None:
+    table = ri.TabulatedLaw(117e9, plastic_strain=[0.0, 1.0], stress=[80e6, 80e6 + 1e9])
+    _, a = _run(ri.Specimen(table, D, L0, measure="engineering"), 100, steps=600)
+    _, b = _run(ri.Specimen(ri.ElasticPlastic(117e9, 80e6, 1e9), D, L0, measure="engineering"), 100, steps=600)
+    assert np.abs(a.contact_force - b.contact_force).max() <= 1e-9 * abs(F_I)
+    assert a.joints[0].plastic_work > 0.0
+
+
+def test_a_rate_table_interpolates_in_log_rate() -> None:
+    # two curves 1 and 100 1/s, the second 20 % higher: at 10 1/s the flow stress is 10 % higher (log midpoint)
+    from rodimpact.direct.joints import tabulated_flow
+
+    law = ri.TabulatedLaw(117e9, plastic_strain=[0.0, 0.5], stress=[[100e6, 200e6], [120e6, 240e6]],
+                          rates=[1.0, 100.0])
+    p = law.kernel()
+    assert tabulated_flow.py_func(p, 0.25, 10.0) == pytest.approx(1.1 * 150e6, rel=1e-12)
+    assert tabulated_flow.py_func(p, 0.25, 1e4) == pytest.approx(180e6, rel=1e-12)     # held beyond the table
+
+
+def test_a_flow_table_is_read_from_csv(tmp_path) -> None:
+    path = tmp_path / "flow.csv"
+    path.write_text("# OFHC copper, illustrative\nplastic_strain, 1000 1/s [MPa], 3000 1/s [MPa]\n"
+                    "0, 100, 110\n0.2, 250, 270\n")
+    law = ri.TabulatedLaw("117 GPa", file=str(path))
+    assert np.array_equal(law.rates, [1000.0, 3000.0])
+    assert np.array_equal(law.stress, [[100e6, 250e6], [110e6, 270e6]])
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(plastic_strain=[0.0, 0.1, 0.2], stress=[100e6, 150e6, 140e6]),
+     r"TabulatedLaw\.stress: not monotone: curve 0 .* falls from 1\.5e\+08 Pa to 1\.4e\+08 Pa"),
+    (dict(plastic_strain=[0.0, 0.1], stress=[[100e6, 150e6], [90e6, 160e6]], rates=[1.0, 10.0]),
+     r"TabulatedLaw\.stress: the curve at 10 1/s lies below the one at 1 1/s"),
+    (dict(plastic_strain=[0.01, 0.1], stress=[100e6, 150e6]), r"TabulatedLaw\.plastic_strain: must start at 0"),
+    (dict(), r"TabulatedLaw: give either file or plastic_strain"),
+])
+def test_impossible_flow_tables_are_refused(kwargs: dict, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        ri.TabulatedLaw(117e9, **kwargs)

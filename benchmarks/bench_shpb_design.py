@@ -1,0 +1,83 @@
+"""Strikers and pulse shapers for a constant strain rate in a Kolsky bar (issue 22), against a uniform striker.
+
+Case: the LANL-like bar of the tests (Ti-6Al-4V, E = 113.8 GPa, rho = 4430 kg/m^3, 9.47 mm; incident and
+transmitted bars 1.5 m, gauges 0.5 m from the specimen), an annealed OFHC copper specimen 6.34 mm x 3.204 mm
+with the Johnson-Cook parameters of Johnson and Cook (Eng. Fract. Mech. 21 (1985) 31-48: A = 90 MPa, B = 292 MPa,
+n = 0.31, C = 0.025, m = 1.09), requested engineering rate 2000 1/s over 2-15 % strain.
+
+* designed striker: ``design_striker`` (n = 100 elements, the incident pulse for the constant rate matched with
+  the lattice's exact adjoint gradients), then the whole bar simulated with the specimen;
+* designed shaper: ``design_shaper`` for a 0.4 m striker of the bar's section and a copper-like shaper of
+  the Frew, Forrestal and Chen (2002) form with sigma_0 = 360 MPa, n = 0.3, m = 2 (illustrative constants of
+  that form, not a fit to a tested copper);
+* baseline: a uniform striker of the designed striker's length at its best velocity (same run, same measure).
+
+Flatness: the largest |rate / 2000 - 1| while the specimen is inside the strain window.
+
+Run:  python benchmarks/bench_shpb_design.py          (writes the "shpb-design" section of docs/performance.md)
+      python benchmarks/bench_shpb_design.py --quick  (n = 30, two shaper starts; prints only)
+"""
+
+from __future__ import annotations
+
+import argparse
+import platform
+import warnings
+
+import rodimpact as ri
+from rodimpact.shpb import Gauge, KolskyBar
+from rodimpact.shpb.rate_design import design_shaper, design_striker
+
+from _report import write_section
+
+TI = ri.Material(113.8e9, 4430.0, "ti-6al-4v")
+D_BAR = 9.47e-3
+RATE, WINDOW = 2000.0, (0.02, 0.15)
+
+
+def kolsky(striker_length: float) -> KolskyBar:
+    bar = lambda length, name: ri.Rod([ri.Cylinder(length, D_BAR)], material=TI, name=name)  # noqa: E731
+    copper = ri.JohnsonCook(117e9, 90e6, 292e6, 0.31, 0.025, 1.0, 1.09)
+    specimen = ri.Specimen(copper, 6.34e-3, 3.204e-3, density=8960.0)
+    return KolskyBar(bar(1.5, "incident"), bar(1.5, "transmitted"), specimen, Gauge(0.5), Gauge(0.5),
+                     striker=bar(striker_length, "striker"))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    n = 30 if args.quick else 100
+    warnings.simplefilter("ignore", UserWarning)       # the rectangular uniform pulse's equilibrium warning
+    striker = design_striker(kolsky(0.25), RATE, WINDOW, n=n, progress=False)
+    starts = [(1e-3, 0.5 * D_BAR, 20.0), (2e-3, 0.999 * D_BAR, 20.0)] if args.quick else None
+    shaper = design_shaper(kolsky(0.4), RATE, ri.FrewShaper(360e6, 0.3, 2.0), WINDOW, starts=starts)
+    sh = shaper.shaper
+    rows = [
+        ("designed striker", f"{n} elements, {striker.design.n_elements * striker.design.dt * 1e6:.1f} us travel "
+                             f"time, {striker.striker_velocity:.2f} m/s",
+         striker.flatness, striker.wall_time),
+        ("uniform striker (baseline)", "bar section, same travel time, best velocity", striker.uniform_flatness,
+         None),
+        ("designed shaper", f"Cu {sh.diameter * 1e3:.2f} mm x {sh.thickness * 1e3:.3f} mm, 0.4 m striker at "
+                            f"{shaper.striker_velocity:.2f} m/s", shaper.flatness, shaper.wall_time),
+    ]
+    lines = ["## Kolsky bar: strikers and shapers for a constant strain rate (`benchmarks/bench_shpb_design.py`)",
+             "",
+             f"Machine: {platform.machine()}, Python {platform.python_version()}. JC copper specimen (Johnson and "
+             f"Cook 1985) at {RATE:g} 1/s over {WINDOW[0]:g}-{WINDOW[1]:g} strain, Ti-6Al-4V bars 9.47 mm; "
+             "flatness = largest |rate / requested - 1| inside the window (goal: 5 %). The time includes the "
+             "whole-bar verification runs (the uniform baseline's velocity search is in the striker's time).",
+             "", "| | set-up | flatness | wall time |", "|---|---|---:|---:|"]
+    for name, setup, flat, wall in rows:
+        lines.append(f"| {name} | {setup} | {100 * flat:.2f} % | {'-' if wall is None else f'{wall:.1f} s'} |")
+    lines += ["", f"Equilibrium (four elastic transits of the specimen, Ravichandran and Subhash 1994): "
+                  f"{striker.equilibrium_time * 1e6:.2f} us after the start of loading."]
+    text = "\n".join(lines)
+    print(text)
+    if not args.quick:
+        write_section("shpb-design", text)
+
+
+if __name__ == "__main__":
+    main()

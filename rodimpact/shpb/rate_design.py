@@ -1,0 +1,207 @@
+"""Strikers and pulse shapers designed for a constant specimen strain rate in a Kolsky bar (issue 22).
+
+For a constant engineering strain rate r the specimen's strain history is known, eps(t) = r t, so with its law
+the force it transmits is known too, F_T(t) = -sigma(r t, r) A(t), and the face relations of the incident bar
+give the incident wave that produces it: F_I = F_T - Z L0 r / 2, i.e. eps_I = eps_T - L0 r / (2 c0) (Chen and
+Song, Split Hopkinson (Kolsky) Bar, Springer 2011, sec. 2.4; :func:`~rodimpact.shpb.kolsky.incident_for_constant_rate`).
+
+* :func:`design_striker` designs the striker's impedance profile whose incident wave at the specimen face
+  matches that pulse (:func:`rodimpact.design` with the exact adjoint gradients of the lattice, the specimen law
+  entering through the target), then runs the whole bar with the specimen in the loop to report the achieved
+  flatness.
+* :func:`design_shaper` chooses a pulse shaper's thickness and diameter and the striker's velocity for a given
+  striker and shaper law, minimising the largest deviation of the specimen's rate over the strain window with
+  the whole bar simulated at each trial (a three-parameter Nelder-Mead search in log space).
+
+Flatness is the largest |rate / r - 1| while the specimen's strain is inside the ``strain_window``; the time of
+equilibrium is estimated by the rule of about four elastic transits of the specimen (Ravichandran and Subhash
+1994), since the massless specimen of the model is in equilibrium at every instant by construction.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time as _time
+from dataclasses import dataclass, field
+from typing import Any, Optional, Sequence
+
+import numpy as np
+from scipy.optimize import minimize, minimize_scalar
+
+from .._validate import positive
+from ..design.constraints import StrikerLimits
+from ..design.design import SearchOptions, design
+from ..design.objectives import MatchObjective
+from ..design.result import DesignResult
+from ..rods.conditions import PulseShaper
+from ..rods.rod import Rod
+from .kolsky import TRANSITS_FOR_EQUILIBRIUM, KolskyBar, KolskyPrediction, incident_for_constant_rate
+
+
+@dataclass(frozen=True)
+class RateDesign:
+    """A striker (and shaper) for a constant strain rate, with what the whole bar achieves.
+
+    ``striker`` and ``striker_velocity`` (m/s); ``shaper`` (or None); ``rate`` (1/s) and ``strain_window`` the
+    request; ``flatness`` the largest |rate / requested - 1| inside the window; ``uniform_flatness`` that of
+    a uniform striker of the same length (at its best velocity) for comparison (None if not computed);
+    ``equilibrium_time`` (s from the start of loading) by the four-transit rule (None without the specimen's
+    density); ``prediction`` the whole-bar run; ``design`` the impedance design (striker designs only);
+    ``wall_time`` (s).
+    """
+
+    striker: Rod
+    striker_velocity: float
+    shaper: Optional[PulseShaper]
+    rate: float
+    strain_window: tuple[float, float]
+    flatness: float
+    uniform_flatness: Optional[float]
+    equilibrium_time: Optional[float]
+    prediction: KolskyPrediction = field(repr=False)
+    design: Optional[DesignResult] = field(default=None, repr=False)
+    wall_time: float = 0.0
+
+
+def _window_part(strain: np.ndarray, strain_window: tuple[float, float]) -> Optional[slice]:
+    """The steps from the specimen's first entry into the window until it first leaves it (None if never)."""
+    lo, hi = strain_window
+    inside = np.flatnonzero(strain >= lo)
+    if inside.size == 0:
+        return None
+    first = int(inside[0])
+    beyond = np.flatnonzero(strain[first:] > hi)
+    return slice(first, first + int(beyond[0]) if beyond.size else strain.size)
+
+
+def rate_flatness(prediction: KolskyPrediction, rate: float, strain_window: tuple[float, float]) -> float:
+    """The largest |strain rate / ``rate`` - 1| while the specimen's engineering strain is inside
+    ``strain_window`` (before it first leaves it); ``inf`` if the specimen does not reach the window's end."""
+    part = _window_part(prediction.strain, strain_window)
+    if part is None or prediction.strain.max() < strain_window[1]:
+        return math.inf
+    return float(np.abs(prediction.strain_rate[part] / rate - 1.0).max())
+
+
+def _search_cost(prediction: KolskyPrediction, rate: float, strain_window: tuple[float, float]) -> float:
+    """The flatness over the part of the window the specimen reaches, plus a penalty growing with the part it
+    does not reach: continuous where :func:`rate_flatness` jumps to ``inf``, so that a search can climb."""
+    lo, hi = strain_window
+    reached = min(float(prediction.strain.max()), hi)
+    if reached <= lo:
+        return 10.0 + (lo - reached) / lo if lo > 0.0 else 10.0
+    part = _window_part(prediction.strain, strain_window)
+    return float(np.abs(prediction.strain_rate[part] / rate - 1.0).max()) + 5.0 * (hi - reached) / hi
+
+
+def _window(strain_window: Any) -> tuple[float, float]:
+    try:
+        lo, hi = (float(x) for x in strain_window)
+    except (TypeError, ValueError):
+        raise TypeError(f"strain_window: must be (start, end) engineering strains, got {strain_window!r}") from None
+    if not 0.0 <= lo < hi < 1.0:
+        raise ValueError(f"strain_window: must satisfy 0 <= start < end < 1, got ({lo}, {hi})")
+    return lo, hi
+
+
+def _equilibrium_time(bar: KolskyBar) -> Optional[float]:
+    sp = bar.specimen
+    if sp.density is None:
+        return None
+    return TRANSITS_FOR_EQUILIBRIUM * sp.length / math.sqrt(sp.law.modulus / sp.density)
+
+
+def _uniform_flatness(bar: KolskyBar, length: float, rate: float, window: tuple[float, float], dt: float,
+                      duration: float) -> float:
+    """The flatness of a uniform striker of the incident bar's section and ``length`` at its best velocity."""
+    seg = bar.incident.segments[0]
+    striker = Rod([dataclasses.replace(seg, length=length)], material=bar.incident.material, name="uniform")
+    trial = dataclasses.replace(bar, striker=striker, shaper=None)
+
+    def cost(log_v: float) -> float:
+        return _search_cost(trial.predict(math.exp(log_v), dt=dt, duration=duration), rate, window)
+
+    z = float(bar.incident.impedance(bar.incident.length))
+    v0 = 2.0 * abs(incident_for_constant_rate(bar.specimen, rate, [0.5 * window[1] / rate], z)[0]) / z
+    best = minimize_scalar(cost, bounds=(math.log(0.2 * v0), math.log(5.0 * v0)), method="bounded",
+                           options={"xatol": 1e-3})
+    return rate_flatness(trial.predict(math.exp(best.x), dt=dt, duration=duration), rate, window)
+
+
+def design_striker(bar: KolskyBar, rate: float, strain_window: Any = (0.02, 0.15), n: int = 100, *,
+                   limits: Optional[StrikerLimits] = None, search: Optional[SearchOptions] = None,
+                   compare_uniform: bool = True, progress: Optional[bool] = None) -> RateDesign:
+    """Design the striker of ``bar`` for the constant engineering strain rate ``rate`` (1/s) of its specimen
+    over ``strain_window`` (engineering strains), as an ``n``-element impedance profile (element travel time
+    dt = t_end / (2 n), t_end = 1.05 x window end / rate). ``limits``: bounds of the design (default: impedances from
+    0.05 to 5 times the bar's, velocity 0.1-100 m/s). ``compare_uniform``: also report the best uniform striker
+    of the same length. The specimen law enters through the target incident wave; the whole bar is then run
+    with the designed striker and the specimen in the loop."""
+    wall0 = _time.perf_counter()
+    rate = positive("rate", rate, "1/s")
+    window = _window(strain_window)
+    z = float(bar.incident.impedance(bar.incident.length))
+    t_end = 1.05 * window[1] / rate            # a little beyond the window's end: the plateau covers it
+    dt = t_end / (2 * n)
+    t = np.linspace(0.0, t_end, 8 * n + 1)
+    target = (t, incident_for_constant_rate(bar.specimen, rate, t, z))
+    v0 = 2.0 * abs(target[1].mean()) / z
+    limits = limits or StrikerLimits(impedance_bounds=(0.05 * z, 5.0 * z), velocity_bounds=(0.1, 100.0))
+    result = design(MatchObjective(target, position=bar.incident.length, quantity="incident"), bar.incident,
+                    striker_velocity=v0, n=n, dt=dt, limits=limits, search=search, progress=progress)
+    striker = result.to_rod("striker")
+    designed = dataclasses.replace(bar, striker=striker, shaper=None)
+    duration = bar.incident.length / float(bar.incident.wave_speed(0.0)) + 1.3 * t_end
+    pred = designed.predict(result.striker_velocity, dt=dt, duration=duration)
+    # the uniform striker of the same travel time (n elements of dt) in the bar's material
+    same_length = n * dt * float(bar.incident.wave_speed(0.0))
+    uniform = _uniform_flatness(bar, same_length, rate, window, dt, duration) if compare_uniform else None
+    return RateDesign(striker, result.striker_velocity, None, rate, window, rate_flatness(pred, rate, window),
+                      uniform, _equilibrium_time(bar), pred, result, _time.perf_counter() - wall0)
+
+
+def design_shaper(bar: KolskyBar, rate: float, law: Any, strain_window: Any = (0.02, 0.15), *,
+                  starts: Optional[Sequence[tuple[float, float, float]]] = None, dt: float = 0.5e-6,
+                  max_evaluations: int = 100) -> RateDesign:
+    """Choose the thickness and diameter of a pulse shaper of ``law`` and the striker velocity, for ``bar``'s
+    striker and specimen, so that the specimen's strain rate stays at ``rate`` (1/s) over ``strain_window``:
+    Nelder-Mead on (log thickness, log diameter, log velocity) from each of ``starts`` ((thickness m, diameter
+    m, velocity m/s); default 0.5, 1 and 2 mm at half and at the full bar diameter, with the velocity of a
+    matched striker giving the mean incident force of the constant-rate pulse), ``max_evaluations`` whole-bar
+    runs each, keeping the flattest. The shaper's diameter is kept within the bar's."""
+    wall0 = _time.perf_counter()
+    if bar.striker is None:
+        raise ValueError("bar.striker: the shaper sits on the striker's face; give the KolskyBar a striker")
+    rate = positive("rate", rate, "1/s")
+    window = _window(strain_window)
+    bar_diameter = math.sqrt(4.0 * float(bar.incident.area(0.0)) / math.pi)
+    z = float(bar.incident.impedance(bar.incident.length))
+    t_end = window[1] / rate
+    if starts is None:
+        f_mean = incident_for_constant_rate(bar.specimen, rate, np.linspace(0.0, t_end, 50), z).mean()
+        v0 = 2.0 * abs(f_mean) / z
+        starts = [(t, f * bar_diameter, v0) for t in (0.5e-3, 1e-3, 2e-3) for f in (0.5, 0.999)]
+    duration = (bar.incident.length / float(bar.incident.wave_speed(0.0))
+                + 2.0 * bar.striker.length / float(bar.striker.wave_speed(0.0)) + t_end)
+
+    def trial(x: np.ndarray) -> tuple[float, Optional[KolskyPrediction], Optional[PulseShaper]]:
+        thickness, diameter, velocity = np.exp(x)
+        if diameter > bar_diameter:
+            return 20.0 + diameter / bar_diameter, None, None
+        shaper = PulseShaper(law, diameter, thickness)
+        pred = dataclasses.replace(bar, shaper=shaper).predict(velocity, dt=dt, duration=duration)
+        return _search_cost(pred, rate, window), pred, shaper
+
+    best = None
+    for start in starts:
+        run = minimize(lambda x: trial(x)[0], np.log(np.array(start, dtype=float)), method="Nelder-Mead",
+                       options={"maxfev": max_evaluations, "xatol": 1e-3, "fatol": 1e-4})
+        if best is None or run.fun < best.fun:
+            best = run
+    _, pred, shaper = trial(best.x)
+    if pred is None:
+        raise ValueError("design_shaper: no admissible shaper found (its diameter would exceed the bar's)")
+    velocity = float(np.exp(best.x[2]))
+    return RateDesign(bar.striker, velocity, shaper, rate, window, rate_flatness(pred, rate, window), None,
+                      _equilibrium_time(bar), pred, None, _time.perf_counter() - wall0)
