@@ -27,6 +27,7 @@ from typing import Any, Mapping, Optional
 import numpy as np
 
 from .._result_files import netcdf_engine
+from ..rods.declared import ELEMENTS
 from ..rods.rod import Rod
 from ..shpb import Gauge, KolskyBar, KolskyPrediction
 from ..shpb.plateau import rate_plateau
@@ -398,7 +399,7 @@ diameter = "9.47 mm"
 
 # ------------------------------------------------------------------------------------------- specimen
 # The keys of the "specimen" junction of model files. Its law (stress and strain positive in compression) is one
-# of "elastic", "elastic-plastic", "johnson-cook", "cowper-symonds", "frew" (keys: rodimpact docs model).
+# of {laws} (keys: rodimpact docs model).
 [specimen]
 diameter = "6.34 mm"
 length = "3.204 mm"
@@ -462,4 +463,4 @@ backend = "numba"              # or "numpy" (slow reference)
 
 [output]
 plots = true
-'''
+'''.replace("{laws}", ", ".join(f'"{name}"' for name in ELEMENTS["law"]))

@@ -135,6 +135,16 @@ def test_a_measured_incident_pulse_is_read_with_its_units_and_passes_the_gauge_a
                                 "(replacing the file's input.striker_velocity = \"12 m/s\")")
 
 
+def test_a_tabulated_law_reads_its_file_next_to_the_spec(tmp_path: Path) -> None:
+    (tmp_path / "flow.csv").write_text("plastic_strain,stress [MPa]\n0,90\n0.5,300\n")
+    law = '{ type = "tabulated", youngs_modulus = "117 GPa", file = "flow.csv" }'
+    path = tmp_path / "shot.toml"
+    path.write_text(re.sub(r"^law = \{ type = \"johnson-cook\".*$", f"law = {law}", SPEC, count=1, flags=re.M))
+    specimen = load_spec(path).kolsky.specimen
+    assert isinstance(specimen.law, ri.TabulatedLaw)
+    np.testing.assert_array_equal(specimen.law.stress, [[90e6, 300e6]])
+
+
 def test_the_template_loads_with_its_commented_parts() -> None:
     spec = loads_spec(TEMPLATE)
     kb = spec.kolsky
