@@ -20,7 +20,7 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .._validate import finite_array, positive
+from .._validate import caller_stacklevel, finite_array, positive
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
 from ..direct.result import Probe, SimulationResult
@@ -255,7 +255,7 @@ class KolskyBar:
                           f"is not small against the incident pulse's rise time {rise * 1e6:.3g} us (10-90 %): "
                           f"equilibrium needs about {TRANSITS_FOR_EQUILIBRIUM:g} transits (Ravichandran and Subhash "
                           "1994), so the massless specimen model is outside its validity during the rise; use a "
-                          "shorter specimen or a pulse shaper", UserWarning, stacklevel=4)
+                          "shorter specimen or a pulse shaper", UserWarning, stacklevel=caller_stacklevel())
 
 
 def _axial_stiffness(rod: Rod, x: float) -> float:
