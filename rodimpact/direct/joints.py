@@ -19,6 +19,10 @@ Strain measures (``par[6]``): engineering, strain eps = delta / L0, rate s / L0,
 (large strain, incompressible flow): the law sees eps_t = -ln(1 - eps) and rate (s / L0) / (1 - eps), and the
 force is F = sigma A0 / (1 - eps).
 
+The functions are compiled on their own, not inlined into the step loops: inlining the nested law calls
+multiplied the first run's compile time (50 s more CPU for the first example), and a joint costs one call per
+step.
+
 Array layout per joint r: ``junction_par[r]`` = (k, c, compression_only, law code, L0, A0, true measure, 0,
 then the law's vector :meth:`rodimpact.rods.laws.Law.kernel`: parameters p0..p7 and, for a tabulated law, its
 table; the array is as wide as the widest law of the system); ``junction_q[r]`` = (eps_p, alpha, eps_max,
@@ -38,7 +42,7 @@ from ..rods.laws import ELASTIC, FREW, JOHNSON_COOK, N_PARAMS, PLASTIC, TABULATE
 HEADER_COLUMNS, STATE_COLUMNS = 8, 4
 
 
-@njit(inline="always", error_model="numpy", cache=True)
+@njit(error_model="numpy", cache=True)
 def _interpolate(x, xs, ys):
     """Linear interpolation of (xs, ys) at x, held constant beyond the ends (xs increasing)."""
     if x <= xs[0]:
@@ -58,7 +62,7 @@ def _interpolate(x, xs, ys):
     return ys[lo] + w * (ys[hi] - ys[lo])
 
 
-@njit(inline="always", error_model="numpy", cache=True)
+@njit(error_model="numpy", cache=True)
 def tabulated_flow(p, alpha, rate):
     """Flow stress of a tabulated law (Pa): each rate's curve interpolated in the plastic strain, then between
     the rates linearly in log(rate) (held beyond the first and last rate). Table layout after the N_PARAMS
@@ -81,7 +85,7 @@ def tabulated_flow(p, alpha, rate):
     return low + w * (high - low)
 
 
-@njit(inline="always", error_model="numpy", cache=True)
+@njit(error_model="numpy", cache=True)
 def flow_stress(code, p, alpha, rate):
     """Yield stress of the plastic laws, Pa, at accumulated plastic strain ``alpha`` and |strain rate| ``rate``."""
     if code == PLASTIC:
@@ -96,7 +100,7 @@ def flow_stress(code, p, alpha, rate):
     return (p[1] + p[2] * alpha) * (1.0 + (rate / p[3]) ** (1.0 / p[4]))
 
 
-@njit(inline="always", error_model="numpy", cache=True)
+@njit(error_model="numpy", cache=True)
 def frew_loading(p, eps):
     """Frew-Forrestal-Chen loading curve sigma_0 eps^n / (1 - eps^m), Pa (0 for eps <= 0, inf for eps >= 1)."""
     if eps <= 0.0:
@@ -106,7 +110,7 @@ def frew_loading(p, eps):
     return p[1] * eps ** p[2] / (1.0 - eps ** p[3])
 
 
-@njit(inline="always", error_model="numpy", cache=True)
+@njit(error_model="numpy", cache=True)
 def law_stress(code, p, eps, rate, q):
     """Stress (Pa, compression positive) at strain ``eps`` and rate ``rate`` starting from the state ``q``, and
     the state at that point: (sigma, eps_p, alpha, eps_max). Plastic laws: return mapping (backward Euler from
@@ -140,7 +144,7 @@ def law_stress(code, p, eps, rate, q):
     return trial - sign * e_mod * d, q[0] + sign * d, q[1] + d, q[2]
 
 
-@njit(inline="always", error_model="numpy", cache=True)
+@njit(error_model="numpy", cache=True)
 def joint_point(par, q, n, mu, s0, delta, dt):
     """The joint at face force ``n``: (F, sigma, eps_p, alpha, eps_max, strain) at the step's midpoint, F the
     compressive force (>= 0 where the joint acts in compression only) and strain in the law's measure."""
@@ -164,7 +168,7 @@ def joint_point(par, q, n, mu, s0, delta, dt):
     return f, sigma, ep, al, em, e
 
 
-@njit(error_model="numpy", cache=True)          # not inlined: the step loops call it, compiled once
+@njit(error_model="numpy", cache=True)
 def joint_solve(par, q, mu, s0, delta, dt):
     """Solve g(N) = N + F(N) = 0 for the face force N of one step (see the module docstring) and advance the
     state ``q`` in place to the end of the step (implicit midpoint: q_k+1 = 2 q_mid - q_k; the largest strain
