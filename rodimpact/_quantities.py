@@ -58,6 +58,7 @@ DIMENSIONS: dict[str, Dimension] = {d.name: d for d in (
     Dimension("wavenumber", "1/m", "1/m", "0.5 1/m"),
     Dimension("rate", "1/s", "1/s", "5.88 1/ms"),
     Dimension("temperature", "K", "K", "293.15 K"),
+    Dimension("voltage", "V", "V", "10 V"),
     Dimension("dimensionless", "dimensionless", "-", "0.3"),
 )}
 

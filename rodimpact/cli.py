@@ -1,8 +1,9 @@
 """The ``rodimpact`` command line: thin wrappers around the Python API (output folders with figures:
 :mod:`rodimpact.output_folders`).
 
-Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design]``,
-``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``shpb reduce RECORDING...``,
+Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design|shpb]``,
+``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``shpb predict SPEC.toml``,
+``shpb reduce RECORDING...``,
 ``docs [TOPIC]`` and ``--version``; see docs/cli.md.
 
 Python warnings raised while a command runs are printed once each, as ``warning: <message>`` on stderr (never with
@@ -222,7 +223,7 @@ def cmd_init(args: argparse.Namespace) -> int:
     path = _file_target(args.output, default)
     _write_file(path, text, args.force, "model file" if kind == "simulate" else "spec file")
     if not args.quiet:
-        cmd = kind if kind in ("synthesize", "design") else "simulate"
+        cmd = {"synthesize": "synthesize", "design": "design", "shpb": "shpb predict"}.get(kind, "simulate")
         print(f"wrote {path}; edit it, then run:  rodimpact {cmd} {path}")
     return EXIT_OK
 
@@ -231,10 +232,10 @@ def _templates() -> dict[str, tuple[str, str]]:
     from .io import synthesis_spec
     from .io.templates import TEMPLATES
 
-    from .io import design_spec
+    from .io import design_spec, shpb_spec
 
     return {**TEMPLATES, "synthesize": (synthesis_spec.TEMPLATE, "synthesis.toml"),
-            "design": (design_spec.TEMPLATE, "design.toml")}
+            "design": (design_spec.TEMPLATE, "design.toml"), "shpb": (shpb_spec.TEMPLATE, "shpb.toml")}
 
 
 # ============================================================================================ examples
@@ -309,12 +310,13 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     return _run_spec(args, synthesis_spec)
 
 
-def _run_spec(args: argparse.Namespace, module: Any, prepare: Any = None) -> int:
-    """Load a spec with ``module.load_spec``, ``run`` it, write the output folder
-    (:func:`rodimpact.output_folders.write_spec_run`) and report (synthesize, design); ``prepare(spec)``, if given,
-    adjusts the loaded spec from command-line flags."""
+def _run_spec(args: argparse.Namespace, module: Any, prepare: Any = None, write: Any = None) -> int:
+    """Load a spec with ``module.load_spec``, ``run`` it, write the output folder with ``write`` (default
+    :func:`rodimpact.output_folders.write_spec_run`) and report (synthesize, design, shpb predict);
+    ``prepare(spec)``, if given, adjusts the loaded spec from command-line flags."""
     from .output_folders import write_spec_run
 
+    write = write or write_spec_run
     spec_path = Path(args.spec)
     out = _output(args, spec_path.stem)
     with _claim_out(out, args.force):
@@ -323,7 +325,7 @@ def _run_spec(args: argparse.Namespace, module: Any, prepare: Any = None) -> int
             prepare(spec)
         result = _input_phase(lambda: module.run(spec))
         summary = (module.summarize_run(result, spec) if out is None
-                   else write_spec_run(result, spec, out, overwrite=args.force, plots=not args.no_plots))
+                   else write(result, spec, out, overwrite=args.force, plots=not args.no_plots))
     _report(summary, module.format_summary(_without_warnings(summary), spec), args,
             f"results written to {out}" if out else "", summary["warnings"])
     return EXIT_NO_EXACT if summary.get("feasible") is False else EXIT_OK
@@ -343,8 +345,15 @@ def cmd_design(args: argparse.Namespace) -> int:
 
 
 # ============================================================================================ shpb
-def cmd_shpb_reduce(args: argparse.Namespace) -> int:
+def cmd_shpb_predict(args: argparse.Namespace) -> int:
     from .io import shpb_spec
+    from .output_folders import write_shpb_prediction
+
+    return _run_spec(args, shpb_spec, write=write_shpb_prediction)
+
+
+def cmd_shpb_reduce(args: argparse.Namespace) -> int:
+    from .io import shpb_reduction_spec as spec_io
     from .output_folders import write_shpb_reduction
 
     overrides: dict[str, Any] = {}
@@ -359,28 +368,67 @@ def cmd_shpb_reduce(args: argparse.Namespace) -> int:
     named = args.recording[0] if args.recording else args.spec
     out = _output(args, f"{Path(named).stem if named else 'shot'}-shpb")
     with _claim_out(out, args.force):
-        spec = _input_phase(lambda: shpb_spec.load_spec(args.spec, overrides))
-        shot = _input_phase(lambda: shpb_spec.read_shot(spec, args.recording))
-        reduction = _input_phase(lambda: shpb_spec.run(spec, shot))
-        summary = shpb_spec.summarize_run(reduction, spec, shot)
+        spec = _input_phase(lambda: spec_io.load_spec(args.spec, overrides))
+        shot = _input_phase(lambda: spec_io.read_shot(spec, args.recording))
+        reduction = _input_phase(lambda: spec_io.run(spec, shot))
+        summary = spec_io.summarize_run(reduction, spec, shot)
         if out is not None:
             write_shpb_reduction(reduction, spec, summary, out, overwrite=args.force, plots=not args.no_plots)
-    _report(summary, shpb_spec.format_summary(summary), args, f"results written to {out}" if out else "",
+    _report(summary, spec_io.format_summary(summary), args, f"results written to {out}" if out else "",
             summary["warnings"])
     return EXIT_OK
+
+
+def _add_shpb_parser(sub: Any, output_flags: Callable[..., None], set_flag: Callable[..., None]) -> None:
+    """``rodimpact shpb VERB``: the split-Hopkinson (Kolsky) bar's commands, one sub-parser per verb."""
+    h = sub.add_parser("shpb", help="split-Hopkinson (Kolsky) bar: predict the gauge signals of a test, reduce a "
+                                    "recorded shot",
+                       description="Split-Hopkinson (Kolsky) pressure bar. 'predict SPEC.toml': the gauge signals "
+                                   "and the specimen's stress, strain and strain rate of a test (rodimpact init shpb "
+                                   "writes a template). 'reduce RECORDING...': a recorded shot's 1-, 2- and 3-wave "
+                                   "stress, strain and strain rate and its force equilibrium.")
+    verbs = h.add_subparsers(dest="verb", metavar="VERB", required=True)
+    p = verbs.add_parser("predict", help="predict the gauge signals and the specimen's histories",
+                         description="Predict the gauge signals and the specimen's stress, strain and strain rate "
+                                     "of the Kolsky-bar test SPEC.toml describes and write them (CSV, NetCDF), plots "
+                                     "and a summary to OUTDIR.")
+    p.add_argument("spec", metavar="SPEC.toml", help="Kolsky-bar specification")
+    output_flags(p, "SPEC-NAME")
+    set_flag(p, "spec")
+    p.set_defaults(func=cmd_shpb_predict)
+    r = verbs.add_parser("reduce", help="reduce a recorded shot: stress-strain, strain rate, equilibrium",
+                         description="Reduce a recorded split-Hopkinson-bar shot: find the pulse windows, move the "
+                                     "pulses to the specimen faces, compute the 1-, 2- and 3-wave stress, strain and "
+                                     "strain rate (compression positive) and the equilibrium ratio R(t); write "
+                                     "reduction.csv, reduction.nc, plots and summary.json to OUTDIR.")
+    r.add_argument("recording", nargs="*", metavar="RECORDING",
+                   help="a LANL .raw file (its sheet gives bars, gauges and specimen), Tektronix .csv files (one "
+                        "per channel) or a .tdms file; or name them in the spec (recording.files)")
+    r.add_argument("--spec", metavar="SPEC.toml", help="bars, gauges, specimen, channels and settings the recording "
+                                                       "lacks (keys: rodimpact docs shpb-reduce)")
+    r.add_argument("--bridge", metavar="NAME", help="bridge circuit of both bars' gauges (quarter, half-axial, ...; "
+                                                    "the LANL sheets do not record it)")
+    r.add_argument("--polarity", type=int, choices=(1, -1), help="-1 if the recorder shows compression as positive "
+                                                                "voltage (both bars)")
+    r.add_argument("--dispersion", action="store_true", help="undo the Pochhammer-Chree dispersion between gauges "
+                                                             "and specimen")
+    output_flags(r, "RECORDING-shpb")
+    set_flag(r, "spec")
+    r.set_defaults(func=cmd_shpb_reduce)
 
 
 # ============================================================================================ docs
 def _doc_topics() -> dict[str, tuple[str, Callable[[], str]]]:
     """Topic -> (description, function generating the page): the pages are generated from the schemas the
     files are validated with, so the installed package always has them, matching its own code."""
-    from .io import design_spec, schema, shpb_spec, synthesis_spec
+    from .io import design_spec, schema, shpb_reduction_spec, shpb_spec, synthesis_spec
 
     return {"model": ("every key of a model file (docs/model-reference.md)", schema.reference_markdown),
             "synthesis": ("every key of a synthesis spec (docs/cli.md)", synthesis_spec.spec_reference_markdown),
             "design": ("every key of a design spec (docs/cli.md)", design_spec.spec_reference_markdown),
-            "shpb": ("every key of a split-Hopkinson-bar reduction spec (docs/cli.md)",
-                     shpb_spec.spec_reference_markdown)}
+            "shpb": ("every key of a Kolsky-bar spec (docs/cli.md)", shpb_spec.spec_reference_markdown),
+            "shpb-reduce": ("every key of a split-Hopkinson-bar reduction spec (docs/cli.md)",
+                            shpb_reduction_spec.spec_reference_markdown)}
 
 
 def cmd_docs(args: argparse.Namespace) -> int:
@@ -455,8 +503,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     i = sub.add_parser("init", help="write a commented template that runs as it is",
                        description="Write a fully commented template model (simulate), synthesis spec "
-                                   "(synthesize) or design spec (design) that runs as it is.")
-    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default), synthesize or design")
+                                   "(synthesize), design spec (design) or Kolsky-bar spec (shpb) that runs as it "
+                                   "is.")
+    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default), synthesize, design or shpb")
     i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml; "
                                                           "an existing folder or a name ending in / means "
                                                           "that file inside it)")
@@ -496,36 +545,12 @@ def build_parser() -> argparse.ArgumentParser:
     set_flag(g, "spec")
     g.set_defaults(func=cmd_design)
 
-    h = sub.add_parser("shpb", help="split-Hopkinson (Kolsky) bar: reduce a recorded shot to stress-strain curves",
-                       description="Split-Hopkinson (Kolsky) bar tools (docs/shpb.md). 'reduce' turns a recorded "
-                                   "shot into the specimen's stress, strain and strain rate (1-, 2- and 3-wave) and "
-                                   "its force equilibrium.")
-    hs = h.add_subparsers(dest="shpb_command", metavar="ACTION")
-    h.set_defaults(func=lambda args, parser=h: parser.print_help() or EXIT_INPUT)
-    r = hs.add_parser("reduce", help="reduce a recorded shot: stress-strain, strain rate, equilibrium",
-                      description="Reduce a recorded split-Hopkinson-bar shot: find the pulse windows, move the "
-                                  "pulses to the specimen faces, compute the 1-, 2- and 3-wave stress, strain and "
-                                  "strain rate (compression positive) and the equilibrium ratio R(t); write "
-                                  "reduction.csv, reduction.nc, plots and summary.json to OUTDIR.")
-    r.add_argument("recording", nargs="*", metavar="RECORDING",
-                   help="a LANL .raw file (its sheet gives bars, gauges and specimen), Tektronix .csv files (one "
-                        "per channel) or a .tdms file; or name them in the spec (recording.files)")
-    r.add_argument("--spec", metavar="SPEC.toml", help="bars, gauges, specimen, channels and settings the recording "
-                                                       "lacks (keys: rodimpact docs shpb)")
-    r.add_argument("--bridge", metavar="NAME", help="bridge circuit of both bars' gauges (quarter, half-axial, ...; "
-                                                    "the LANL sheets do not record it)")
-    r.add_argument("--polarity", type=int, choices=(1, -1), help="-1 if the recorder shows compression as positive "
-                                                                "voltage (both bars)")
-    r.add_argument("--dispersion", action="store_true", help="undo the Pochhammer-Chree dispersion between gauges "
-                                                             "and specimen")
-    output_flags(r, "RECORDING-shpb")
-    set_flag(r, "spec")
-    r.set_defaults(func=cmd_shpb_reduce)
+    _add_shpb_parser(sub, output_flags, set_flag)
 
     d = sub.add_parser("docs", help="print reference pages of this installation (model-file keys, ...)",
                        description="Print a reference page as Markdown, generated by the installed rodimpact from "
                                    "the schema it validates files with; without TOPIC, list the topics.")
-    d.add_argument("topic", nargs="?", help="model, synthesis, design or shpb")
+    d.add_argument("topic", nargs="?", help="model, synthesis, design, shpb or shpb-reduce")
     d.set_defaults(func=cmd_docs)
     return p
 

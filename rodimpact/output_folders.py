@@ -2,9 +2,9 @@
 figures of :mod:`rodimpact.plotting` in one folder, written atomically.
 
 io writes data only and plotting only draws; neither imports the other (docs/architecture.md, layers). This
-module sits above both and puts them together for ``rodimpact simulate``, ``sweep``, ``synthesize``, ``design``
-and ``shpb reduce`` and for :func:`rodimpact.examples.run_example`. Every folder is written into a temporary folder and
-moved into place at the end (:class:`rodimpact.io.results.AtomicFolder`: an existing folder is replaced only with
+module sits above both and puts them together for ``rodimpact simulate``, ``sweep``, ``synthesize``, ``design``,
+``shpb predict`` and ``shpb reduce`` and for :func:`rodimpact.examples.run_example`. Every folder is written into a
+temporary folder and moved into place at the end (:class:`rodimpact.io.results.AtomicFolder`: an existing folder is replaced only with
 ``overwrite=True`` and only if rodimpact wrote it), so its ``summary.json`` lists the figures too. A result's
 data alone: :func:`rodimpact.save`.
 """
@@ -14,11 +14,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Callable, Optional, Sequence
 
-from .io import design_spec, model_sweep, synthesis_spec
+from .io import design_spec, model_sweep, shpb_reduction_spec, shpb_spec, synthesis_spec
 from .io.results import AtomicFolder, simulation_summary, write_simulation_files, write_summary
 from .plotting import design as design_plots
-from .plotting import shpb as shpb_plots
 from .plotting import new_axes, plot_sweep, save_plots
+from .plotting import shpb_model as shpb_model_plots
+from .plotting import shpb_reduction as shpb_reduction_plots
 from .plotting import synthesis as synthesis_plots
 
 #: The plot file of a sweep folder.
@@ -95,17 +96,33 @@ def write_sweep(ds: Any, data: dict[str, Any], outdir: str | Path, *, overwrite:
         return write_summary(tmp, {**data, "files": files + ["summary.json"], **({"notes": notes} if notes else {})})
 
 
+def write_shpb_prediction(run: Any, spec: Any, outdir: str | Path, *, overwrite: bool = False,
+                          plots: bool = True) -> dict[str, Any]:
+    """Write the output folder of ``rodimpact shpb predict``: the data files of the prediction
+    (:func:`rodimpact.io.shpb_spec.write_files`), ``plots/`` (the aligned gauge signals, the specimen's stress-strain
+    curve and strain rate of :mod:`rodimpact.plotting.shpb_model`; not with ``plots=False`` or ``plots = false`` in
+    the spec) and ``summary.json`` (:func:`rodimpact.io.shpb_spec.summarize_run` with the list of files). Returns
+    the summary."""
+    p = run.prediction
+    jobs: list[Job] = [("signals.png", lambda ax: shpb_model_plots.plot_predicted_signals(p, ax=ax)),
+                       ("stress-strain.png", lambda ax: shpb_model_plots.plot_predicted_stress_strain(p, ax=ax)),
+                       ("strain-rate.png", lambda ax: shpb_model_plots.plot_predicted_strain_rate(p, ax=ax))]
+    with AtomicFolder(outdir, overwrite) as tmp:
+        files = shpb_spec.write_files(run, spec, tmp)
+        if plots and spec.plots:
+            files += [f"plots/{name}" for name in _draw(tmp / "plots", jobs)]
+        return write_summary(tmp, {**shpb_spec.summarize_run(run, spec), "files": files + ["summary.json"]})
+
+
 def write_shpb_reduction(reduction: Any, spec: Any, summary: dict[str, Any], outdir: str | Path, *,
                          overwrite: bool = False, plots: bool = True) -> dict[str, Any]:
     """Write the output folder of ``rodimpact shpb reduce``: the data files
-    (:func:`rodimpact.io.shpb_spec.write_files`: ``reduction.csv``, ``reduction.nc``, ``spec.toml``), ``plots/``
-    (the pulses, stress-strain, strain-rate and equilibrium figures of :mod:`rodimpact.plotting.shpb`; not with
-    ``plots=False`` or ``plots = false`` in the spec) and ``summary.json`` (``summary`` with the list of files).
-    Returns the summary."""
-    from .io import shpb_spec            # the split-Hopkinson-bar package loads on use (scipy.integrate)
-
+    (:func:`rodimpact.io.shpb_reduction_spec.write_files`: ``reduction.csv``, ``reduction.nc``, ``spec.toml``),
+    ``plots/`` (``pulses.png``, ``stress-strain.png``, ``strain-rate.png``, ``equilibrium.png``: the figures of
+    :mod:`rodimpact.plotting.shpb_reduction`; not with ``plots=False`` or ``plots = false`` in the spec) and
+    ``summary.json`` (``summary`` with the list of files). Returns the summary."""
     with AtomicFolder(outdir, overwrite) as tmp:
-        files = shpb_spec.write_files(reduction, spec, tmp)
+        files = shpb_reduction_spec.write_files(reduction, spec, tmp)
         if plots and spec.plots:
             files += [f"plots/{name}" for name in _draw(tmp / "plots", _shpb_plots(reduction))]
         summary["files"] = files + ["summary.json"]
@@ -113,8 +130,9 @@ def write_shpb_reduction(reduction: Any, spec: Any, summary: dict[str, Any], out
 
 
 def _shpb_plots(reduction: Any) -> list[Job]:
-    """The figures of :mod:`rodimpact.plotting.shpb` for a split-Hopkinson-bar reduction."""
-    return [(f"{name}.png", lambda ax, draw=getattr(shpb_plots, f"plot_{name}"): draw(reduction, ax=ax))
+    """The figures of :mod:`rodimpact.plotting.shpb_reduction` for a split-Hopkinson-bar reduction."""
+    return [(f"{name.replace('_', '-')}.png",
+             lambda ax, draw=getattr(shpb_reduction_plots, f"plot_{name}"): draw(reduction, ax=ax))
             for name in ("pulses", "stress_strain", "strain_rate", "equilibrium")]
 
 

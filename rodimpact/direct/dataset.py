@@ -15,7 +15,8 @@ Variables: ``junction_force``, ``junction_contact`` (junction, time); ``end_forc
 ``probe_position``, ``probe_node_position`` (probe); energies, works and momentum per rod (rod, energy_time); the
 lattice (``impedance``, ``element_length``, ``rod_start``, ``rod_*``), the final state and the field snapshots
 (``force_field``, ``velocity_field`` (element, snapshot_time), ``displacement_field`` (node, snapshot_time)); the
-contact events; with a bit-rock end, its outcome (``bit_rock_*`` along ``bit_rock``, whose coordinate names the
+contact events; with deformable joints their outcomes (``joint_*`` along ``joint``); with a bit-rock end, its
+outcome (``bit_rock_*`` along ``bit_rock``, whose coordinate names the
 end: :class:`~rodimpact.direct.result.BitRockOutcome`; absent in files written before it). Every variable has a
 ``units`` attribute. Written so that every NetCDF flavour can hold it: integers as int32/int8, no variables
 along empty dimensions (a single rod has no junction), the diagnostics as a JSON attribute. The column names of
@@ -41,6 +42,11 @@ FORMAT_VERSION = 3
 #: The fields of a :class:`~rodimpact.direct.result.BitRockOutcome` stored as ``bit_rock_<field>``, with units.
 BIT_ROCK_FIELDS = {"loading_stiffness": "N/m", "unloading_stiffness": "N/m", "max_penetration": "m",
                    "final_penetration": "m", "energy": "J", "striker": "", "striker_energy": "J"}
+
+
+#: The fields of a :class:`~rodimpact.direct.result.JointOutcome` stored as ``joint_<field>``, with units.
+JOINT_FIELDS = {"junction": "", "shortening": "m", "strain": "1", "plastic_strain": "1",
+                "accumulated_plastic_strain": "1", "plastic_work": "J", "stored_energy": "J"}
 
 
 def json_default(o: Any) -> Any:
@@ -131,6 +137,11 @@ def result_dataset(result: Any, fields: bool = True):
             values = np.array([getattr(o, name) for o in result.bit_rock])
             data[f"bit_rock_{name}"] = (("bit_rock",), values.astype(np.int32) if name == "striker" else values,
                                         {"units": unit} if unit else {})
+    if result.joints:
+        for name, unit in JOINT_FIELDS.items():
+            values = np.array([getattr(o, name) for o in result.joints])
+            data[f"joint_{name}"] = (("joint",), values.astype(np.int32) if name == "junction" else values,
+                                     {"units": unit} if unit else {})
     attrs = {"title": "rodimpact simulation result", "rodimpact_version": __version__,
              "format_version": FORMAT_VERSION, "dt": float(result.dt), "steps": int(result.n_steps),
              "record_every": int(result.record_every),

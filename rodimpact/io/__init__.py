@@ -40,7 +40,7 @@ _NAMES = {
     "format_summary": "results",
     "OutputExistsError": "results",
     "claim_output": "results",
-    "save_reduction_csv": "shpb_spec",
+    "save_reduction_csv": "shpb_reduction_spec",
 }
 
 __all__ = list(_NAMES)

@@ -69,3 +69,13 @@ DESIGN_KEYS: dict[str, Rule] = {
     r"StrikerLimits\.(impedance|diameter|velocity)_bounds(?:\[([01])\])?":
         lambda m: f"striker.{m.group(1)}_{'max' if m.group(2) == '1' else 'min'}",
 }
+
+#: Argument of :meth:`rodimpact.shpb.KolskyBar.predict`, or field of :class:`~rodimpact.shpb.KolskyBar` -> key path
+#: in a Kolsky-bar spec (the bars as rods of the run: by :meth:`rodimpact.io.shpb_spec.ShpbSpec.predict`).
+SHPB_KEYS: dict[str, Rule] = {
+    "dt": "simulation.dt", "duration": "simulation.duration", "backend": "simulation.backend",
+    "striker_velocity": "input.striker_velocity", "incident_pulse": "input.incident_pulse.file",
+    **{f"KolskyBar.{k}": f"bars.{k}" for k in ("incident", "transmitted", "striker", "momentum_trap")},
+    **{f"KolskyBar.{k}_gauge": f"gauges.{k}" for k in ("incident", "transmitted")},
+    "KolskyBar.specimen": "specimen", "KolskyBar.shaper": "shaper",
+}

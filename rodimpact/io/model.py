@@ -697,7 +697,8 @@ _HEADER = re.compile(r"^\s*([^\[\(]+?)\s*(?:[\[\(]\s*(.*?)\s*[\]\)])?\s*$")
 def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, needed: Sequence[str] = (),
                      positional: Sequence[str] = ()) -> dict[str, np.ndarray]:
     """Read numeric columns from a CSV file whose header names them, optionally with a unit in brackets
-    (``x [mm]``, ``impedance (kN s/m)``); values are converted to SI. Lines starting with ``#`` are comments.
+    (``x [mm]``, ``impedance (kN s/m)``, ``strain [-]`` for a pure number, as rodimpact's CSV files write it); values
+    are converted to SI. Lines starting with ``#`` are comments.
 
     ``dims`` maps the recognised column names to dimensions (other columns are ignored); with ``positional``
     the columns are taken in order instead and named accordingly (``("time", "force")``).
@@ -727,7 +728,7 @@ def read_csv_columns(path: Path, key: str, dims: Optional[dict[str, str]], *, ne
     for name, (i, unit) in cols.items():
         dim = dims[name] if dims is not None else name if name in DIMENSIONS else "time"
         try:
-            scale = 1.0 if not unit else parse_quantity(f"1 {unit}", dim, key)
+            scale = 1.0 if not unit or unit == DIMENSIONS[dim].si == "-" else parse_quantity(f"1 {unit}", dim, key)
         except ModelError:
             raise ModelError(f"{key}: {path}, column {i + 1}: the unit in its header is not {_a(dim)} unit (such as "
                              f"{DIMENSIONS[dim].si}); the file's content is not shown") from None

@@ -40,6 +40,7 @@ Spec = TypeVar("Spec")
 #: rod of a model file's ``[[rods]]`` or of a spec's ``[[struck]]``) -> key set -> the keys it replaces.
 REPLACES: dict[tuple[str, ...], dict[str, tuple[str, ...]]] = {
     ("simulation",): {"duration": ("steps",), "steps": ("duration",)},
+    ("input",): {"striker_velocity": ("incident_pulse",), "incident_pulse": ("striker_velocity",)},
     ("ROD",): {"segments": ("elements",), "elements": ("segments", "material")},
     ("ROD", "elements"): {"dt": ("element_length",), "element_length": ("dt",), "impedance": ("runs", "file"),
                           "runs": ("impedance", "file"), "file": ("impedance", "runs")},

@@ -1,419 +1,466 @@
-"""Split-Hopkinson-bar reduction specs: what ``rodimpact shpb reduce`` needs besides the recording.
+"""Kolsky-bar specifications: TOML files for ``rodimpact shpb predict`` (the split-Hopkinson bar's forward model,
+:class:`rodimpact.shpb.KolskyBar`).
 
-A recording is a LANL ``.raw`` file (its metadata sheet gives the bars, gauges and specimen; only the bridge
-circuit is missing), a set of Tektronix ``.csv`` files (one channel each), a ``.tdms`` file or a plain CSV table
-(``recording.format = "csv"``). A small TOML spec gives what the files lack or overrides what they hold: the
-channels, a HopPyBar/LANL input sheet, the bars and their gauges, the specimen and the reduction settings
-(docs/cli.md, ``rodimpact docs shpb``). Everything is optional where a sheet supplies it.
+A spec gives the bars (``[bars.incident]``, ``[bars.transmitted]``, optional ``[bars.striker]`` and
+``[bars.momentum_trap]``, each with the keys of a model file's ``[[rods]]``: segments of any shape or
+impedance-level elements, materials, units), the ``[specimen]`` and an optional pulse ``[shaper]`` (the keys of the
+``specimen`` and ``pulse-shaper`` junctions of model files, with their nested ``law = { type = ... }``, built from
+the classes' declarations), the gauge stations ``[gauges.incident]`` and ``[gauges.transmitted]``, the ``[input]``
+(the striker's velocity or a measured incident pulse from a CSV file) and the ``[simulation]`` settings.
+:func:`load_spec` builds the :class:`~rodimpact.shpb.KolskyBar` (errors name the spec's keys: ``specimen.law.b:
+must be >= 0, got -1 MPa``), :func:`run` predicts, :func:`write_files` writes the data files (the command line's
+folder with figures: :mod:`rodimpact.output_folders`).
 
-:func:`read_shot` turns a spec and the recording files into the reduction's inputs, :func:`run` reduces the shot
-(:func:`rodimpact.shpb.reduce_shot`), :func:`summarize_run` and :func:`format_summary` report it and
-:func:`write_files` writes its data files (the figures: :func:`rodimpact.output_folders.write_shpb_reduction`).
+Signs: bar strains are tension positive (an incident compressive pulse is negative); the specimen's stress, strain
+and strain rate are compression positive. Keys: docs/cli.md (generated from :data:`SHPB_SPEC` by
+:func:`spec_reference_markdown`).
 """
 
 from __future__ import annotations
 
-import csv
-import math
-import os
-from dataclasses import dataclass, replace
+import dataclasses
+import warnings
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping, Optional, Sequence
+from typing import Any, Mapping, Optional
 
 import numpy as np
 
-from .._result_files import write_new_file
-from ..rods.material import Material
-from ..shpb import Bar, GaugeSignals, ShpbReduction, SpecimenGeometry, find_windows, reduce_shot
-from ..signals.gauges import Bridge, GaugedBar
-from ..signals.recording import Recording
-from .model import parse_toml, read_text_file
+from .._result_files import netcdf_engine
+from ..rods.declared import ELEMENTS
+from ..rods.rod import Rod
+from ..shpb import Gauge, KolskyBar, KolskyPrediction
+from ..shpb.plateau import rate_plateau
+from ..signals.gauges import BRIDGE_NAMES
+from .dimensions import Parameters
+from .keypaths import SHPB_KEYS, translated
+from .model import _element, _materials, _rod, _wrap, parse_toml, read_csv_columns, read_text_file
 from .overrides import spec_with_overrides
 from .quantities import ModelError
-from .recordings import (_convert, _entry, hoppybar_bar, read_csv_recording, read_hoppybar_input, read_lanl_raw,
-                         read_tdms, read_tektronix_csv)
-from .schema import Field, Table, _q, _table_md, validate_table
+from .results import _write_csv
+from .schema import JUNCTION_TYPES, MATERIAL, ROD, Field, Table, _q, _table_md, validate_table
 
 # ============================================================================================ schema
-FORMATS = {".raw": "lanl-raw", ".csv": "tektronix-csv", ".tdms": "tdms"}
+BAR = Table("bars.NAME", "A bar, the striker or the momentum trap, with the keys of a model file's `[[rods]]` but "
+                         "`name`, `velocity` and `initial`: `[[bars.NAME.segments]]` (geometry, any shape; keys: "
+                         "`rodimpact docs model`) or `[bars.NAME.elements]` (impedance level, e.g. the `striker.csv` "
+                         "of `rodimpact design` as the striker; not for the incident and transmitted bars, whose "
+                         "gauges read N / (E A)). The striker hits the incident bar's left end; the incident bar's "
+                         "right end and the transmitted bar's left end touch the specimen.",
+            tuple(f for f in ROD.fields if f.name in ("material", "segments", "elements")),
+            '[bars.incident]\nmaterial = "ti-6al-4v"\n\n[[bars.incident.segments]]\nshape = "cylinder"\n'
+            'length = "1 m"\ndiameter = "9.47 mm"')
 
-RECORDING = Table("recording", "The recorded shot. Files given on the command line take the place of `files`.", (
-    Field("files", "strings", "Recording files, relative to the spec: one LANL `.raw` or `.tdms` file or plain CSV "
-                              "table, or one Tektronix `.csv` file per channel."),
-    Field("format", "string", "File format; default from the first file's extension (`.raw` lanl-raw, `.csv` "
-                              "tektronix-csv, `.tdms` tdms); `csv` is a plain table with a time column "
-                              "(`rodimpact.io.read_csv_recording`).",
-          choices=("lanl-raw", "tektronix-csv", "tdms", "csv")),
-    Field("sheet", "string", "HopPyBar/LANL input sheet (`*_Input.dat`, relative to the spec) with the bars, gauges "
-                             "and specimen; a LANL `.raw` file carries its own."),
-    Field("incident_channels", "strings", "Channel(s) of the incident-bar gauges (several: opposite gauges, "
-                                          "averaged); default `[\"incident\"]` for a `.raw` file, else the first "
-                                          "channel."),
-    Field("transmitted_channels", "strings", "Channel(s) of the transmitted-bar gauges; default "
-                                             "`[\"transmitted\"]` for a `.raw` file, else the second channel."),
-    _q("baseline_start", "time", "Start of the span whose mean is each channel's zero offset (with "
-                                 "`baseline_end`); default: the samples before the channel's first pulse.",
-       sign=None, required=False),
-    _q("baseline_end", "time", "End of that span.", sign=None, required=False),
-), '[recording]\nfiles = ["shot_Ch1.csv", "shot_Ch3.csv"]\nsheet = "shot_Input.dat"\nincident_channels = ["Ch1"]\n'
-   'transmitted_channels = ["Ch3"]')
+BARS = Table("bars", "The bars.", (
+    Field("striker", "table", "The striker; needed with `input.striker_velocity`.", table=BAR),
+    Field("incident", "table", "The incident bar.", table=BAR, required=True),
+    Field("transmitted", "table", "The transmitted bar.", table=BAR, required=True),
+    Field("momentum_trap", "table", "A bar in unilateral contact behind the transmitted bar; without one, the "
+                                    "transmitted bar's far end is free.", table=BAR),
+))
 
-BAR = Table("bar", "One bar and its gauge station (`[incident_bar]`, `[transmitted_bar]`); keys given here replace the "
-                   "sheet's.", (
-    _q("youngs_modulus", "pressure", "Young's modulus E_b.", required=False),
-    _q("density", "density", "Density (or `wave_speed`).", required=False),
-    _q("wave_speed", "velocity", "Bar wave speed c_b instead of the density (density = E_b / c_b^2).",
-       required=False),
-    _q("diameter", "length", "Diameter of a round bar (or `area`).", required=False),
-    _q("area", "area", "Cross-section area.", required=False),
-    _q("gauge_distance", "length", "Distance from the gauge station to the specimen face.", sign="non_negative",
-       required=False),
-    _q("poisson_ratio", "dimensionless", "Poisson's ratio (for the dispersion correction).", sign="non_negative",
-       required=False),
-    Field("bridge", "string", "Bridge circuit: `quarter`, `half-axial`, `half-bending`, `half-poisson`, "
-                              "`full-bending` or `full-poisson` (the sheets do not record it)."),
-    Field("polarity", "integer", "-1 if the recorder shows compression as positive voltage.", default=1),
-    _q("gauge_factor", "dimensionless", "Gauge factor.", required=False),
-    _q("excitation_voltage", "dimensionless", "Bridge excitation in V (a number).", required=False),
-    _q("gain", "dimensionless", "Amplifier gain (default: the sheet's gain of this shot).", sign=None,
-       required=False),
-), '[incident_bar]\nyoungs_modulus = "109.3 GPa"\nwave_speed = "4975 m/s"\ndiameter = "9.47 mm"\n'
-   'gauge_distance = "381 mm"\nbridge = "half-axial"\ngauge_factor = 2.061\nexcitation_voltage = 8.0\ngain = 200')
+SPECIMEN = dataclasses.replace(JUNCTION_TYPES["specimen"], name="specimen", example=(
+    '[specimen]\ndiameter = "6.34 mm"\nlength = "3.204 mm"\nlaw = { type = "elastic-plastic", '
+    'youngs_modulus = "117 GPa", yield_stress = "90 MPa", hardening = "300 MPa" }'))
+SHAPER = dataclasses.replace(JUNCTION_TYPES["pulse-shaper"], name="shaper", example=(
+    '[shaper]\ndiameter = "4 mm"\nthickness = "1 mm"\nlaw = { type = "frew", stress = "360 MPa", n = 0.3, m = 2.0 }'))
 
-SPECIMEN = Table("specimen", "The specimen's initial size (default: the sheet's).", (
-    _q("length", "length", "Initial length L0.", required=False),
-    _q("diameter", "length", "Initial diameter (or `area`).", required=False),
-    _q("area", "area", "Initial cross-section area A0.", required=False),
-), '[specimen]\nlength = "3.204 mm"\ndiameter = "6.34 mm"')
+GAUGE = Table("gauges.NAME", "A strain-gauge station on the incident or the transmitted bar "
+                             "(`rodimpact.shpb.Gauge`). With `gauge_factor` and `excitation_voltage` the gauge's "
+                             "voltage is predicted too: polarity x gain x excitation x the exact bridge output.", (
+    _q("distance", "length", "Distance from the bar's specimen face."),
+    Field("bridge", "string", "Wheatstone bridge of the gauges.", default="quarter", choices=BRIDGE_NAMES),
+    _q("gauge_factor", "dimensionless", "Gauge factor (with `excitation_voltage`).", required=False),
+    _q("excitation_voltage", "voltage", "Bridge excitation voltage (with `gauge_factor`).", required=False),
+    _q("gain", "dimensionless", "Amplifier gain.", required=False, default=1.0),
+    Field("polarity", "integer", "`1`, or `-1` where compression was recorded as a positive voltage.", default=1),
+    _q("poisson_ratio", "dimensionless", "Poisson's ratio of the bar, for the `half-poisson` and `full-poisson` "
+                                         "bridges.", sign=None, required=False),
+), '[gauges.incident]\ndistance = "381 mm"\ngauge_factor = 2.061\nexcitation_voltage = "8 V"\ngain = 200')
 
-REDUCTION = Table("reduction", "Pulse windows and the reduction (docs/shpb.md).", (
-    _q("threshold", "dimensionless", "Incident arrival: this fraction of the record's peak.", default=0.1,
+GAUGES = Table("gauges", "The gauge stations.", (
+    Field("incident", "table", "On the incident bar.", table=GAUGE, required=True),
+    Field("transmitted", "table", "On the transmitted bar.", table=GAUGE, required=True),
+))
+
+PULSE = Table("input.incident_pulse", "A measured incident pulse: a CSV file with a column `time` and a column "
+                                      "`strain` (units in the header, e.g. `time [us]`, `strain [-]` or `strain "
+                                      "[microstrain]`; default SI; lines starting with `#` are comments), tension "
+                                      "positive, zero outside the pulse. It drives the incident bar so that it "
+                                      "passes the incident gauge as recorded; the prediction keeps the record's "
+                                      "clock.", (
+    Field("file", "string", "CSV file, relative to the spec.", required=True),))
+
+INPUT = Table("input", "What loads the bars: exactly one of the two keys.", (
+    _q("striker_velocity", "velocity", "Impact velocity of `[bars.striker]` towards the incident bar.",
        required=False),
-    _q("foot", "dimensionless", "The window starts where the pulse was last at or below this fraction of the "
-                                "peak.", sign="non_negative", default=0.0, required=False),
-    _q("incident_start", "time", "Start of the incident window at the gauge (replaces the one found).",
-       sign=None, required=False),
-    _q("reflected_start", "time", "Start of the reflected window at the gauge.", sign=None, required=False),
-    _q("transmitted_start", "time", "Start of the transmitted window at the gauge.", sign=None, required=False),
-    _q("duration", "time", "Length of the windows (replaces the one found).", required=False),
-    Field("dispersion", "boolean", "Undo the Pochhammer-Chree dispersion between gauges and specimen.",
-          default=False),
-    _q("pass_limit", "dimensionless", "Equilibrium: largest R(t) of the pass band.", default=0.05, required=False),
-    _q("review_limit", "dimensionless", "Equilibrium: largest R(t) of the review band.", default=0.10,
+    Field("incident_pulse", "table", "A measured incident pulse instead of the striker: `{ file = \"...\" }`. "
+                                     "The striker and the shaper are then not simulated (the pulse is what they "
+                                     "made).", table=PULSE),
+), '[input]\nstriker_velocity = "10 m/s"\n# incident_pulse = { file = "incident.csv" }')
+
+SIMULATION = Table("simulation", "Run settings.", (
+    _q("dt", "time", "Time step = travel time of every bar element; default: every segment >= 4 and the longest "
+                     "bar >= 200 elements.", required=False),
+    _q("duration", "time", "Simulated time; default: until the transmitted pulse has passed its gauge.",
        required=False),
-), '[reduction]\ndispersion = true\nreflected_start = "150.2 us"')
+    Field("backend", "string", "`numba` (compiled) or `numpy` (reference).", default="numba",
+          choices=("numba", "numpy")),
+), '[simulation]\ndt = "0.2 us"')
 
-OUTPUT = Table("output", "What to write.", (Field("plots", "boolean", "Write the plots.", default=True),))
+SHPB_OUTPUT = Table("output", "What to write.", (Field("plots", "boolean", "Write the plots.", default=True),))
 
-SPEC = Table("shpb spec", "Top level of a split-Hopkinson-bar reduction spec; every table is optional.", (
+SHPB_SPEC = Table("Kolsky-bar spec", "Top level of a Kolsky-bar spec.", (
     Field("title", "string", "Short title."),
-    Field("recording", "table", "The recording.", table=RECORDING),
-    Field("incident_bar", "table", "The incident bar.", table=BAR),
-    Field("transmitted_bar", "table", "The transmitted bar.", table=BAR),
-    Field("specimen", "table", "The specimen.", table=SPECIMEN),
-    Field("reduction", "table", "Reduction settings.", table=REDUCTION),
-    Field("output", "table", "Output settings.", table=OUTPUT),
+    Field("description", "string", "Free text."),
+    Field("parameters", "parameters", "Named constants for expressions, converted to SI."),
+    Field("materials", "mapping", "Named materials (as in model files).", table=MATERIAL),
+    Field("bars", "table", "The striker, the incident and transmitted bars and the momentum trap.", table=BARS,
+          required=True),
+    Field("specimen", "table", "The specimen between the incident and the transmitted bar.", table=SPECIMEN,
+          required=True),
+    Field("shaper", "table", "A pulse shaper between the striker and the incident bar.", table=SHAPER),
+    Field("gauges", "table", "The gauge stations.", table=GAUGES, required=True),
+    Field("input", "table", "What loads the bars: `striker_velocity` (with `[bars.striker]`) or a measured "
+                            "`incident_pulse`.", table=INPUT, required=True),
+    Field("simulation", "table", "Run settings.", table=SIMULATION),
+    Field("output", "table", "Output settings.", table=SHPB_OUTPUT),
 ))
 
 
 def spec_reference_markdown() -> str:
-    """Reference tables of the spec keys (included in docs/cli.md)."""
+    """Reference tables of the Kolsky-bar spec keys (docs/cli.md, ``rodimpact docs shpb``)."""
     lines: list[str] = []
-    for title, table in (("Top level", SPEC), ("`[recording]`", RECORDING),
-                         ("`[incident_bar]` and `[transmitted_bar]`", BAR), ("`[specimen]`", SPECIMEN),
-                         ("`[reduction]`", REDUCTION), ("`[output]`", OUTPUT)):
+    for title, table in (("Kolsky-bar spec, top level", SHPB_SPEC), ("`[bars.NAME]`", BAR),
+                         ("`[specimen]`", SPECIMEN), ("`[shaper]`", SHAPER), ("`[gauges.NAME]`", GAUGE),
+                         ("`[input]`", INPUT), ("`[input.incident_pulse]`", PULSE), ("`[simulation]`", SIMULATION),
+                         ("`[output]`", SHPB_OUTPUT)):
         _table_md(title, table, 4, lines)
+    lines.append("`NAME` is `striker`, `incident`, `transmitted` or `momentum_trap` for bars and `incident` or "
+                 "`transmitted` for gauges. The `law` of the specimen and the shaper takes the keys of the "
+                 "constitutive laws of model files (`rodimpact docs model`, 'Constitutive laws'), stresses and "
+                 "strains positive in compression.")
     return "\n".join(lines) + "\n"
 
 
 # ============================================================================================ spec objects
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class ShpbSpec:
-    """A validated spec: ``values`` (the tables in SI, defaults filled in), the folder relative file names are
-    read from, the spec's ``text`` as it ran (written as ``spec.toml``) and its ``name``."""
+    """A validated Kolsky-bar spec: the :class:`~rodimpact.shpb.KolskyBar` and the arguments of its
+    :meth:`~rodimpact.shpb.KolskyBar.predict` (``striker_velocity`` in m/s, or ``incident_pulse`` samples (time
+    in s, strain tension positive); ``dt``, ``duration`` in s or ``None`` for the defaults), plus output
+    settings."""
 
-    values: dict
-    base: Path
-    text: str
-    name: str
+    kolsky: KolskyBar
+    striker_velocity: Optional[float]
+    incident_pulse: Optional[tuple[np.ndarray, np.ndarray]]
+    dt: Optional[float] = None
+    duration: Optional[float] = None
+    backend: str = "numba"
+    plots: bool = True
+    title: str = ""
+    text: str = ""
+    pulse_file: Optional[str] = None
+    source: Optional[Path] = None
 
-    @property
-    def title(self) -> str:
-        return self.values["title"] or ""
+    def predict(self) -> KolskyPrediction:
+        """Run :meth:`KolskyBar.predict` with these settings; errors name the spec's keys (``simulation.dt``,
+        ``bars.incident``; :data:`rodimpact.io.keypaths.SHPB_KEYS`)."""
+        kb = self.kolsky
+        bars = (["striker"] if self.incident_pulse is None else []) + ["incident", "transmitted"] \
+            + (["momentum_trap"] if kb.momentum_trap is not None else [])
+        try:
+            return kb.predict(self.striker_velocity, incident_pulse=self.incident_pulse, duration=self.duration,
+                              dt=self.dt, backend=self.backend)
+        except ModelError:
+            raise
+        except (ValueError, TypeError) as exc:     # the system's rods are the bars, in this order
+            raise translated(exc, {**SHPB_KEYS, **{f"rods[{i}]": f"bars.{b}" for i, b in enumerate(bars)}}) from None
 
-    @property
-    def plots(self) -> bool:
-        return self.values["output"]["plots"]
 
-
-def load_spec(path: Optional[str | Path], overrides: Optional[Mapping[str, Any]] = None) -> ShpbSpec:
-    """Read a spec file (``None``: no file, only ``overrides``); ``overrides``: key path -> value, set before the
-    spec is validated (:mod:`rodimpact.io.overrides`)."""
-    if path is None:
-        return loads_spec("", ".", "options", overrides)
+def load_spec(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -> ShpbSpec:
+    """Read a Kolsky-bar spec file (relative file names are resolved against its folder); ``overrides``: key path
+    -> value, set before the spec is validated (:mod:`rodimpact.io.overrides`)."""
     p = Path(path)
-    return loads_spec(read_text_file(p, str(p), "spec file"), p.parent, str(p), overrides)
+    spec = loads_spec(read_text_file(p, str(p), "spec file"), p.parent, str(p), overrides)
+    object.__setattr__(spec, "source", p)
+    return spec
 
 
 def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec",
                overrides: Optional[Mapping[str, Any]] = None) -> ShpbSpec:
-    """Read a spec from TOML text (``overrides`` as in :func:`load_spec`)."""
+    """Read a Kolsky-bar spec from TOML text (``overrides`` as in :func:`load_spec`)."""
     return spec_with_overrides(parse_toml(text, name), overrides, name, text,
-                               lambda raw, given: _spec(raw, Path(base_dir), given, name))
+                               lambda raw, given: _spec(raw, Path(base_dir), given))
 
 
-def _spec(raw: dict, base: Path, text: str, name: str) -> ShpbSpec:
-    d = validate_table(SPEC, raw, "")
-    for key, table in (("recording", RECORDING), ("incident_bar", BAR), ("transmitted_bar", BAR),
-                       ("specimen", SPECIMEN), ("reduction", REDUCTION), ("output", OUTPUT)):
-        d[key] = d[key] or validate_table(table, {}, key)
-    for role in ("incident_bar", "transmitted_bar"):
-        if d[role]["polarity"] not in (1, -1):
-            raise ModelError(f"{role}.polarity: must be 1 or -1, got {d[role]['polarity']}")
-    rec = d["recording"]
-    if (rec["baseline_start"] is None) != (rec["baseline_end"] is None):
-        raise ModelError("recording.baseline_start: give baseline_start and baseline_end together, or neither")
-    return ShpbSpec(d, base, text, name)
-
-
-# ============================================================================================ reading a shot
-@dataclass(frozen=True)
-class ShotInput:
-    """What :func:`read_shot` read: the gauge strains, the bars, the specimen and the recording files."""
-
-    signals: GaugeSignals
-    incident_bar: Bar
-    transmitted_bar: Bar
-    specimen: SpecimenGeometry
-    files: tuple[str, ...]
-
-
-def read_shot(spec: ShpbSpec, files: Sequence[str | Path] = ()) -> ShotInput:
-    """The recording (``files``, else ``recording.files`` of the spec) as gauge strains, with the bars and the
-    specimen from the spec and the sheet; a missing value is a :class:`ModelError` naming its key."""
-    rec_spec = spec.values["recording"]
-    if files and rec_spec["files"]:
-        raise ModelError("recording.files: the recording is given on the command line as well; give it once")
-    paths = [Path(f) for f in files] or [spec.base / f for f in rec_spec["files"] or ()]
-    if not paths:
-        raise ModelError("recording.files: no recording given; name the file(s) on the command line")
-    recording, sheet = _read_recording(paths, rec_spec, spec.base)
-    channels = _channels(recording, rec_spec, bool(sheet is not None and recording.metadata.get("format")
-                                                   == "lanl-raw"))
-    gauges, bars = {}, {}
-    for role in ("incident", "transmitted"):
-        bars[role], gauges[role] = _bar(role, spec.values[f"{role}_bar"], sheet)
-    baseline = ("auto" if rec_spec["baseline_start"] is None
-                else (rec_spec["baseline_start"], rec_spec["baseline_end"]))
-    signals = GaugeSignals.from_recording(recording, gauges["incident"], gauges["transmitted"], channels=channels,
-                                          baseline=baseline)
-    return ShotInput(signals, bars["incident"], bars["transmitted"], _specimen(spec.values["specimen"], sheet),
-                     tuple(os.fspath(p) for p in paths))
-
-
-def _read_recording(paths: list[Path], rec_spec: dict, base: Path) -> tuple[Recording, Optional[dict]]:
-    """The recording and the metadata sheet (the ``.raw`` file's own, or ``recording.sheet``), if any."""
-    fmt = rec_spec["format"] or FORMATS.get(paths[0].suffix.lower())
-    if fmt is None:
-        raise ModelError(f"recording.format: {paths[0].name}: unknown file type {paths[0].suffix!r}; give "
-                         f"recording.format (lanl-raw, tektronix-csv, tdms, csv)")
-    if fmt != "tektronix-csv" and len(paths) != 1:
-        raise ModelError(f"recording.files: a {fmt} recording is one file, got {len(paths)}")
-    reader = {"lanl-raw": read_lanl_raw, "tdms": read_tdms, "csv": read_csv_recording}
-    recording = read_tektronix_csv(paths) if fmt == "tektronix-csv" else reader[fmt](paths[0])
-    sheet = recording.metadata if fmt == "lanl-raw" else None
-    if rec_spec["sheet"] is not None:
-        sheet = read_hoppybar_input(base / rec_spec["sheet"])
-    return recording, sheet
-
-
-def _channels(recording: Recording, rec_spec: dict, lanl: bool) -> tuple[list[str], list[str]]:
-    names = recording.channel_names
-    out = []
-    for i, role in enumerate(("incident", "transmitted")):
-        given = rec_spec[f"{role}_channels"]
-        if given is not None:
-            out.append(list(given))
-        elif lanl:
-            out.append([role])
-        elif len(names) == 2:
-            out.append([names[i]])
-        else:
-            raise ModelError(f"recording.{role}_channels: missing; the recording has {len(names)} channels "
-                             f"({', '.join(names)}): say which are the {role} bar's")
-    return out[0], out[1]
-
-
-def _bar(role: str, given: dict, sheet: Optional[dict]) -> tuple[Bar, Optional[GaugedBar]]:
-    """The bar and its gauge (``None`` for strain channels) from the spec's ``[<role>_bar]`` and the sheet."""
-    path = f"{role}_bar"
-    if given["bridge"] is not None:
-        try:
-            Bridge.named(given["bridge"], given["poisson_ratio"] if given["poisson_ratio"] is not None else 0.3)
-        except ValueError as exc:
-            raise ModelError(f"{path}.bridge: {exc}") from None
-    from_sheet: Optional[GaugedBar] = None
-    if sheet is not None:
-        if given["bridge"] is None:
-            raise ModelError(f"{path}.bridge: missing; the LANL and HopPyBar sheets do not record the bridge "
-                             f"circuit: give it (--bridge half-axial, or {path}.bridge in a spec)")
-        try:
-            from_sheet = hoppybar_bar(sheet, role, bridge=given["bridge"], polarity=given["polarity"],
-                                      gain="shot" if given["gain"] is None else given["gain"])
-        except ValueError as exc:
-            raise ModelError(f"{path}: from the sheet: {exc}") from None
-
-    def value(key: str, attribute: Optional[str] = None) -> Any:
-        if given[key] is not None:
-            return given[key]
-        if from_sheet is not None and attribute is not None:
-            return getattr(from_sheet, attribute)
-        raise ModelError(f"{path}.{key}: missing (no sheet gives it); give it in the spec")
-
-    youngs = value("youngs_modulus", "youngs_modulus")
-    if given["density"] is not None and given["wave_speed"] is not None:
-        raise ModelError(f"{path}.wave_speed: give density or wave_speed, not both")
-    density = youngs / given["wave_speed"] ** 2 if given["wave_speed"] is not None else value("density", "density")
-    if given["diameter"] is not None and given["area"] is not None:
-        raise ModelError(f"{path}.area: give diameter or area, not both")
-    area = math.pi * given["diameter"] ** 2 / 4 if given["diameter"] is not None else value("area", "area")
-    distance = given["gauge_distance"]
-    if distance is None:
-        distance = _sheet_length(sheet, f"{role.capitalize()} Bar Strain Gage Location", f"{path}.gauge_distance")
-    poisson = given["poisson_ratio"] if given["poisson_ratio"] is not None else (
-        from_sheet.poisson_ratio if from_sheet is not None else None)
-    bar = Bar(material=Material(youngs, density, f"{role} bar"), area=area, gauge_distance=distance,
-              poisson_ratio=poisson, name=role)
-    gauge = _gauge(path, given, from_sheet, youngs, density, area, poisson)
-    return bar, gauge
-
-
-def _gauge(path: str, given: dict, from_sheet: Optional[GaugedBar], youngs: float, density: float, area: float,
-           poisson: Optional[float]) -> Optional[GaugedBar]:
-    """The bar's gauge: the sheet's with the spec's values put in, or the spec's alone (``None`` if it gives no
-    gauge: the channels are then strains)."""
-    keys = ("bridge", "gauge_factor", "excitation_voltage")
-    if from_sheet is None and all(given[k] is None for k in keys):
-        return None
-    if from_sheet is None:
-        missing = [k for k in keys if given[k] is None]
-        if missing:
-            raise ModelError(f"{path}.{missing[0]}: missing; a gauge needs bridge, gauge_factor and "
-                             f"excitation_voltage (or a sheet)")
-        return GaugedBar(youngs, density, area, given["gauge_factor"], given["excitation_voltage"],
-                         1.0 if given["gain"] is None else given["gain"], given["bridge"], given["polarity"],
-                         poisson)
-    changes = {k: given[k] for k in ("gauge_factor", "excitation_voltage") if given[k] is not None}
-    return replace(from_sheet, youngs_modulus=youngs, density=density, area=area, poisson_ratio=poisson, **changes)
-
-
-def _specimen(given: dict, sheet: Optional[dict]) -> SpecimenGeometry:
-    length = given["length"]
-    if length is None:
-        length = _sheet_length(sheet, "Initial Sample Length", "specimen.length")
-    if given["diameter"] is not None and given["area"] is not None:
-        raise ModelError("specimen.area: give diameter or area, not both")
-    if given["area"] is not None:
-        return SpecimenGeometry(length=length, area=given["area"])
-    diameter = given["diameter"]
-    if diameter is None:
-        diameter = _sheet_length(sheet, "Initial Sample Diameter", "specimen.diameter")
-    return SpecimenGeometry(length=length, diameter=diameter)
-
-
-def _sheet_length(sheet: Optional[dict], entry: str, key: str) -> float:
-    """A length entry of the sheet in m; a :class:`ModelError` naming ``key`` when there is none."""
-    if sheet is None:
-        raise ModelError(f"{key}: missing (no sheet gives it); give it in the spec")
+def _spec(raw: dict, base: Path, text: str) -> ShpbSpec:
+    """The validated spec of the parsed file ``raw`` (``text``: the file as given)."""
+    d = validate_table(SHPB_SPEC, raw, "")
+    params = Parameters(d["parameters"] or {}, raw.get("parameters") or {})
+    materials = _materials(d["materials"] or {})
+    sim = d["simulation"] or validate_table(SIMULATION, {}, "simulation")
+    bars: dict[str, Rod] = {}
+    for name, b in d["bars"].items():
+        if b is not None:
+            bars[name] = _rod({**b, "name": name, "initial": None}, f"bars.{name}", materials, params, sim["dt"], base,
+                              raw["bars"][name])[0]
+    specimen = _element("junction", {**d["specimen"], "type": "specimen"}, "specimen", params, base)
+    shaper = None if d["shaper"] is None else _element("junction", {**d["shaper"], "type": "pulse-shaper"},
+                                                        "shaper", params, base)
+    gauges = {name: _gauge(g, f"gauges.{name}") for name, g in d["gauges"].items()}
+    velocity, pulse_file = d["input"]["striker_velocity"], (d["input"]["incident_pulse"] or {}).get("file")
+    if (velocity is None) == (pulse_file is None):
+        raise ModelError("input: give exactly one of striker_velocity (with [bars.striker]) or incident_pulse = "
+                         "{ file = \"...\" } (a measured pulse), " + ("not both" if velocity is not None else
+                                                                     "got neither"))
+    if velocity is not None and "striker" not in bars:
+        raise ModelError("input.striker_velocity: needs a striker: give [bars.striker], or a measured "
+                         "input.incident_pulse instead")
     try:
-        value, unit, name = _entry(sheet, entry)
-        return _convert(value, unit, "length", name)
-    except ValueError as exc:
-        raise ModelError(f"{key}: missing; the sheet: {exc}") from None
+        kolsky = KolskyBar(bars["incident"], bars["transmitted"], specimen, gauges["incident"],
+                           gauges["transmitted"], bars.get("striker"), shaper, bars.get("momentum_trap"))
+    except (ValueError, TypeError) as exc:        # errors name the spec's keys, not KolskyBar's fields
+        raise translated(exc, SHPB_KEYS) from None
+    out = d["output"] or {"plots": True}
+    return ShpbSpec(kolsky, velocity, None if pulse_file is None else _pulse(base, pulse_file), sim["dt"],
+                    sim["duration"], sim["backend"], out["plots"], d["title"] or "", text, pulse_file)
 
 
-# ============================================================================================ running
-#: The data files of a reduction's output folder.
-CSV_FILE, NETCDF_FILE, SPEC_FILE = "reduction.csv", "reduction.nc", "spec.toml"
+def _gauge(g: dict, path: str) -> Gauge:
+    """The :class:`Gauge` of a validated ``[gauges.NAME]`` table (its keys are the class's fields)."""
+    if (g["gauge_factor"] is None) != (g["excitation_voltage"] is None):
+        missing = "gauge_factor" if g["gauge_factor"] is None else "excitation_voltage"
+        raise ModelError(f"{path}.{missing}: missing; give gauge_factor and excitation_voltage together (to "
+                         "predict volts) or neither")
+    if g["bridge"].endswith("poisson") and g["poisson_ratio"] is None:
+        raise ModelError(f"{path}.poisson_ratio: missing; the {g['bridge']!r} bridge needs the bar's Poisson ratio")
+    return _wrap(path, lambda: Gauge(**g), "Gauge")
 
 
-def run(spec: ShpbSpec, shot: ShotInput) -> ShpbReduction:
-    """Reduce the shot with the spec's windows and settings (:func:`rodimpact.shpb.reduce_shot`)."""
-    r = spec.values["reduction"]
-    windows = find_windows(shot.signals, shot.incident_bar, shot.transmitted_bar, threshold=r["threshold"],
-                           foot=r["foot"], incident=r["incident_start"], reflected=r["reflected_start"],
-                           transmitted=r["transmitted_start"], duration=r["duration"])
-    return reduce_shot(shot.signals, shot.incident_bar, shot.transmitted_bar, shot.specimen, windows=windows,
-                       dispersion=r["dispersion"], bands=(r["pass_limit"], r["review_limit"]))
+def _pulse(base: Path, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """The samples (time in s, strain) of a measured incident pulse file, times strictly increasing."""
+    key = "input.incident_pulse.file"
+    cols = read_csv_columns(base / name, key, {"time": "time", "strain": "dimensionless"}, needed=("time", "strain"))
+    t = cols["time"]
+    if t.size < 2:
+        raise ModelError(f"{key}: {name} needs at least two rows of samples, got {t.size}")
+    steps = np.diff(t)
+    if not np.all(steps > 0.0):
+        k = int(np.argmax(~(steps > 0.0)))
+        raise ModelError(f"{key}: {name}, data rows {k + 1} and {k + 2}: the times must increase strictly, got "
+                         f"{t[k]!r} s and then {t[k + 1]!r} s")
+    return t, cols["strain"]
 
 
-def summarize_run(reduction: ShpbReduction, spec: ShpbSpec, shot: ShotInput) -> dict[str, Any]:
-    """The reduction's numbers (JSON-ready, SI units; :meth:`ShpbReduction.summary`) with the title, the recording
-    files and the bars."""
-    bars = {role: {"youngs_modulus_Pa": bar.youngs_modulus, "wave_speed_m_s": bar.wave_speed,
-                   "diameter_m": bar.diameter, "gauge_distance_m": bar.gauge_distance}
-            for role, bar in (("incident", shot.incident_bar), ("transmitted", shot.transmitted_bar))}
-    return {"title": spec.title, "recording": list(shot.files), "bars": bars, **reduction.summary(),
-            "warnings": []}
+# ============================================================================================ running, saving
+@dataclass
+class ShpbRun:
+    """A Kolsky-bar prediction with the warnings raised while it ran (equilibrium validity, ...)."""
+
+    prediction: KolskyPrediction
+    warnings: list[str] = field(default_factory=list)
 
 
-def format_summary(summary: dict[str, Any]) -> str:
+def run(spec: ShpbSpec) -> ShpbRun:
+    """Predict the gauge signals and the specimen's histories of ``spec``."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        prediction = spec.predict()
+    return ShpbRun(prediction, [str(w.message) for w in caught])
+
+
+def _peak(x: np.ndarray) -> float:
+    """The value of largest magnitude, with its sign."""
+    return float(x[int(np.argmax(np.abs(x)))])
+
+
+def summarize_run(r: ShpbRun, spec: ShpbSpec) -> dict[str, Any]:
+    """Key numbers of a prediction (JSON-ready, SI units): the peak strains at the gauges (tension positive, the
+    value of largest magnitude), the specimen's largest strain and stress (compression positive) and its mean
+    strain rate over the plateau (:func:`rodimpact.shpb.plateau.rate_plateau`)."""
+    p = r.prediction
+    plateau = rate_plateau(p.time, p.force, p.strain_rate)
+    return {
+        "title": spec.title,
+        "input": ({"striker_velocity_m_s": spec.striker_velocity} if spec.incident_pulse is None
+                  else {"incident_pulse_file": spec.pulse_file}),
+        "dt_s": p.result.dt, "steps": int(p.time.size), "start_time_s": float(p.time[0]),
+        "peak_incident_strain": _peak(p.incident), "peak_reflected_strain": _peak(p.reflected),
+        "peak_transmitted_strain": _peak(p.transmitted),
+        "peak_volts": {name: _peak(v) for name, v in p.volts.items()},
+        "specimen_max_strain": float(p.strain.max()), "specimen_max_true_strain": float(p.true_strain.max()),
+        "specimen_max_stress_Pa": float(p.stress.max()), "specimen_max_true_stress_Pa": float(p.true_stress.max()),
+        "strain_rate_plateau": None if plateau is None else {
+            "mean_1_per_s": plateau.mean, "start_s": plateau.start, "end_s": plateau.end,
+            "flatness": plateau.flatness,
+            "rule": "the samples around the largest specimen force where the force is at least half of it"},
+        "warnings": list(r.warnings)}
+
+
+def format_summary(s: dict[str, Any], spec: ShpbSpec) -> str:
     """A short text version of the summary."""
-    us = 1e6
-    sp, eq, w = summary, summary["equilibrium"], summary["windows"]
-    lines = [summary["title"] or ", ".join(Path(f).name for f in summary["recording"])]
-    bar = summary["bars"]["incident"]
-    lines.append(f"specimen {sp['specimen_length_m'] * 1e3:.4g} mm long, {sp['specimen_diameter_m'] * 1e3:.4g} mm "
-                 f"diameter; incident bar E {bar['youngs_modulus_Pa'] / 1e9:.4g} GPa, c {bar['wave_speed_m_s']:.5g} "
-                 f"m/s, d {bar['diameter_m'] * 1e3:.4g} mm, gauge {bar['gauge_distance_m'] * 1e3:.4g} mm from the "
-                 f"specimen" + ("; dispersion corrected" if sp["dispersion_corrected"] else ""))
-    lines.append("windows at the gauges: " + ", ".join(
-        f"{name} {w[name]['start_s'] * us:.4g} us{' (given)' if w[name]['given'] else ''}" for name in w)
-        + f", {w['incident']['duration_s'] * us:.4g} us long")
-    if eq["equilibrium_time_s"] is None:
-        lines.append(f"equilibrium: R exceeds the pass band ({eq['pass_limit']:.0%}) at the loading end "
-                     f"({eq['loading_end_s'] * us:.4g} us): not in equilibrium")
-    else:
-        lines.append(f"equilibrium (R <= {eq['pass_limit']:.0%}) from {eq['equilibrium_time_s'] * us:.4g} us, "
-                     f"strain {eq['strain_at_equilibrium']:.3g}, to the loading end {eq['loading_end_s'] * us:.4g} us")
-    if eq["review_time_s"] is not None:
-        lines.append(f"review band (R <= {eq['review_limit']:.0%}) from {eq['review_time_s'] * us:.4g} us")
-    where = "in equilibrium" if eq["equilibrium_time_s"] is not None else "over the loading"
-    for name, a in summary["analyses"].items():
-        lines.append(f"{name}: peak stress {a['peak_stress_Pa'] / 1e6:.4g} MPa, final strain {a['final_strain']:.3g}, "
-                     f"mean strain rate {a['mean_strain_rate_per_s']:.4g} 1/s {where}")
-    lines.append("specimen stress, strain and strain rate are positive in compression")
+    lines = [spec.title] if spec.title else []
+    loading = (f"striker at {s['input']['striker_velocity_m_s']:.4g} m/s" if "striker_velocity_m_s" in s["input"]
+               else f"measured incident pulse {s['input']['incident_pulse_file']}")
+    lines.append(f"Kolsky bar: {loading}; dt {s['dt_s'] * 1e6:.4g} us, {s['steps']} steps")
+    lines.append(f"incident gauge: peak incident strain {s['peak_incident_strain']:.4g}, peak reflected strain "
+                 f"{s['peak_reflected_strain']:.4g} (tension positive)")
+    lines.append(f"transmitted gauge: peak strain {s['peak_transmitted_strain']:.4g}")
+    for name, v in s["peak_volts"].items():
+        lines.append(f"{name.replace('_', ' ')}: peak voltage {v:.4g} V")
+    lines.append(f"specimen (compression positive): max strain {s['specimen_max_strain']:.4g} (true "
+                 f"{s['specimen_max_true_strain']:.4g}), max stress {s['specimen_max_stress_Pa'] / 1e6:.4g} MPa "
+                 f"(true {s['specimen_max_true_stress_Pa'] / 1e6:.4g} MPa)")
+    pl = s["strain_rate_plateau"]
+    lines.append("strain rate: the specimen is never compressed" if pl is None else
+                 f"strain rate: mean {pl['mean_1_per_s']:.4g} 1/s over the plateau {pl['start_s'] * 1e6:.4g} .. "
+                 f"{pl['end_s'] * 1e6:.4g} us (force >= half its peak; flatness {pl['flatness'] * 100:.3g} %)")
     return "\n".join(lines)
 
 
-def save_reduction_csv(reduction: ShpbReduction, path: str | Path, *, overwrite: bool = False) -> Path:
-    """Write the time series of a reduction as one CSV table (:meth:`ShpbReduction.table`: a header row of
-    ``name [unit]``, then one row per sample, numbers as Python writes them back exactly). An existing file is
-    refused (``FileExistsError`` naming it) unless ``overwrite=True``; written under a temporary name and moved
-    into place."""
-    if not isinstance(reduction, ShpbReduction):
-        raise TypeError(f"reduction: must be a rodimpact.shpb.ShpbReduction, got {type(reduction).__name__}")
-    header, columns = reduction.table()
-
-    def write(tmp: Path) -> None:
-        with open(tmp, "w", encoding="utf-8", newline="") as fh:
-            out = csv.writer(fh, lineterminator="\n")
-            out.writerow(header)
-            out.writerows(np.column_stack(columns).tolist())
-
-    return write_new_file(path, write, overwrite)
+#: The files of a prediction folder (besides ``plots/`` and ``summary.json``).
+SIGNALS_FILE, PREDICTION_FILE = "signals.csv", "prediction.nc"
 
 
-def write_files(reduction: ShpbReduction, spec: ShpbSpec, folder: Path) -> list[str]:
-    """Write the data files of a reduction into ``folder``: ``reduction.csv`` (:func:`save_reduction_csv`),
-    ``reduction.nc`` (:func:`rodimpact.save`, read back by :func:`rodimpact.load`) and ``spec.toml`` (the spec as
-    it ran, when there was a spec file or options set keys); returns their names."""
-    from .storage import save
+def write_files(r: ShpbRun, spec: ShpbSpec, folder: Path) -> list[str]:
+    """Write the data files of a prediction into the (new) ``folder`` and return their names: ``spec.toml`` (the
+    spec as it ran), ``signals.csv`` (one row per step: the variables of ``prediction.nc`` with their units in the
+    header, ``[-]`` for strains) and ``prediction.nc`` (:meth:`KolskyPrediction.to_xarray`). The command line's
+    output folder adds ``plots/`` and ``summary.json`` (:func:`rodimpact.output_folders.write_shpb_prediction`)."""
+    (folder / "spec.toml").write_text(spec.text, encoding="utf-8")
+    ds = r.prediction.to_xarray()
+    if spec.title:
+        ds.attrs["title"] = spec.title
+    names = list(ds.data_vars)
+    units = ["-" if ds[n].attrs["units"] == "1" else ds[n].attrs["units"] for n in names]
+    _write_csv(folder / SIGNALS_FILE, ["time [s]"] + [f"{n} [{u}]" for n, u in zip(names, units)],
+               [ds["time"].values] + [ds[n].values for n in names])
+    ds.to_netcdf(folder / PREDICTION_FILE, engine=netcdf_engine())
+    return ["spec.toml", SIGNALS_FILE, PREDICTION_FILE]
 
-    save_reduction_csv(reduction, folder / CSV_FILE)
-    save(reduction, folder / NETCDF_FILE)
-    files = [CSV_FILE, NETCDF_FILE]
-    if spec.text.strip():
-        (folder / SPEC_FILE).write_text(spec.text, encoding="utf-8")
-        files.append(SPEC_FILE)
-    return files
+
+# ============================================================================================ template
+TEMPLATE = '''\
+# rodimpact Kolsky-bar spec -- run it with:   rodimpact shpb predict shpb.toml -o results/shpb
+#
+# Predicts the gauge signals of a split-Hopkinson (Kolsky) pressure bar test and the specimen's stress, strain and
+# strain rate (rodimpact.shpb.KolskyBar): the bars are exact 1-D rods; the specimen (and an optional pulse
+# shaper) is a massless deformable joint whose constitutive law is solved in every step. Quantities take units
+# ("9.47 mm", "10 m/s"); bare numbers are SI. Signs: bar strains are tension positive (the incident pulse is
+# negative); the specimen's stress, strain and strain rate are compression positive. All keys: rodimpact docs shpb.
+#
+# This template: a shot like LANL's standard copper test (HopPyBar, 2006-12-01): Ti-6Al-4V bars of 9.47 mm, a
+# 127 mm striker at about 10 m/s, gauges 381 mm from the specimen, an annealed OFE copper specimen of 6.34 mm x
+# 3.204 mm. The shot's sheet does not give the bar lengths: 1 m is assumed.
+
+title = "LANL-like copper shot"
+
+# The bars' material as the shot's sheet gives it: E = 109.3 GPa, rho = 4416 kg/m^3 (bar wave speed 4975 m/s).
+[materials.lanl-ti-6al-4v]
+youngs_modulus = "109.3 GPa"
+density = "4416 kg/m^3"
+
+# ------------------------------------------------------------------------------------------------ bars
+# Each bar takes the keys of [[rods]] in model files: segments of any shape (or, for the striker only,
+# [bars.striker.elements], e.g. file = "striker.csv" written by rodimpact design). The striker hits the incident
+# bar's left end; the specimen sits between the incident bar's right end and the transmitted bar's left end.
+[bars.striker]
+material = "lanl-ti-6al-4v"
+
+[[bars.striker.segments]]
+shape = "cylinder"
+length = "127 mm"
+diameter = "9.47 mm"
+
+[bars.incident]
+material = "lanl-ti-6al-4v"
+
+[[bars.incident.segments]]
+shape = "cylinder"
+length = "1 m"
+diameter = "9.47 mm"
+
+[bars.transmitted]
+material = "lanl-ti-6al-4v"
+
+[[bars.transmitted.segments]]
+shape = "cylinder"
+length = "1 m"
+diameter = "9.47 mm"
+
+# A momentum trap in contact behind the transmitted bar (without one its far end is free):
+# [bars.momentum_trap]
+# material = "lanl-ti-6al-4v"
+# [[bars.momentum_trap.segments]]
+# shape = "cylinder"
+# length = "0.3 m"
+# diameter = "9.47 mm"
+
+# ------------------------------------------------------------------------------------------- specimen
+# The keys of the "specimen" junction of model files. Its law (stress and strain positive in compression) is one
+# of {laws} (keys: rodimpact docs model).
+[specimen]
+diameter = "6.34 mm"
+length = "3.204 mm"
+measure = "true"               # large strain: the law sees true strain and rate, the area grows as A0 / (1 - eps)
+density = "8960 kg/m^3"        # with it, a warning when the specimen is too long for equilibrium during the rise
+
+# Johnson-Cook constants of OFHC copper: A = 90 MPa, B = 292 MPa, n = 0.31, C = 0.025, m = 1.09, T_melt = 1356 K
+# at a reference rate of 1 1/s (G. R. Johnson and W. H. Cook, Eng. Fract. Mech. 21 (1985) 31-48, Table 1; the
+# strength constants of their 1983 paper). The shot's copper was annealed (600 C, 1 h) and is softer: fit A, B
+# and n to a shot before trusting a prediction. E = 117 GPa is copper's Young's modulus.
+[specimen.law]
+type = "johnson-cook"
+youngs_modulus = "117 GPa"
+a = "90 MPa"
+b = "292 MPa"
+n = 0.31
+c = 0.025
+m = 1.09
+reference_rate = "1 1/s"
+temperature = "273.15 K"       # the shot ran at 0 C; below room temperature (293.15 K) the thermal factor is 1
+melting_temperature = "1356 K"
+
+# A pulse shaper between the striker and the incident bar (the keys of the "pulse-shaper" junction), e.g. an
+# annealed copper disc with the law of Frew, Forrestal and Chen (Exp. Mech. 42 (2002) 93-106):
+# [shaper]
+# diameter = "4 mm"
+# thickness = "1 mm"
+# law = { type = "frew", stress = "360 MPa", n = 0.3, m = 2.0 }
+
+# ---------------------------------------------------------------------------------------------- gauges
+# Stations at a distance from the bar's specimen face. With gauge_factor and excitation_voltage the voltages are
+# predicted too (bridge: "quarter", "half-axial", "half-bending", "full-bending", or "half-poisson" and
+# "full-poisson" with poisson_ratio). The sheet gives GF 2.061 and 2.062, 8 V and a gain of 200; it does not
+# record the bridge: a quarter bridge is assumed here.
+[gauges.incident]
+distance = "381 mm"
+bridge = "quarter"
+gauge_factor = 2.061
+excitation_voltage = "8 V"
+gain = 200
+polarity = 1                   # -1 where compression was recorded as a positive voltage
+
+[gauges.transmitted]
+distance = "381 mm"
+bridge = "quarter"
+gauge_factor = 2.062
+excitation_voltage = "8 V"
+gain = 200
+
+# ----------------------------------------------------------------------------------------------- input
+# The striker's impact velocity, or a measured incident pulse instead: a CSV file with the columns time and strain
+# (units in the header, e.g. "time [us]" and "strain [-]"; tension positive) that passes the incident gauge as
+# recorded: incident_pulse = { file = "incident.csv" }.
+[input]
+striker_velocity = "10 m/s"
+
+[simulation]
+dt = "0.2 us"                  # time step = travel time of every bar element (about 1 mm of bar)
+# duration = "500 us"          # default: until the transmitted pulse has passed its gauge
+backend = "numba"              # or "numpy" (slow reference)
+
+[output]
+plots = true
+'''.replace("{laws}", ", ".join(f'"{name}"' for name in ELEMENTS["law"]))

@@ -2,18 +2,20 @@
 
 The rule, as in matplotlib and pandas: a function that draws on **one** Axes takes it as ``ax`` (``None``: a new
 figure) and returns that Axes (:func:`plot_forces`, :func:`plot_strain`, :func:`plot_energy`,
-:func:`plot_energy_comparison`, :func:`plot_xt`, and the synthesis plots :func:`plot_impedance`,
-:func:`plot_force`, :func:`plot_existence`, :func:`plot_shape`, and the split-Hopkinson-bar plots
-:func:`plot_pulses`, :func:`plot_stress_strain`, :func:`plot_strain_rate`, :func:`plot_equilibrium`); its figure is
-``ax.figure``. A function that draws on **several** Axes takes them as ``axes`` and returns the Figure
-(:func:`plot_profile`, :func:`plot_snapshots`, :func:`plot_synthesis`, :func:`plot_sweep`). New figures are
-:class:`matplotlib.figure.Figure` objects not registered with pyplot: save them with ``ax.figure.savefig(...)``. In a
-notebook, draw on Axes from ``plt.subplots()`` so that pyplot shows the figure as usual.
+:func:`plot_energy_comparison`, :func:`plot_xt`, the synthesis plots :func:`plot_impedance`,
+:func:`plot_force`, :func:`plot_existence`, :func:`plot_shape`, the Kolsky-bar prediction's
+:func:`plot_predicted_signals`, :func:`plot_predicted_stress_strain`, :func:`plot_predicted_strain_rate`, and the
+split-Hopkinson-bar reduction's :func:`plot_pulses`, :func:`plot_stress_strain`, :func:`plot_strain_rate`,
+:func:`plot_equilibrium`); its figure is ``ax.figure``. A function that draws on **several** Axes takes them as
+``axes`` and returns the Figure (:func:`plot_profile`, :func:`plot_snapshots`, :func:`plot_synthesis`,
+:func:`plot_sweep`). New figures are :class:`matplotlib.figure.Figure` objects not registered with pyplot: save them
+with ``ax.figure.savefig(...)``. In a notebook, draw on Axes from ``plt.subplots()`` so that pyplot shows the figure
+as usual.
 
 Units are written ``quantity [unit]`` on every axis: forces in kN, impedances in kN s/m, strains in microstrain
 (µε), lengths along the rods in m (mm for diameters, displacements and striker drawings), times in ms (s above
-1 s; µs on the split-Hopkinson-bar plots, the scale of their pulses). Forces are positive in tension; the
-specimen stress and strain of a Hopkinson-bar reduction are positive in compression.
+1 s; µs for the Kolsky-bar pulses of tens of microseconds). Forces are positive in tension (a Kolsky-bar
+specimen's stress, strain and strain rate in compression, the SHPB habit).
 """
 
 from __future__ import annotations
@@ -29,15 +31,16 @@ from .histories import plot_energy, plot_energy_comparison, plot_forces, plot_st
 from .profile import plot_profile
 from .design import plot_convergence, plot_design_force, plot_design_profile, plot_incident_wave
 from .synthesis import plot_existence, plot_force, plot_impedance, plot_shape, plot_synthesis
-from .shpb import plot_equilibrium, plot_pulses, plot_strain_rate, plot_stress_strain
 from .sweep import plot_sweep
+from .shpb_model import plot_predicted_signals, plot_predicted_strain_rate, plot_predicted_stress_strain
+from .shpb_reduction import plot_equilibrium, plot_pulses, plot_strain_rate, plot_stress_strain
 
 __all__ = ["plot_forces", "plot_strain", "plot_energy", "plot_energy_comparison", "plot_profile", "plot_snapshots",
            "plot_xt", "animate_force", "pillow_available", "save_plots", "PLOT_FILES",
            "plot_impedance", "plot_force", "plot_existence", "plot_shape", "plot_synthesis", "plot_sweep",
            "plot_design_force", "plot_design_profile", "plot_convergence", "plot_incident_wave",
-           "plot_pulses", "plot_stress_strain", "plot_strain_rate", "plot_equilibrium", "plot_phase_speed",
-           "new_axes"]
+           "plot_phase_speed", "new_axes", "plot_predicted_signals", "plot_predicted_stress_strain",
+           "plot_predicted_strain_rate", "plot_pulses", "plot_stress_strain", "plot_strain_rate", "plot_equilibrium"]
 
 
 def __getattr__(name: str) -> Any:

@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from .declared import check, choice, element, flag, history, part, quantity
+from .declared import check, choice, element, flag, history, part, quantity, type_name
 from .laws import FREW, Law
 from .history import HistoryLike
 
@@ -256,6 +256,14 @@ class DeformableJoint(Junction):
     def area(self) -> float:
         """Initial cross-section area A0 = pi d^2 / 4, m^2."""
         return 0.25 * math.pi * self.diameter ** 2
+
+    def check_fits(self, faces: float, where: str) -> None:
+        """Refuse a body wider than the rod faces it joins (``faces``: the smaller face area, m^2): the 1-D joint
+        needs the bars to cover it. ``where`` names the joint in the message (``junctions[1]``)."""
+        if self.area > faces * (1.0 + 1e-12):
+            raise ValueError(f"{where}.diameter: the {type_name(self)} ({self.diameter * 1e3:.6g} mm, "
+                             f"{self.area:.6g} m^2) is wider than the rod faces it joins ({faces:.6g} m^2): the 1-D "
+                             "joint needs the bars to cover it")
 
     def _check_joint(self) -> None:
         check(self)

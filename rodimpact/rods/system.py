@@ -83,11 +83,7 @@ class System:
         juncs = tuple(as_junction(j, f"junctions[{i}]") for i, j in enumerate(juncs))
         for i, j in enumerate(juncs):
             if isinstance(j, DeformableJoint):
-                faces = min(float(rods[i].area(rods[i].length)), float(rods[i + 1].area(0.0)))
-                if j.area > faces * (1.0 + 1e-12):
-                    raise ValueError(f"junctions[{i}].diameter: the {type(j).__name__.lower()} ({j.diameter * 1e3:.6g} "
-                                     f"mm, {j.area:.6g} m^2) is wider than the rod faces it joins ({faces:.6g} m^2): "
-                                     "the 1-D joint needs the bars to cover it")
+                j.check_fits(min(float(rods[i].area(rods[i].length)), float(rods[i + 1].area(0.0))), f"junctions[{i}]")
         loads = tuple(self.loads)
         for i, ld in enumerate(loads):
             if not isinstance(ld, (NodalForce, Bearings)):

@@ -20,7 +20,7 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .._validate import finite_array, positive
+from .._validate import caller_stacklevel, finite_array, positive
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
 from ..direct.result import Probe, SimulationResult
@@ -97,6 +97,18 @@ class KolskyPrediction:
     volts: dict[str, np.ndarray]
     result: SimulationResult = field(repr=False)
 
+    @property
+    def face_delays(self) -> tuple[float, float]:
+        """The travel times (s) of a wave from the incident gauge to the specimen face and from the specimen face to
+        the transmitted gauge, between the lattice nodes the gauges read (whole steps). At time t the specimen's
+        faces see the incident wave of time t - tau_i, the reflected wave of time t + tau_i and the transmitted
+        wave of time t + tau_t (the alignment of data reduction)."""
+        lattice = self.result.lattice
+        gi, gt = (self.result.probe(n).probe for n in ("incident_gauge", "transmitted_gauge"))
+        elements_i = int(lattice.rod_start[gi.rod + 1] - lattice.rod_start[gi.rod])
+        return ((elements_i - lattice.nearest_node(gi.rod, gi.position)[0]) * lattice.dt,
+                lattice.nearest_node(gt.rod, gt.position)[0] * lattice.dt)
+
     def to_xarray(self) -> Any:
         """The histories as an ``xarray.Dataset`` over ``time`` with units in the attributes."""
         import xarray as xr
@@ -144,6 +156,10 @@ class KolskyBar:
             raise TypeError(f"KolskyBar.shaper: must be a PulseShaper, got {type(self.shaper).__name__}")
         if self.shaper is not None and self.striker is None:
             raise ValueError("KolskyBar.shaper: a pulse shaper sits on the striker's face; give the striker too")
+        for name, joint, left, right in (("specimen", self.specimen, self.incident, self.transmitted),
+                                         ("shaper", self.shaper, self.striker, self.incident)):
+            if joint is not None:
+                joint.check_fits(min(float(left.area(left.length)), float(right.area(0.0))), f"KolskyBar.{name}")
         for name, bar in (("incident_gauge", self.incident), ("transmitted_gauge", self.transmitted)):
             gauge = getattr(self, name)
             if not isinstance(gauge, Gauge):
@@ -255,7 +271,7 @@ class KolskyBar:
                           f"is not small against the incident pulse's rise time {rise * 1e6:.3g} us (10-90 %): "
                           f"equilibrium needs about {TRANSITS_FOR_EQUILIBRIUM:g} transits (Ravichandran and Subhash "
                           "1994), so the massless specimen model is outside its validity during the rise; use a "
-                          "shorter specimen or a pulse shaper", UserWarning, stacklevel=4)
+                          "shorter specimen or a pulse shaper", UserWarning, stacklevel=caller_stacklevel())
 
 
 def _axial_stiffness(rod: Rod, x: float) -> float:

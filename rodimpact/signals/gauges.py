@@ -49,7 +49,7 @@ __all__ = [
     "strain_to_force",
 ]
 
-_NAMED_BRIDGES = ("quarter", "half-axial", "half-bending", "half-poisson", "full-bending", "full-poisson")
+BRIDGE_NAMES = ("quarter", "half-axial", "half-bending", "half-poisson", "full-bending", "full-poisson")
 
 
 #: SI units of the quantities checked by :func:`_positive` (a string with a unit, "210 GPa", is converted)
@@ -153,8 +153,8 @@ class Bridge:
         """One of ``"quarter"``, ``"half-axial"``, ``"half-bending"``, ``"half-poisson"``,
         ``"full-bending"``, ``"full-poisson"`` (the ``*-poisson`` ones need ``poisson_ratio``)."""
         key = str(name).strip().lower().replace("_", "-")
-        if key not in _NAMED_BRIDGES:
-            raise ValueError(f"unknown bridge {name!r}; valid: {', '.join(_NAMED_BRIDGES)}")
+        if key not in BRIDGE_NAMES:
+            raise ValueError(f"unknown bridge {name!r}; valid: {', '.join(BRIDGE_NAMES)}")
         if key.endswith("poisson"):
             if poisson_ratio is None:
                 raise ValueError(f"bridge {name!r} needs poisson_ratio")
@@ -228,7 +228,7 @@ def _bridge(bridge: Bridge | str, poisson_ratio: float | None) -> Bridge:
         return bridge
     if isinstance(bridge, str):
         return Bridge.named(bridge, poisson_ratio)
-    raise TypeError(f"bridge must be a Bridge or one of {_NAMED_BRIDGES}, got {bridge!r}")
+    raise TypeError(f"bridge must be a Bridge or one of {BRIDGE_NAMES}, got {bridge!r}")
 
 
 def bridge_to_strain(

@@ -9,7 +9,7 @@ import pytest
 import rodimpact as ri
 from rodimpact import cli
 from rodimpact.io import hoppybar_bar, read_lanl_raw
-from rodimpact.io.shpb_spec import spec_reference_markdown
+from rodimpact.io.shpb_reduction_spec import spec_reference_markdown
 from rodimpact.shpb import Bar, GaugeSignals, ShpbReduction, SpecimenGeometry, reduce_shot
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -23,7 +23,7 @@ def test_lanl_shot_from_its_raw_file(tmp_path, monkeypatch, capsys):
     summary = json.loads(capsys.readouterr().out)
     out = tmp_path / "out"
     assert sorted(summary["files"]) == sorted(["reduction.csv", "reduction.nc", "spec.toml", "plots/pulses.png",
-                                               "plots/stress_strain.png", "plots/strain_rate.png",
+                                               "plots/stress-strain.png", "plots/strain-rate.png",
                                                "plots/equilibrium.png", "summary.json"])
     assert all((out / f).is_file() for f in summary["files"])
     # the same as the Python API with the sheet's bars and specimen
@@ -127,7 +127,7 @@ def test_bad_input_exits_2_naming_the_key(tmp_path, monkeypatch, capsys, args, m
 
 
 def test_spec_reference_is_printed_and_in_the_cli_docs(capsys):
-    assert cli.main(["docs", "shpb"]) == 0
+    assert cli.main(["docs", "shpb-reduce"]) == 0
     assert capsys.readouterr().out == spec_reference_markdown()
     page = (ROOT / "docs" / "cli.md").read_text(encoding="utf-8")
     assert spec_reference_markdown() in page, "docs/cli.md: regenerate the shpb spec reference section"

@@ -105,3 +105,12 @@ def test_a_specimen_with_its_law_round_trips() -> None:
 def test_an_impossible_specimen_is_refused_by_key_path(replace: str, bad: str, message: str) -> None:
     with pytest.raises(ModelError, match=message):
         loads_model(SPECIMEN.replace(replace, bad))
+
+
+def test_the_specimen_outcome_is_saved_and_loaded(tmp_path) -> None:
+    result = loads_model(SPECIMEN).simulate()
+    assert result.joints and result.joints[0].plastic_work > 0.0
+    ri.save(result, tmp_path / "run")
+    again = ri.load(tmp_path / "run")
+    assert again.joints == result.joints
+    assert np.array_equal(again.energy.work_joints, result.energy.work_joints)

@@ -1,4 +1,4 @@
-"""Property-based fuzzing of model files and synthesis specs (issue 13).
+"""Property-based fuzzing of model files and of the synthesis, design and Kolsky-bar specs (issue 13).
 
 The shipped templates and examples are parsed, mutated by hypothesis (values replaced by other types, numbers
 at and beyond the float range, unit strings of the wrong dimension or with powers and towers, long strings,
@@ -48,6 +48,7 @@ from rodimpact.io import _toml
 from rodimpact.io.model import loads_model
 from rodimpact.io.schema import MODEL
 from rodimpact.io.design_spec import DESIGN_SPEC, TEMPLATE as DESIGN_TEMPLATE, loads_spec as loads_design_spec
+from rodimpact.io.shpb_spec import SHPB_SPEC, TEMPLATE as SHPB_TEMPLATE, loads_spec as loads_shpb_spec
 from rodimpact.io.synthesis_spec import SPEC, TEMPLATE as SPEC_TEMPLATE, loads_spec
 from rodimpact.io.templates import TEMPLATES
 
@@ -59,10 +60,10 @@ MACHINE_BYTES = 1024.0 * 2**20
 
 EXAMPLES = sorted((ROOT / "rodimpact" / "examples").glob("*.toml"))
 SEEDS: list[tuple[str, str]] = ([("model", TEMPLATES["simulate"][0])] + [("model", p.read_text()) for p in EXAMPLES]
-                                + [("spec", SPEC_TEMPLATE), ("design", DESIGN_TEMPLATE)])
+                                + [("spec", SPEC_TEMPLATE), ("design", DESIGN_TEMPLATE), ("shpb", SHPB_TEMPLATE)])
 DOCS = [(kind, tomllib.loads(text)) for kind, text in SEEDS]
 TOP_KEYS = {"model": {f.name for f in MODEL.fields}, "spec": {f.name for f in SPEC.fields},
-            "design": {f.name for f in DESIGN_SPEC.fields}}
+            "design": {f.name for f in DESIGN_SPEC.fields}, "shpb": {f.name for f in SHPB_SPEC.fields}}
 
 # a message names a key path: name, name[i], name.sub, name[*] ... then ": " (or " (column ...)" for a file)
 KEY_PATH = re.compile(r'^([A-Za-z_][\w\-]*|"[^"]*")((\[(\d+|\*)\])|(\.("[^"]*"|[^.\[\]:\s"]+)))*(: | \()')
@@ -285,6 +286,8 @@ def test_mutated_templates_and_examples_give_named_errors_or_load(case, files, m
             preflight.check_run(model, files / "out", model.output.plots)
         elif kind == "design":
             loads_design_spec(text, files, name="design")
+        elif kind == "shpb":
+            loads_shpb_spec(text, files, name="shpb")
         else:
             loads_spec(text, files, name="spec")
     except _Timeout:

@@ -61,6 +61,7 @@ def test_the_gauge_signals_obey_the_wave_relations_of_data_reduction() -> None:
     assert np.abs(-ea * (eps_i + eps_r) - pred.force[k]).max() <= 1e-9 * scale           # 1-wave (front face)
     rate = -C_BAR / specimen.length * (eps_i - eps_r - eps_t)
     assert np.abs(rate - pred.strain_rate[k]).max() <= 1e-9 * np.abs(pred.strain_rate[k]).max()
+    assert pred.face_delays == (shift * DT, shift * DT)      # the same alignment, as the prediction states it
 
 
 def test_a_measured_incident_pulse_passes_the_gauge_as_recorded() -> None:
@@ -104,6 +105,10 @@ def test_the_equilibrium_validity_warning_gives_the_numbers() -> None:
     (lambda s: KolskyBar(_bar(1.0, "i"), _bar(1.0, "t"), s, Gauge(0.3), Gauge(0.3),
                          shaper=ri.PulseShaper(ri.FrewShaper(360e6, 0.3, 2.0), 4e-3, 1e-3)),
      r"KolskyBar\.shaper: a pulse shaper sits on the striker's face"),
+    (lambda s: _kolsky(ri.Specimen(ri.LinearElastic(117e9), 12e-3, 3.2e-3)),
+     r"KolskyBar\.specimen\.diameter: the specimen \(12 mm, .* is wider than the rod faces it joins"),
+    (lambda s: _kolsky(s, shaper=ri.PulseShaper(ri.FrewShaper(360e6, 0.3, 2.0), 10e-3, 1e-3)),
+     r"KolskyBar\.shaper\.diameter: the pulse-shaper \(10 mm, .* is wider than the rod faces it joins"),
 ])
 def test_bad_set_ups_are_refused_by_name(make, message: str) -> None:
     specimen = ri.Specimen(ri.LinearElastic(117e9), 6.34e-3, 3.2e-3)
