@@ -20,12 +20,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from typing import Any, Optional
+from typing import Any, Callable, Optional
 
 import numpy as np
 
 from .._units import to_si
-from .._validate import finite_array
+from .._validate import finite_array, positive
 from .declared import check, element, path, quantity
 
 #: law codes of the compiled solver (rodimpact.direct.joints)
@@ -209,6 +209,28 @@ class TabulatedLaw(Law):
         object.__setattr__(self, "plastic_strain", strain)
         object.__setattr__(self, "stress", stress)
         object.__setattr__(self, "rates", rates)
+
+    @classmethod
+    def from_function(cls, youngs_modulus: Any, flow_stress: Callable[[np.ndarray, float], Any],
+                      max_plastic_strain: float = 1.0, rates: Any = None, points: int = 2001) -> "TabulatedLaw":
+        """A user's flow-stress function ``flow_stress(plastic_strain, rate)`` (plastic strains as an array, the
+        rate in 1/s; stresses in Pa) sampled at ``points`` plastic strains from 0 to ``max_plastic_strain`` at each
+        of ``rates`` (default: one curve, called with rate 1 1/s). The compiled solver then interpolates the
+        samples (linear: an error of order (max_plastic_strain / points)^2 times the curve's second derivative),
+        and the samples are checked like any table (monotone in strain and rate)."""
+        e_max = positive("TabulatedLaw.from_function max_plastic_strain", max_plastic_strain)
+        if isinstance(points, bool) or not isinstance(points, int) or points < 2:
+            raise ValueError(f"TabulatedLaw.from_function points: must be an integer >= 2, got {points!r}")
+        if not callable(flow_stress):
+            raise TypeError(f"TabulatedLaw.from_function flow_stress: must be a callable f(plastic_strain, rate), "
+                            f"got {type(flow_stress).__name__}")
+        strain = np.linspace(0.0, e_max, points)
+        rate_values = np.ones(1) if rates is None else finite_array("TabulatedLaw.from_function rates", rates)
+        stress = []
+        for r in rate_values:
+            values = np.broadcast_to(np.asarray(flow_stress(strain, float(r)), dtype=float), strain.shape)
+            stress.append(finite_array(f"TabulatedLaw.from_function flow_stress(eps_p, {r:g})", values))
+        return cls(youngs_modulus, plastic_strain=strain, stress=np.array(stress), rates=rate_values)
 
     def kernel(self) -> np.ndarray:
         head = _params(self.youngs_modulus, self.plastic_strain.size, self.rates.size)

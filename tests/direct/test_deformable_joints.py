@@ -211,3 +211,17 @@ def test_a_flow_table_is_read_from_csv(tmp_path) -> None:
 def test_impossible_flow_tables_are_refused(kwargs: dict, message: str) -> None:
     with pytest.raises(ValueError, match=message):
         ri.TabulatedLaw(117e9, **kwargs)
+
+
+def test_a_user_flow_function_is_sampled_into_a_table() -> None:
+    # the user's callable: linear hardening; sampled, the table reproduces the elastic-plastic law
+    law = ri.TabulatedLaw.from_function(117e9, lambda ep, rate: 80e6 + 1e9 * ep, max_plastic_strain=0.5,
+                                        points=11)
+    _, a = _run(ri.Specimen(law, D, L0, measure="engineering"), 100, steps=600)
+    _, b = _run(ri.Specimen(ri.ElasticPlastic(117e9, 80e6, 1e9), D, L0, measure="engineering"), 100, steps=600)
+    assert np.abs(a.contact_force - b.contact_force).max() <= 1e-9 * abs(F_I)
+
+
+def test_a_softening_user_function_is_refused() -> None:
+    with pytest.raises(ValueError, match=r"TabulatedLaw\.stress: not monotone"):
+        ri.TabulatedLaw.from_function(117e9, lambda ep, rate: 80e6 - 1e8 * ep)
