@@ -178,15 +178,15 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         result = _input_phase(lambda: model.simulate(progress=_progress(args),
                                                      max_element_updates=args.max_element_updates))
         if out is not None:
-            write_simulation(result, out, model=model, overwrite=args.force, plots=plots, csv=model.output.csv,
-                             fields=model.output.fields, snapshot_times=list(model.output.snapshot_times) or None)
+            summary = write_simulation(result, out, model=model, overwrite=args.force, plots=plots,
+                                       csv=model.output.csv, fields=model.output.fields,
+                                       snapshot_times=list(model.output.snapshot_times) or None)
     computed = summarize(result)
     text = format_summary(_without_warnings(computed), model.title or model_path.name)
     if out is None:
         _report({**computed, "title": model.title} if model.title else computed, text, args,
                 warned=computed["warnings"])
         return EXIT_OK
-    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     notes = "".join(f"note: {n}\n" for n in summary.get("notes", []))
     _report(summary, text, args, f"{notes}results written to {out}", computed["warnings"])
     return EXIT_OK

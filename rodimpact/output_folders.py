@@ -32,11 +32,12 @@ Job = tuple[str, Callable[[Any], Any]]
 
 def write_simulation(result: Any, outdir: str | Path, *, model: Any = None, overwrite: bool = False,
                      plots: Sequence[str] = (), csv: bool = True, fields: bool = True,
-                     snapshot_times: Optional[Sequence[float]] = None) -> Path:
+                     snapshot_times: Optional[Sequence[float]] = None) -> dict[str, Any]:
     """Write the results folder of a simulation: the data files of :func:`rodimpact.io.results.save_simulation`
     (``model``, ``csv``, ``fields`` as there) and the figures ``plots`` names in ``plots/``
     (:func:`rodimpact.plotting.save_plots`, with ``snapshot_times`` for the snapshot plot; a plot that cannot be
-    drawn is noted in ``summary.json``). Returns the folder. Nothing is put in place when an argument is refused."""
+    drawn is noted in ``summary.json``). Returns the summary written to ``summary.json`` (with its ``files`` and
+    ``notes``), so that a caller need not read it back. Nothing is put in place when an argument is refused."""
     names = [plots] if isinstance(plots, str) else list(plots)
     for i, p in enumerate(names):
         if p in names[:i]:
@@ -47,8 +48,9 @@ def write_simulation(result: Any, outdir: str | Path, *, model: Any = None, over
             written, plot_notes = save_plots(result, tmp / "plots", names, snapshot_times=snapshot_times)
             files += [f"plots/{p.name}" for p in written]
             notes += plot_notes
-        write_summary(tmp, simulation_summary(result, model, files, notes))
-    return Path(outdir)
+        summary = simulation_summary(result, model, files, notes)
+        write_summary(tmp, summary)
+    return summary
 
 
 def write_spec_run(run: Any, spec: Any, outdir: str | Path, *, overwrite: bool = False,

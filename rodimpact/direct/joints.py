@@ -26,8 +26,9 @@ step.
 Array layout per joint r: ``junction_par[r]`` = (k, c, compression_only, law code, L0, A0, true measure, 0,
 then the law's vector :meth:`rodimpact.rods.laws.Law.kernel`: parameters p0..p7 and, for a tabulated law, its
 table; the array is as wide as the widest law of the system); ``junction_q[r]`` = (eps_p, alpha, eps_max,
-plastic work): the plastic strain, the accumulated plastic strain, the largest strain reached (loading curves)
-and the plastic work done so far, J (sigma dEps_p V0 in the law's strain measure).
+plastic work, crushed): the plastic strain, the accumulated plastic strain, the largest strain reached (loading
+curves), the plastic work done so far, J (sigma dEps_p V0 in the law's strain measure), and 1 once the
+shortening has reached the body's length (the run is then refused, :func:`rodimpact.direct.result.joint_outcomes`).
 """
 
 from __future__ import annotations
@@ -39,7 +40,7 @@ from numba import njit
 from ..rods.laws import ELASTIC, FREW, JOHNSON_COOK, N_PARAMS, PLASTIC, TABULATED
 
 #: columns of ``junction_par`` before the law's vector, and of ``junction_q``
-HEADER_COLUMNS, STATE_COLUMNS = 8, 4
+HEADER_COLUMNS, STATE_COLUMNS = 8, 5
 
 
 @njit(error_model="numpy", cache=True)
@@ -111,22 +112,41 @@ def frew_loading(p, eps):
 
 
 @njit(error_model="numpy", cache=True)
+def frew_tangent(p, eps):
+    """Slope of the Frew-Forrestal-Chen loading curve at ``eps`` (0 < eps < 1), Pa."""
+    if eps <= 0.0:
+        return 0.0
+    if eps >= 1.0:
+        return math.inf
+    em = eps ** p[3]
+    return p[1] * (p[2] * eps ** (p[2] - 1.0) * (1.0 - em) + p[3] * eps ** (p[2] + p[3] - 1.0)) / (1.0 - em) ** 2
+
+
+@njit(error_model="numpy", cache=True)
 def law_stress(code, p, eps, rate, q):
     """Stress (Pa, compression positive) at strain ``eps`` and rate ``rate`` starting from the state ``q``, and
     the state at that point: (sigma, eps_p, alpha, eps_max). Plastic laws: return mapping (backward Euler from
-    q to this point), sigma = E (eps - eps_p) within |sigma| <= sigma_y(alpha, |rate|)."""
+    q to this point), sigma = E (eps - eps_p) within |sigma| <= sigma_y(alpha, r), with r the strain rate in the
+    direction of the stress (r = max(sign(sigma) rate, 0): a body being unloaded flows at the static yield stress).
+    With that r the stress does not decrease with the strain and its rate, so a joint's equation stays monotone;
+    taking |rate| instead made an unloading specimen's flow stress rise with the unloading speed.
+    Frew: unloading from the largest strain eps_max along the steeper of E and the loading curve's tangent at
+    eps_max (elastic unloading along E alone would give back more work than the steep loading near lock-up put
+    in)."""
     e_mod = p[0]
     if code == ELASTIC:
         return e_mod * eps, q[0], q[1], q[2]
     if code == FREW:
         if eps >= q[2]:
             return frew_loading(p, eps), q[0], q[1], eps
-        return max(0.0, frew_loading(p, q[2]) - e_mod * (q[2] - eps)), q[0], q[1], q[2]
+        slope = max(e_mod, frew_tangent(p, q[2]))
+        return max(0.0, frew_loading(p, q[2]) - slope * (q[2] - eps)), q[0], q[1], q[2]
     trial = e_mod * (eps - q[0])
-    excess = abs(trial) - flow_stress(code, p, q[1], abs(rate))
+    sign = 1.0 if trial > 0.0 else -1.0
+    flow_rate = max(sign * rate, 0.0)
+    excess = abs(trial) - flow_stress(code, p, q[1], flow_rate)
     if excess <= 0.0:
         return trial, q[0], q[1], q[2]
-    sign = 1.0 if trial > 0.0 else -1.0
     if code == PLASTIC:
         d = excess / (e_mod + p[2])
     else:   # f(d) = |trial| - E d - sigma_y(alpha + d) decreases from excess > 0 to <= 0 at |trial| / E
@@ -134,12 +154,12 @@ def law_stress(code, p, eps, rate, q):
         hi = abs(trial) / e_mod
         for _ in range(200):
             d = 0.5 * (lo + hi)
-            if abs(trial) - e_mod * d - flow_stress(code, p, q[1] + d, abs(rate)) > 0.0:
+            if not lo < d < hi:                 # adjacent doubles: the bisection cannot go further
+                break
+            if abs(trial) - e_mod * d - flow_stress(code, p, q[1] + d, flow_rate) > 0.0:
                 lo = d
             else:
                 hi = d
-            if hi - lo <= 1e-16 * hi:
-                break
         d = 0.5 * (lo + hi)
     return trial - sign * e_mod * d, q[0] + sign * d, q[1] + d, q[2]
 
@@ -172,7 +192,8 @@ def joint_point(par, q, n, mu, s0, delta, dt):
 def joint_solve(par, q, mu, s0, delta, dt):
     """Solve g(N) = N + F(N) = 0 for the face force N of one step (see the module docstring) and advance the
     state ``q`` in place to the end of the step (implicit midpoint: q_k+1 = 2 q_mid - q_k; the largest strain
-    to that at the end of the step; the plastic work by sigma_mid (eps_p,k+1 - eps_p,k) A0 L0). Returns N."""
+    to the midpoint's, where the law was evaluated; the plastic work by sigma_mid (eps_p,k+1 - eps_p,k) A0 L0;
+    the crushed flag when the shortening at the end of the step reaches L0). Returns N."""
     f0 = joint_point(par, q, 0.0, mu, s0, delta, dt)[0]
     if f0 == 0.0:
         n = 0.0
@@ -183,11 +204,21 @@ def joint_solve(par, q, mu, s0, delta, dt):
             lo = -f0 if f0 < math.inf else min((-2.0 * delta / dt - s0) / mu, 0.0) - 1.0
             g_lo = lo + joint_point(par, q, lo, mu, s0, delta, dt)[0]
             g_hi = f0
+            for _ in range(100):            # a safeguard: for the laws here g(-F(0)) <= 0 already
+                if g_lo <= 0.0:
+                    break
+                lo = 2.0 * lo - 1.0
+                g_lo = lo + joint_point(par, q, lo, mu, s0, delta, dt)[0]
         else:
             lo = 0.0
             hi = -f0
             g_lo = f0
             g_hi = hi + joint_point(par, q, hi, mu, s0, delta, dt)[0]
+            for _ in range(100):            # true measures in tension: the area shrinks, F may fall as N rises
+                if g_hi >= 0.0:
+                    break
+                hi = 2.0 * hi + 1.0
+                g_hi = hi + joint_point(par, q, hi, mu, s0, delta, dt)[0]
         n = hi if g_hi == 0.0 else lo
         side = 0
         for _ in range(200):
@@ -212,11 +243,9 @@ def joint_solve(par, q, mu, s0, delta, dt):
     f, sigma, ep, al, em, e_mid = joint_point(par, q, n, mu, s0, delta, dt)
     ep_new = 2.0 * ep - q[0]
     q[3] += sigma * (ep_new - q[0]) * par[4] * par[5]
-    s = mu * n + s0
-    e_end = (delta + dt * s) / par[4]
-    if par[6] != 0.0 and e_end < 1.0:
-        e_end = -math.log1p(-e_end)
     q[0] = ep_new
     q[1] = 2.0 * al - q[1]
-    q[2] = max(em, e_end) if int(par[3]) == FREW else em
+    q[2] = em                       # the largest strain at which the law was evaluated (a midpoint)
+    if delta + dt * (mu * n + s0) >= par[4]:
+        q[4] = 1.0                  # crushed: the shortening reached the body's length (checked after the run)
     return n

@@ -247,11 +247,16 @@ class JointOutcome:
 
 def joint_outcomes(system: System, gap: np.ndarray, state: np.ndarray) -> tuple[JointOutcome, ...]:
     """A :class:`JointOutcome` for each deformable joint of ``system`` from the kernel's final gaps (m; the
-    shortening is minus the gap) and joint states ``state[r] = (eps_p, alpha, eps_max, plastic work)``."""
+    shortening is minus the gap) and joint states ``state[r] = (eps_p, alpha, eps_max, plastic work, crushed)``;
+    a ``ValueError`` naming the junction if a body was crushed (its shortening reached its length)."""
     out = []
     for r, j in enumerate(system.junctions):
         if not isinstance(j, DeformableJoint):
             continue
+        if state[r, 4] != 0.0:
+            raise ValueError(f"junctions[{r}]: the {type(j).__name__.lower()} was crushed: its shortening reached its "
+                             f"initial length L0 = {j.initial_length:.6g} m, where the 1-D body model ends; lower "
+                             "the load or shorten the run")
         delta = -float(gap[r])
         e = delta / j.initial_length
         strain = -math.log1p(-e) if j.measure == "true" and e < 1.0 else e

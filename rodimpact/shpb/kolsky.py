@@ -313,16 +313,22 @@ def incident_for_constant_rate(specimen: Specimen, rate: float, time: Sequence[f
     F_T = -sigma(rate t, rate) A(t), and the face relations give the incident force F_I = F_T - Z L0 rate / 2,
     i.e. eps_I = eps_T - L0 rate / (2 c0) with strains (Chen and Song, Split Hopkinson (Kolsky) Bar, Springer
     2011, sec. 2.4; tension-positive strains here)."""
-    from ..direct.joints import law_stress
+    from ..direct.joints import STATE_COLUMNS, law_stress
 
     t = finite_array("time", time)
     rate = positive("rate", rate, "1/s")
     z = positive("bar_impedance", bar_impedance, "N s/m")
     law, l0, a0 = specimen.law, specimen.length, specimen.area
-    q = np.zeros(4)
+    q = np.zeros(STATE_COLUMNS)
     out = np.empty(t.size)
+    if specimen.measure == "true" and rate * t.max() >= 1.0:
+        raise ValueError(f"time: a constant engineering rate of {rate:.6g} 1/s crushes the specimen at "
+                         f"t = {1.0 / rate:.6g} s (strain 1), before the last time {t.max():.6g} s")
     for i, ti in enumerate(t):
-        e = rate * max(ti, 0.0)
+        if ti < 0.0:                       # before loading: no incident wave
+            out[i] = 0.0
+            continue
+        e = rate * ti
         strain, r, area = e, rate, a0
         if specimen.measure == "true":
             strain, r, area = -math.log1p(-e), rate / (1.0 - e), a0 / (1.0 - e)

@@ -8,6 +8,7 @@ Set-up (unless said otherwise): two identical bars of impedance Z, the incident 
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -225,3 +226,44 @@ def test_a_user_flow_function_is_sampled_into_a_table() -> None:
 def test_a_softening_user_function_is_refused() -> None:
     with pytest.raises(ValueError, match=r"TabulatedLaw\.stress: not monotone"):
         ri.TabulatedLaw.from_function(117e9, lambda ep, rate: 80e6 - 1e8 * ep)
+
+
+# ---------------------------------------------------------------------------------------- found by a review
+def test_a_rate_law_unloading_at_rest_is_solved_not_clamped() -> None:
+    # a yielded Cowper-Symonds specimen whose loading has just stopped (free faces at rest): the step's force
+    # must solve g(N) = N + F(N) = 0; with the flow stress at |rate| the bracket missed the root (g = +6679 N)
+    from rodimpact.direct.joints import HEADER_COLUMNS, STATE_COLUMNS, joint_point, joint_solve
+
+    law = ri.CowperSymonds(200e9, 200e6, 40.4, 5.0)
+    par = np.zeros(HEADER_COLUMNS + 8)
+    par[2:7] = 1.0, law.code, L0, A0, 0.0
+    par[HEADER_COLUMNS:] = law.kernel()
+    q = np.zeros(STATE_COLUMNS)
+    q[:2] = 0.003
+    delta = (0.003 + 4.4e8 / 200e9) * L0               # 440 MPa: the dynamic flow stress of the loading
+    mu, dt = 2.0 / Z, 4e-7
+    n = joint_solve(par, q.copy(), mu, 0.0, delta, dt)
+    assert abs(n + joint_point(par, q, n, mu, 0.0, delta, dt)[0]) <= 1e-9 * abs(n)
+
+
+def test_a_frew_shaper_near_lock_up_gives_back_no_more_than_it_took() -> None:
+    # a thin Frew disc driven close to eps = 1: unloading along E alone returned 3.1 J for 0.74 J absorbed
+    from rodimpact.shpb import Gauge, KolskyBar
+
+    ti = ri.Material(113.8e9, 4430.0, "ti")
+    bar = lambda length, name: ri.Rod([ri.Cylinder(length, "9.47 mm")], material=ti, name=name)  # noqa: E731
+    specimen = ri.Specimen(ri.JohnsonCook("117 GPa", "90 MPa", "292 MPa", 0.31, 0.025, 1.0, 1.09), "6.34 mm",
+                           "3.204 mm")
+    test = KolskyBar(bar(1.5, "incident"), bar(1.5, "transmitted"), specimen, Gauge(0.5), Gauge(0.5),
+                     striker=bar(0.4, "striker"), shaper=ri.PulseShaper(ri.FrewShaper("360 MPa", 0.3, 2.0), 1e-3, 1e-3))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        energy = test.predict(30.0, dt=0.5e-6).result.energy
+    assert np.all(energy.work_joints <= 1e-12 * energy.total[0])        # joints never give net work to the rods
+    assert energy.balance_error < 1e-12
+
+
+def test_a_crushed_specimen_is_refused() -> None:
+    with pytest.raises(ValueError, match=r"junctions\[0\]: the specimen was crushed: its shortening reached its "
+                                         r"initial length L0 = 0\.003 m"):
+        _run(ri.Specimen(ri.ElasticPlastic(100e9, 50e6), D, L0, measure="engineering"), 100, force=-2e6, steps=300)
