@@ -267,3 +267,15 @@ def test_a_crushed_specimen_is_refused() -> None:
     with pytest.raises(ValueError, match=r"junctions\[0\]: the specimen was crushed: its shortening reached its "
                                          r"initial length L0 = 0\.003 m"):
         _run(ri.Specimen(ri.ElasticPlastic(100e9, 50e6), D, L0, measure="engineering"), 100, force=-2e6, steps=300)
+
+
+def test_a_rigid_johnson_cook_specimen_flows_at_its_rate_hardened_stress() -> None:
+    # E so large that the specimen is rigid-plastic, B = 0: the transmitted force N is flat and solves
+    # N = -A0 A (1 + C ln(r / r0)) with the specimen's rate r = s / L0, s = 2 (N - F_i) / Z (face relations)
+    a, c = 100e6, 0.05
+    n = 200
+    dt, res = _run(ri.Specimen(ri.JohnsonCook(1e16, a, 0.0, 1.0, c, 1.0), D, L0, measure="engineering"), n)
+    force = res.contact_force[n + 5:]
+    rate = 2.0 * (force - F_I) / (Z * L0)
+    assert rate.min() > 100.0                                     # flowing fast: the rate term matters (> 23 %)
+    assert np.abs(force + A0 * a * (1.0 + c * np.log(rate))).max() <= 1e-9 * abs(force).max()
