@@ -244,6 +244,9 @@ def test_a_rate_law_unloading_at_rest_is_solved_not_clamped() -> None:
     mu, dt = 2.0 / Z, 4e-7
     n = joint_solve(par, q.copy(), mu, 0.0, delta, dt)
     assert abs(n + joint_point(par, q, n, mu, 0.0, delta, dt)[0]) <= 1e-9 * abs(n)
+    # faces at rest and unloading: the body relaxes to its static flow stress (no rate term while unloading);
+    # with the rate term at |rate| the unloading speed would raise it (the root at -12211 N)
+    assert n == pytest.approx(-200e6 * A0, rel=1e-12)
 
 
 def test_a_frew_shaper_near_lock_up_gives_back_no_more_than_it_took() -> None:
@@ -279,3 +282,4 @@ def test_a_rigid_johnson_cook_specimen_flows_at_its_rate_hardened_stress() -> No
     rate = 2.0 * (force - F_I) / (Z * L0)
     assert rate.min() > 100.0                                     # flowing fast: the rate term matters (> 23 %)
     assert np.abs(force + A0 * a * (1.0 + c * np.log(rate))).max() <= 1e-9 * abs(force).max()
+
