@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from rodimpact import __version__
-from rodimpact.direct.boundary import boundaries
+from rodimpact.direct.boundary import boundaries, law_state
 from rodimpact.direct.result import EnergyHistory, EventTracker, FieldSnapshots, SimulationResult
 from rodimpact.direct.problem import initial_state, kernel_arrays, wave_arrays
 from rodimpact.direct.simulate import _probe_histories
@@ -186,6 +186,7 @@ def old_simulate(system, steps: int, dt: float, probes=(), snapshot_every=None, 
     e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
     snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
     static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key not in ("step_inputs", "sp_loaded")}
+    static["junction_q"] = law_state(arrays["junction_code"], arrays["junction_q"])
     k = 0
     for target in events:
         if target > k:

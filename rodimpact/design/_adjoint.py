@@ -21,7 +21,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._validate import finite, fits_in_memory, positive_array
-from ..direct.boundary import ACC_SLOTS
+from ..direct.boundary import ACC_SLOTS, law_state
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
 from ..rods.conditions import Bonded, Contact
@@ -172,7 +172,8 @@ class ImpactProblem:
         n_j, n_p, n_sp, steps = n_rods - 1, a["pr_rod"].size, a["sp_elem"].size, self.steps
         ends = (a["end_code"], a["end_par"], np.zeros((2, 2)), self._end_value)
         junctions = (a["junction_code"], np.zeros(n_j, dtype=np.int64), a["gap"].copy(), a["gap_tol"],
-                     np.zeros((n_rods, 2)), a["junction_par"], np.zeros_like(a["junction_q"]))
+                     np.zeros((n_rods, 2)), a["junction_par"],
+                     law_state(a["junction_code"], np.zeros_like(a["junction_q"])))
         specials = (a["sp_elem"], a["sp_cap"], self._sp_force, np.zeros(n_sp), np.zeros(n_sp))
         probes = (a["pr_rod"], a["pr_local"], a["pr_sp"], np.zeros((n_p, steps)), np.zeros((n_p, steps)),
                   np.zeros((n_p, steps)), np.zeros(n_p))

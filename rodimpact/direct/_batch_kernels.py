@@ -46,8 +46,7 @@ import numpy as np
 from numba import njit, prange
 
 from ._kernels import _rod_energy, node_updates, reflecting_blocks
-from .boundary import ACC_SLOTS, boundaries
-from .joints import STATE_COLUMNS
+from .boundary import ACC_SLOTS, boundaries, fresh_law_state
 
 _OPTS = dict(cache=True, error_model="numpy", nogil=True)
 
@@ -107,8 +106,10 @@ def _events(force, contact, r, n_steps, low, low_step, peak, steps_on, n_ph, ph_
 
 @njit(**_OPTS)
 def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-            junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
-    """One design (see the module docstring); ``out`` holds the output arrays."""
+            junction_code, joints, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+    """One design (see the module docstring); ``out`` holds the output arrays; ``joints`` = (``junction_par``,
+    the joint states to start from or None, :func:`rodimpact.direct.boundary.law_state`)."""
+    junction_par, law_q = joints
     hist, kin, pot, work, fin_N, fin_v, low, low_step, peak, steps_on, n_ph, ph_start, ph_stop, ph_peak, ends_out = out
     n_s = Zs.shape[1]
     n_el = z0.size
@@ -140,7 +141,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     end_state = np.zeros((2, 2))
     ends = (end_code, end_par[d].copy(), end_state, end_value)
     junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)),
-                 junction_par, np.zeros((n_j, STATE_COLUMNS)))
+                 junction_par, fresh_law_state(law_q))
     specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
     probes = (no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0))
     outputs = (junction_N, junction_contact, end_N, end_V)
@@ -185,21 +186,21 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
 
 
 def _run_parallel(n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-                  junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+                  junction_code, joints, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
     """All designs (rows of ``Zs``) on the numba threads; the outputs are written into the arrays of ``out``."""
     for d in prange(Zs.shape[0]):
         _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-                junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
+                junction_code, joints, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
 
 
 def _run_serial(n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-                junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
+                junction_code, joints, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out):
     """All designs one after another in the calling thread. A function of its own, not ``_run_parallel``
     compiled without ``parallel``: numba's on-disk cache is keyed by the Python function, so two dispatchers of
     one function would load each other's machine code (the serial one then ran on all threads)."""
     for d in range(Zs.shape[0]):
         _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, end_code, end_par, end_value,
-                junction_code, junction_par, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
+                junction_code, joints, gap0, gap_tol, sp_elem, sp_cap, sp_force, dt, out)
 
 
 #: designs on all numba threads (``numba.set_num_threads``)

@@ -360,6 +360,7 @@ class _Plan:
     end_value: np.ndarray
     junction_code: np.ndarray
     junction_par: np.ndarray
+    law_q: np.ndarray | None        # the joint states to start from; None without law joints (boundary.law_state)
     gap0: np.ndarray
     sp_elem: np.ndarray
     sp_cap: np.ndarray
@@ -447,7 +448,8 @@ def _plan(system: System, zs: np.ndarray, vel: np.ndarray, tail: np.ndarray, dt:
                  quiet=_quiet_from(n_s, state["N"], state["v"], arrays, end_value, sp_force), z0=lattice.impedance, N0=state["N"], v0=state["v"],
                  rod_start=arrays["rod_start"], touch=touch, end_code=arrays["end_code"], end_value=end_value,
                  junction_code=arrays["junction_code"],
-                 junction_par=arrays["junction_par"], gap0=arrays["gap"], sp_elem=arrays["sp_elem"],
+                 junction_par=arrays["junction_par"], law_q=B.law_state(arrays["junction_code"], arrays["junction_q"]),
+                 gap0=arrays["gap"], sp_elem=arrays["sp_elem"],
                  sp_cap=arrays["sp_cap"], sp_force=sp_force)
     return plan, end_par, gap_tol
 
@@ -466,7 +468,7 @@ def _run_chunk(plan: _Plan, zs: np.ndarray, vel: np.ndarray, end_par: np.ndarray
            np.full((n_d, n_j, m), -1, dtype=np.int64), np.full((n_d, n_j, m), -1, dtype=np.int64),
            np.zeros((n_d, n_j, m)), np.zeros((n_d, 2, 2)))
     args = (plan.n_steps, plan.stride, plan.quiet, zs, vel, plan.z0, plan.N0, plan.v0, plan.rod_start, plan.touch,
-            plan.end_code, end_par, plan.end_value, plan.junction_code, plan.junction_par, plan.gap0, gap_tol, plan.sp_elem,
+            plan.end_code, end_par, plan.end_value, plan.junction_code, (plan.junction_par, plan.law_q), plan.gap0, gap_tol, plan.sp_elem,
             plan.sp_cap, plan.sp_force, plan.dt, out)
     if threads <= 1 or n_d == 1:
         BK.run_batch_serial(*args)

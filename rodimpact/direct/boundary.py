@@ -103,6 +103,34 @@ def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
     return w, n, delta_max
 
 
+@njit(error_model="numpy", cache=True)
+def law_joint_force(q, par, r, mu, s0, delta, dt):
+    """Face force of the law joint ``r`` in this step (:func:`rodimpact.direct.joints.joint_solve`, which also
+    advances its state ``q[r]``).
+
+    ``q`` is None when the system has no law joint (:func:`law_state`). Numba prunes the branch on a None
+    argument at compile time, so the step loops of such systems contain no call into the joint solver: its mere
+    presence in the inlined boundary step cost the thesis-scale run 50 % more time (0.73 ms against 0.45 ms,
+    docs/performance.md), although it was never taken there."""
+    if q is None:
+        return 0.0
+    return joint_solve(par[r], q[r], mu, s0, delta, dt)
+
+
+def law_state(junction_code: np.ndarray, junction_q: np.ndarray) -> np.ndarray | None:
+    """The joint states as the step loops take them: ``junction_q``, or None if no junction is a law joint
+    (then the loops are compiled without the joint solver, :func:`law_joint_force`)."""
+    return junction_q if np.any(junction_code == LAW_JOINT) else None
+
+
+@njit(error_model="numpy", cache=True)
+def fresh_law_state(q):
+    """Zeroed joint states shaped like ``q`` (one run's start), or None for a system without law joints."""
+    if q is None:
+        return None
+    return np.zeros_like(q)
+
+
 @njit(inline="always", error_model="numpy", cache=True)
 def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes):
     """Everything of one step that is not a plain interior node: the two outer ends, the junctions,
@@ -162,7 +190,7 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
                 if junction_par[r, 2] != 0.0 and nj > 0.0:      # compression only: the faces separate
                     nj = 0.0
             else:   # a constitutive law: one monotone scalar equation, bracketed root (rodimpact.direct.joints)
-                nj = joint_solve(junction_par[r], junction_q[r], 1.0 / za + 1.0 / zb, s0, -gap[r], dt)
+                nj = law_joint_force(junction_q, junction_par, r, 1.0 / za + 1.0 / zb, s0, -gap[r], dt)
             rod_NR[r] = nj
             rod_NL[r + 1] = nj
             rod_VR[r] = va_free + nj / za

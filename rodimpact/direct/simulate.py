@@ -172,8 +172,8 @@ def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays
         quiet = quiet_front(N, v, 0, passive_right(arrays), arrays["sp_elem"][arrays["sp_loaded"]])
     wave_state = (N, v, f, g)
     lattice = (z, reflection, touch, arrays["rod_start"], quiet)
-    junctions = tuple(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end",
-                                                 "junction_par", "junction_q"))
+    junctions = (*(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end",
+                                          "junction_par")), B.law_state(arrays["junction_code"], arrays["junction_q"]))
     n_sp = arrays["sp_elem"].size
     scratch = (np.zeros(n_sp), np.zeros(n_sp))      # resolved force and velocity of each special node
     chunk = recorder.chunk
