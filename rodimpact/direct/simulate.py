@@ -18,7 +18,8 @@ from . import boundary as B
 from . import guards
 from .problem import Problem, wave_arrays
 from .recording import Recorder, Outputs
-from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes, joint_outcomes
+from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes, joint_outcomes, \
+    lumped_outcomes
 
 Backend = Literal["numba", "numpy"]
 _MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-step input and output arrays
@@ -152,7 +153,8 @@ def _solve(problem: Problem, backend: Backend, progress: Optional[bool],
         record_every=recorder.stride, n_steps=n_steps, junction_events=recorder.junction_events(),
         bit_rock=bit_rock_outcomes(system, arrays["end_state"], energy.work_left[-1], energy.work_right[-1],
                                    energy.kinetic[:, 0] + energy.strain[:, 0]),
-        joints=joint_outcomes(system, arrays["gap"], arrays["junction_q"]))
+        joints=joint_outcomes(system, arrays["gap"], arrays["junction_q"]),
+        lumped=lumped_outcomes(system, arrays["lumped"]))
 
 
 def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays: dict, state: dict,
@@ -173,7 +175,8 @@ def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays
     wave_state = (N, v, f, g)
     lattice = (z, reflection, touch, arrays["rod_start"], quiet)
     junctions = (*(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end",
-                                          "junction_par")), B.law_state(arrays["junction_code"], arrays["junction_q"]))
+                                          "junction_par")), B.law_state(arrays["junction_code"], arrays["junction_q"]),
+                 arrays["lumped"])
     n_sp = arrays["sp_elem"].size
     scratch = (np.zeros(n_sp), np.zeros(n_sp))      # resolved force and velocity of each special node
     chunk = recorder.chunk
@@ -210,8 +213,12 @@ def quiet_front(N: np.ndarray, v: np.ndarray, first: int, right_passive: bool, f
 
 def passive_right(arrays: dict) -> bool:
     """The right end cannot start a wave by itself: fixed, free, a spring or bit-rock law, or a non-reflecting
-    end whose continuation is at rest (prescribed forces and velocities may act at any step)."""
+    end whose continuation is at rest (prescribed forces and velocities may act at any step), and no mass of a
+    lumped chain at the right end or in a joint moves at the start."""
     code, par = int(arrays["end_code"][1]), arrays["end_par"][1]
+    lumped = arrays.get("lumped")
+    if lumped is not None and np.any(lumped[3][1:, :, 0] != 0.0):
+        return False        # a moving mass at the right end or in a joint moves the rods right of it
     return code in (B.FREE, B.FIXED, B.SPRING, B.BITROCK) or (code == B.NONREFLECTING and par[1] == 0.0)
 
 
