@@ -350,7 +350,7 @@ class Cushion:
 
     A full load-unload cycle to d_max stores k d_max^2 / 2 and gives back e^2 of it, the usual definition of the
     cushion's restitution in pile-driving analysis (E. A. L. Smith, Pile-driving analysis by the wave equation,
-    J. Soil Mech. Found. Div. ASCE 86 (1960), SM4, pp. 35-61; FHWA GEC-12, FHWA-NHI-16-009, 2016, Sec. 12.3).
+    J. Soil Mech. Found. Div. ASCE 86 (1960), SM4, pp. 35-61; FHWA GEC-12, FHWA-NHI-16-009, 2016).
     It is the bit-rock law of :class:`BitRockEnd` with k1 = k, k2 = k / e^2, solved the same way (exact mean
     force over the step's linear path).
     """

@@ -189,6 +189,17 @@ def test_restitution_energy_balance_and_the_unloading_slope(e):
     assert out.energy_to_rods == pytest.approx(pile_energy, rel=1e-12)
 
 
+def test_cushion_energies_on_the_loading_branch():
+    """Stopped while the cushion still loads (k = 1e9 N/m peaks at 1.65 ms, the run ends at 1 ms): on the virgin
+    line the cushion has taken k d^2 / 2 (the work of the path mean is exact), of which it would give back the
+    area under the unloading line through (d, k d) with slope k / e^2, e^2 k d^2 / 2; the rest is lost."""
+    k, e = 1e9, 0.7
+    (out,) = _hammer([ri.PointMass(M, V0), ri.Cushion(k, e)], 2e-6, 1e-3).lumped
+    (d,) = out.max_compressions
+    assert out.stored_energy == pytest.approx(e * e * 0.5 * k * d * d, rel=1e-12)
+    assert out.stored_energy + out.dissipated_energy == pytest.approx(0.5 * k * d * d, rel=1e-12)
+
+
 def test_the_unloading_is_along_k_over_e_squared_in_time():
     """The head force against an independent ODE integration of the hysteretic cushion (unloading slope k/e^2),
     and not against the same ODE with slope k or k / e: a wrong slope is seen in the history, not only in the
