@@ -146,8 +146,8 @@ def _sweeps(U0, g, link, C, row, par, state, contact, dt):
 
 @njit(error_model="numpy", cache=True)
 def chain_step(lumped, row, u_first, g_first, u_last, g_last, dt):
-    """Advance the chain ``row`` by one step and return (C_first, U_first, C_last, U_last): the force of the first
-    and last link (compression positive) and the velocity along the chain of its first and last node. A joint
+    """Advance the chain ``row`` by one step and return (C_first, C_last): the force of its first and last link
+    (compression positive), from which the faces' velocities follow by their characteristics. A joint
     gives ``g_first`` > 0 (its first node is the left rod's face, U0 = ``u_first``); an outer end gives
     ``g_first = 0`` (its first node is the outermost mass). The last node is always a rod face."""
     n_items, kind, par, state, contact = lumped
@@ -234,7 +234,7 @@ def chain_step(lumped, row, u_first, g_first, u_last, g_last, dt):
             state[row, i, 2] += C[q] * sigma
         elif contact[row, -1 - i, 0] == 0.0:
             contact[row, -1 - i, 1] += sigma
-    return C[0], U0[0], C[m - 2], U0[m - 1]
+    return C[0], C[m - 2]
 
 
 @njit(error_model="numpy", cache=True)
@@ -246,7 +246,7 @@ def lumped_end(lumped, row, a, z, dt):
     solver (as :func:`rodimpact.direct.boundary.law_joint_force`)."""
     if lumped is None:
         return 0.0, 0.0
-    c_last = chain_step(lumped, row, 0.0, 0.0, a / z, 1.0 / z, dt)[2]
+    c_last = chain_step(lumped, row, 0.0, 0.0, a / z, 1.0 / z, dt)[1]
     return -(a + c_last) / z, -c_last
 
 
@@ -258,7 +258,7 @@ def lumped_joint(lumped, r, va_free, za, vb_free, zb, dt):
     :func:`lumped_end`."""
     if lumped is None:
         return 0.0, 0.0, 0.0, 0.0
-    c_first, _, c_last, _ = chain_step(lumped, 2 + r, va_free, 1.0 / za, vb_free, 1.0 / zb, dt)
+    c_first, c_last = chain_step(lumped, 2 + r, va_free, 1.0 / za, vb_free, 1.0 / zb, dt)
     return -c_first, -c_last, va_free - c_first / za, vb_free + c_last / zb
 
 
