@@ -414,8 +414,9 @@ class LumpedEnd(EndCondition):
 class LumpedJoint(Junction):
     """A lumped chain of point masses and cushions between two rods (a ram rod, its cushions and helmet, and a
     pile), items listed from the left rod's face to the right rod's face. A mass next to a rod face rests on it
-    in unilateral contact. Solved as :class:`LumpedEnd`; the junction force recorded is the force on the right
-    rod's face.
+    in unilateral contact. The junction force recorded is the force on the right rod's face.
+
+    Solved as :class:`LumpedEnd`, with the left rod's face as the chain's first node.
     """
 
     items: tuple = parts("lumped", "Point masses and cushions from the left rod's face to the right rod's face.")

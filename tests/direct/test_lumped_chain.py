@@ -281,6 +281,21 @@ def test_helmet_chain_matches_an_independent_ode_integration_at_second_order():
     assert np.all(orders > 1.8), (errors, orders)
 
 
+def test_a_chain_at_the_right_end_is_the_mirror_image():
+    """The hammer at the right end of the pile, ram moving in -x: mirror symmetry gives the same head force
+    history (tension positive, so equal, not opposite) and mass velocities of opposite sign."""
+    dt = 4e-6
+    items = [ri.PointMass(M, V0), ri.Cushion(1e9, 0.8), ri.PointMass(1000.0), ri.Cushion(2e9, 0.5)]
+    left = _hammer(items, dt, 6e-3)
+    mirrored = [ri.PointMass(M, -V0), *items[1:]]
+    system = ri.System([_pile(dt)], [0.0], left="nonreflecting", right=ri.LumpedEnd(mirrored))
+    right = ri.simulate(system, duration=6e-3)
+    scale = np.max(np.abs(left.end_force["left"]))
+    assert np.max(np.abs(right.end_force["right"] - left.end_force["left"])) < 1e-12 * scale
+    assert np.allclose(right.lumped[0].velocities, -np.array(left.lumped[0].velocities), rtol=1e-12, atol=0)
+    assert right.lumped[0].place == "right"
+
+
 # ------------------------------------------------------------------------------------------ 6. numpy twin
 def test_numpy_twin_equals_the_compiled_path_for_an_end_and_a_joint_chain():
     dt = 4e-6
