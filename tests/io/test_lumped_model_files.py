@@ -115,3 +115,11 @@ def test_the_reference_page_lists_the_chain_and_its_items() -> None:
     for title in ('type = "lumped"', 'item type = "point-mass"', 'item type = "cushion"'):
         assert title in page
     assert "| `restitution` | number | 1.0 |" in page
+
+
+@pytest.mark.parametrize("text", [MODEL, JOINT])
+def test_the_chain_outcomes_are_saved_and_loaded(text: str, tmp_path) -> None:
+    result = loads_model(text).simulate()
+    ri.save(result, tmp_path / "run")
+    again = ri.load(tmp_path / "run")
+    assert again.lumped == result.lumped and len(again.lumped) == 1
