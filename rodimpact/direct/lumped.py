@@ -27,14 +27,16 @@ path sigma, which falls with C_l and rises with C_{l-1}, C_{l+1}: F is an M-func
 strictly diagonally dominant), for which nonlinear Gauss-Seidel with exact scalar solves converges from any
 start (W. C. Rheinboldt, On M-functions and their application to nonlinear Gauss-Seidel iterations and to
 network flows, J. Math. Anal. Appl. 32 (1970) 274-307). Sweeps run until no force changes by more than
-:data:`TOLERANCE` of the largest (at most :data:`MAX_SWEEPS`); the coupling through a mass is
+:data:`TOLERANCE` of the largest; the coupling through a mass is
 (k dt / 2) dt / (2 M) against 1, so a few sweeps suffice for dt well below the chain's periods (docs/lumped.md: at
 most 5 for the issue's hammer at dt = 10 us). Chosen over a safeguarded Newton iteration because each scalar
 solve is exact and bracketed (the law's kinks at release and return to virgin loading need no smoothing) and the
-sweeps cannot diverge. Contacts: an active-set pass around
-the sweeps: a touching contact whose force would be tensile (C <= 1e-13 of its terms) separates, a separated
-one whose gap closes within the first half of the step touches (each at most once per step), and the sweeps
-are repeated.
+sweeps cannot diverge. They contract slowly only when a mass is so light that dt / (2 M) is large against a
+cushion's compliance 1 / (k dt) (the forces on its two sides then nearly equal each other); after
+:data:`MAX_SWEEPS` sweeps Newton's method with a backtracking line search takes over from the sweeps' iterate
+(:func:`_newton`; the Jacobian is a tridiagonal M-matrix). Contacts: an active-set pass around the sweeps: a
+touching contact whose force would be tensile (C <= 1e-13 of its terms) separates, a separated one whose gap
+closes within the first half of the step touches (each at most once per step), and the sweeps are repeated.
 
 **The update.** From the converged forces: U_j, each mass V_k+1 = 2 U_j - V_k, each link's path
 sigma_l = (U_l - U_{l+1}) dt (a cushion's compression d, its largest compression d_max and its work
@@ -57,9 +59,9 @@ from numba import njit
 
 #: item kinds of ``kind``
 MASS, CUSHION = 0, 1
-#: sweeps of the nonlinear Gauss-Seidel iteration: the largest change of a link force relative to the largest
-#: force below which the sweeps stop, and the most sweeps per contact configuration
-TOLERANCE, MAX_SWEEPS = 2e-15, 500
+#: the largest change of a link force relative to the largest force below which the iteration stops, and the
+#: most Gauss-Seidel sweeps per contact configuration before Newton's method takes over
+TOLERANCE, MAX_SWEEPS = 2e-15, 50
 #: a touching contact separates when its force is below this fraction of the terms it is made of (rounding)
 SEPARATION = 1e-13
 
@@ -119,30 +121,143 @@ def bilinear_path(a, z, k1, k2, delta, delta_max, dt):
 
 
 @njit(error_model="numpy", cache=True)
+def _link_force(q, C, U0, g, link, row, par, state, contact, dt):
+    """The force of link ``q`` that solves its own equation exactly, its neighbours' forces held (one Gauss-Seidel
+    update; its shortening rate is s = s0 - G C)."""
+    m = C.size
+    cl = C[q - 1] if q > 0 else 0.0
+    cr = C[q + 1] if q + 1 < m else 0.0
+    s0 = U0[q] - U0[q + 1] + g[q] * cl + g[q + 1] * cr
+    gg = g[q] + g[q + 1]
+    i = link[q]
+    if i >= 0:           # a cushion: C = Fbar(d, s dt), s = s0 - G C
+        c = -bilinear_path(-s0 / gg, 1.0 / gg, par[row, i, 0], par[row, i, 1], state[row, i, 0], state[row, i, 1],
+                           dt)[1]
+    elif contact[row, -1 - i, 0] != 0.0:     # a touching contact: s = 0
+        c = s0 / gg
+    else:
+        c = 0.0
+    return c
+
+
+@njit(error_model="numpy", cache=True)
+def path_mean(d, d_max, k1, k2, sigma):
+    """The mean Fbar of the bilinear law over the path from d to d + sigma within one step, and dFbar/dsigma. Along
+    a path that starts at d <= d_max the law is one function of the compression, F(x) = max(0, min(k1 x,
+    k1 d_max + k2 (x - d_max))) (k2 >= k1); its integral is summed piece by piece (trapezoids of the linear
+    pieces: no cancellation for short paths)."""
+    r = d_max - k1 * d_max / k2
+    lo = min(d, d + sigma)
+    hi = max(d, d + sigma)
+    total = 0.0
+    a = lo
+    for b in (r, d_max, hi):         # breakpoints inside (lo, hi), then hi
+        b = min(max(b, a), hi)
+        if b > a:
+            fa = max(0.0, min(k1 * a, k1 * d_max + k2 * (a - d_max)))
+            fb = max(0.0, min(k1 * b, k1 * d_max + k2 * (b - d_max)))
+            total += 0.5 * (fa + fb) * (b - a)
+            a = b
+    end = d + sigma
+    f_end = max(0.0, min(k1 * end, k1 * d_max + k2 * (end - d_max)))
+    if sigma == 0.0:
+        f0 = max(0.0, min(k1 * d, k1 * d_max + k2 * (d - d_max)))
+        slope = 0.0 if d < r else (k2 if d < d_max else k1)
+        return f0, 0.5 * slope
+    mean = total / (hi - lo)
+    return mean, (f_end - mean) / sigma
+
+
+@njit(error_model="numpy", cache=True)
+def _newton(U0, g, link, C, row, par, state, contact, dt):
+    """Newton's method with a backtracking line search on the whole chain, from the Gauss-Seidel iterate: for
+    chains whose sweeps contract slowly (a mass so light that dt / (2 M) is not small against the cushions'
+    compliance, where the forces on its two sides nearly equal each other). The Jacobian of the residuals
+    r_l = C_l - Fbar_l (cushions), C_l - s0_l / G_l (touching contacts), C_l (separated) is tridiagonal; it is
+    an M-matrix, solved by the Thomas algorithm."""
+    m = C.size
+    res = np.empty(m)
+    low = np.empty(m)
+    diag = np.empty(m)
+    up = np.empty(m)
+    trial = np.empty(m)
+
+    def residual(x, out, jac):
+        norm = 0.0
+        for q in range(m):
+            cl = x[q - 1] if q > 0 else 0.0
+            cr = x[q + 1] if q + 1 < m else 0.0
+            s0 = U0[q] - U0[q + 1] + g[q] * cl + g[q + 1] * cr
+            gg = g[q] + g[q + 1]
+            i = link[q]
+            if i >= 0:
+                fm, dfm = path_mean(state[row, i, 0], state[row, i, 1], par[row, i, 0], par[row, i, 1],
+                                    (s0 - gg * x[q]) * dt)
+                out[q] = x[q] - fm
+                if jac:
+                    diag[q] = 1.0 + dfm * dt * gg
+                    low[q] = -dfm * dt * g[q]
+                    up[q] = -dfm * dt * g[q + 1]
+            elif contact[row, -1 - i, 0] != 0.0:
+                out[q] = x[q] - s0 / gg
+                if jac:
+                    diag[q] = 1.0
+                    low[q] = -g[q] / gg
+                    up[q] = -g[q + 1] / gg
+            else:
+                out[q] = x[q]
+                if jac:
+                    diag[q] = 1.0
+                    low[q] = 0.0
+                    up[q] = 0.0
+            norm += out[q] * out[q]
+        return norm
+
+    norm = residual(C, res, True)
+    for _ in range(100):
+        # Thomas algorithm: (low, diag, up) delta = res
+        for q in range(1, m):
+            w = low[q] / diag[q - 1]
+            diag[q] -= w * up[q - 1]
+            res[q] -= w * res[q - 1]
+        res[m - 1] /= diag[m - 1]
+        for q in range(m - 2, -1, -1):
+            res[q] = (res[q] - up[q] * res[q + 1]) / diag[q]
+        step = 1.0
+        scale = 0.0
+        change = 0.0
+        for q in range(m):
+            scale = max(scale, abs(C[q]))
+            change = max(change, abs(res[q]))
+        while True:
+            for q in range(m):
+                trial[q] = C[q] - step * res[q]
+            new = residual(trial, low, False)
+            if new <= (1.0 - 1e-4 * step) * norm or step < 1e-12:
+                break
+            step *= 0.5
+        C[:] = trial
+        if change <= TOLERANCE * scale or new == 0.0:
+            break
+        norm = residual(C, res, True)
+
+
+@njit(error_model="numpy", cache=True)
 def _sweeps(U0, g, link, C, row, par, state, contact, dt):
-    """Nonlinear Gauss-Seidel sweeps over the links (module docstring) until the forces ``C`` settle."""
+    """Nonlinear Gauss-Seidel sweeps over the links (module docstring) until the forces ``C`` settle; if they have
+    not after :data:`MAX_SWEEPS`, Newton's method from there (:func:`_newton`)."""
     m = C.size
     for _ in range(MAX_SWEEPS):
         change = 0.0
         scale = 0.0
         for q in range(m):
-            cl = C[q - 1] if q > 0 else 0.0
-            cr = C[q + 1] if q + 1 < m else 0.0
-            s0 = U0[q] - U0[q + 1] + g[q] * cl + g[q + 1] * cr
-            gg = g[q] + g[q + 1]
-            i = link[q]
-            if i >= 0:           # a cushion: C = Fbar(d, s dt), s = s0 - G C
-                c = -bilinear_path(-s0 / gg, 1.0 / gg, par[row, i, 0], par[row, i, 1], state[row, i, 0],
-                                   state[row, i, 1], dt)[1]
-            elif contact[row, -1 - i, 0] != 0.0:     # a touching contact: s = 0
-                c = s0 / gg
-            else:
-                c = 0.0
+            c = _link_force(q, C, U0, g, link, row, par, state, contact, dt)
             change = max(change, abs(c - C[q]))
             scale = max(scale, abs(c))
             C[q] = c
         if change <= TOLERANCE * scale:
-            break
+            return
+    _newton(U0, g, link, C, row, par, state, contact, dt)
 
 
 @njit(error_model="numpy", cache=True)
