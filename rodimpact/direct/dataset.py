@@ -97,7 +97,7 @@ def result_dataset(result: Any, fields: bool = True):
     data["kinetic_energy"] = (("rod", "energy_time"), e.kinetic, {"units": "J"})
     data["strain_energy"] = (("rod", "energy_time"), e.strain, {"units": "J"})
     data["momentum"] = (("rod", "energy_time"), e.momentum, {"units": "N s"})
-    for name in ("work_left", "work_right", "work_loads", "work_friction", "work_joints"):
+    for name in ("work_left", "work_right", "work_loads", "work_friction", "work_joints", "work_soil"):
         data[name] = (("energy_time",), getattr(e, name), {"units": "J"})
     data["impulse"] = (("energy_time",), e.impulse, {"units": "N s"})
     data["impedance"] = (("element",), lat.impedance, {"units": "N s/m"})

@@ -84,7 +84,8 @@ class Variants:
 # ============================================================================================ the schema
 #: Field kinds of the element declarations (rodimpact.rods.declared) -> field kinds of the schema
 _DECLARED_KINDS = {"quantity": "quantity", "history": "history", "choice": "string", "flag": "boolean",
-                   "rod": "rod", "spans": "spans", "path": "string", "text": "string"}
+                   "rod": "rod", "spans": "spans", "path": "string", "text": "string",
+                   "quantities": "quantities"}
 
 
 def element_table(name: str, cls: type, example: str = "") -> Table:
@@ -99,7 +100,7 @@ def element_table(name: str, cls: type, example: str = "") -> Table:
                                 variants=Variants("type", element_tables(d.family))))
             continue
         fields.append(Field(f.name, _DECLARED_KINDS[d.kind], d.doc,
-                            dimension=d.dimension if d.kind in ("quantity", "history") else None,
+                            dimension=d.dimension if d.kind in ("quantity", "quantities", "history") else None,
                             sign=d.bound if d.kind == "quantity" else None, required=not optional,
                             default=f.default if optional else None, choices=d.choices or None))
     return Table(name, summary(cls), tuple(fields), example)
