@@ -14,11 +14,10 @@ import numpy as np
 from numba import njit
 
 from .joints import joint_solve
-from .soil import shaft_soil, toe_soil
+from .soil import SOIL_TOE, shaft_soil, toe_soil
 
 #: end-law codes (``end_code``) and junction codes (``junction_code``) of the kernel arrays
-FREE, FIXED, FORCE, VELOCITY, NONREFLECTING, SPRING, BITROCK = 0, 1, 2, 3, 4, 5, 6
-SOIL_TOE = 8
+FREE, FIXED, FORCE, VELOCITY, NONREFLECTING, SPRING, BITROCK = 0, 1, 2, 3, 4, 5, 6   # SOIL_TOE = 8: .soil
 BONDED, CONTACT, SPRING_DASHPOT, LAW_JOINT = 0, 1, 2, 3
 
 #: slots of the work and impulse accumulator ``acc``: [W_left, W_right, W_loads, W_friction, I_left, I_right,
@@ -48,7 +47,10 @@ def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
     i.e. the largest penetration of the (piecewise-linear) path.
     """
     h = 0.5 * dt
-    if code == FREE or code == FORCE:
+    if code == SOIL_TOE:        # solved by toe_soil after this (the soil arrays are not end parameters)
+        w = 0.0
+        n = a
+    elif code == FREE or code == FORCE:
         n = value
         w = (n - a) / z
     elif code == FIXED:
@@ -152,12 +154,9 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
     n_rods = rod_start.size - 1
     n_el = rod_start[n_rods]
     # ---- left end of rod 0: element side N^- = N_0 + Z_0 v_0 - Z_0 V, outward w = -V
-    if end_code[0] == SOIL_TOE:
-        w, nn = toe_soil(soil, sp_elem.size, N[0] + Z[0] * v[0], Z[0], dt)
-        dm = end_state[0, 1]
-    else:
-        w, nn, dm = end_solve(end_code[0], N[0] + Z[0] * v[0], Z[0], end_value[0, out], end_par[0, 0],
-                              end_par[0, 1], end_state[0, 0], end_state[0, 1], dt)
+    w, nn, dm = end_solve(end_code[0], N[0] + Z[0] * v[0], Z[0], end_value[0, out], end_par[0, 0],
+                          end_par[0, 1], end_state[0, 0], end_state[0, 1], dt)
+    w, nn = toe_soil(soil, end_code[0], sp_elem.size, N[0] + Z[0] * v[0], Z[0], dt, w, nn)
     end_state[0, 0] += w * dt
     end_state[0, 1] = dm
     rod_NL[0] = nn
@@ -168,12 +167,9 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
     end_V[0, out] = -w
     # ---- right end of the last rod: N^+ = N - Z v + Z V, outward w = V
     e = n_el - 1
-    if end_code[1] == SOIL_TOE:
-        w, nn = toe_soil(soil, sp_elem.size + 1, N[e] - Z[e] * v[e], Z[e], dt)
-        dm = end_state[1, 1]
-    else:
-        w, nn, dm = end_solve(end_code[1], N[e] - Z[e] * v[e], Z[e], end_value[1, out], end_par[1, 0],
-                              end_par[1, 1], end_state[1, 0], end_state[1, 1], dt)
+    w, nn, dm = end_solve(end_code[1], N[e] - Z[e] * v[e], Z[e], end_value[1, out], end_par[1, 0],
+                          end_par[1, 1], end_state[1, 0], end_state[1, 1], dt)
+    w, nn = toe_soil(soil, end_code[1], sp_elem.size + 1, N[e] - Z[e] * v[e], Z[e], dt, w, nn)
     end_state[1, 0] += w * dt
     end_state[1, 1] = dm
     rod_NR[n_rods - 1] = nn
