@@ -18,7 +18,9 @@ those of the continuous law along the path, and the soil's work closes the energ
 node relation V = v0 + F / zs (the face relations with the soil force F = -R, zs = Z_a + Z_b inside a rod, Z at
 an end) gives
 
-    g(V) = zs (V - v0) + Rbar(V dt) + R_d(V) = 0,   R_d = J |Rbar| V  or  c V.
+    g(V) = zs (V - v0) + Rbar(V dt) + R_d(V) = 0,   R_d = J |Rbar| V  or  c V
+
+(at a compression-only toe the sum Rbar + R_d is clipped to >= 0: the soil never pulls).
 
 Rbar is non-decreasing in V (the mean of a function non-decreasing along the path), so g is strictly increasing
 for the linear dashpot. For the Smith product, d/dV (J |Rbar| V) = J |Rbar| + J V d|Rbar|/dV can be negative
@@ -118,7 +120,17 @@ def _residual(par, st, v0, zs, dt, v):
     else:
         j, _, _ = static_path(st[R_S], st[U_P] - st[U], s, par[R_U], par[K_LOAD], par[K_UNLOAD], par[LOW])
         rbar = j / s
-    return zs * (v - v0) + rbar + par[SMITH_J] * abs(rbar) * v + par[DASHPOT] * v
+    return zs * (v - v0) + resistance(par, rbar, v)
+
+
+@njit(inline="always", error_model="numpy", cache=True)
+def resistance(par, rbar, v):
+    """R = Rbar + R_d, the damping R_d = J |Rbar| V (Smith) or c V (smith-viscous, Case); at a compression-only
+    toe (lo = 0) R >= 0: a toe that leaves the soil faster than it springs back separates from it."""
+    r = rbar + par[SMITH_J] * abs(rbar) * v + par[DASHPOT] * v
+    if par[LOW] == 0.0 and r < 0.0:
+        r = 0.0
+    return r
 
 
 @njit(error_model="numpy", cache=True)
@@ -168,7 +180,7 @@ def soil_solve(par, st, v0, zs, dt):
     else:
         j, r_end, up = static_path(st[R_S], st[U_P] - st[U], s, par[R_U], par[K_LOAD], par[K_UNLOAD], par[LOW])
         rbar = j / s
-    r = rbar + par[SMITH_J] * abs(rbar) * v + par[DASHPOT] * v
+    r = resistance(par, rbar, v)
     st[WORK] += r * s
     st[U_P] = st[U] + up
     st[U] += s
@@ -198,7 +210,8 @@ def shaft_soil(soil, i, f_node, vn, zs, dt, acc):
 def toe_soil(soil, code, row, a, z, dt, w, n):
     """The outward velocity and the force (w, N) of an outer end: those given (of the end law) unless the end is
     a soil toe (``code`` SOIL_TOE, its law in row ``row`` of ``soil_par``), where the element side gives
-    N = a + z w and the soil N = -R(w). ``soil`` is None when the system has no soil: numba prunes the rest at compile time (a
+    N = a + z w and the soil N = -R(w). ``soil`` is None when the system has no soil: numba prunes the rest at
+    compile time (a
     branch on the code in the boundary step itself made the step loops of every system 3 times slower at
     n = 1000 elements)."""
     if soil is None or code != SOIL_TOE:

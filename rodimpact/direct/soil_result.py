@@ -79,7 +79,8 @@ def soil_outcome(system: System, lat: Lattice, arrays: dict, initial_state: np.n
     rod = np.searchsorted(lat.rod_start, a, side="right") - 1
     position = lat.node_x[a + 1 + rod] - system.rod_offsets()[rod] if rows.size else np.zeros(0)
     dissipated = st[:, S.WORK] - (_stored(par, st) - _stored(par, initial_state))
-    out = dict(rod=rod, node=a - lat.rod_start[rod], position=np.asarray(position, dtype=float), ultimate=par[rows, S.R_U],
+    out = dict(rod=rod, node=a - lat.rod_start[rod], position=np.asarray(position, dtype=float),
+               ultimate=par[rows, S.R_U],
                displacement=st[rows, S.U], resistance=st[rows, S.R_S], plastic_set=st[rows, S.U_P],
                work=st[rows, S.WORK], dissipated=dissipated[rows])
     for side, name in ((1, "right"), (0, "left")):
