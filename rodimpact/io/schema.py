@@ -410,7 +410,9 @@ def validate_value(f: Field, raw: Any, path: str) -> Any:
         if not isinstance(raw, str):
             raise ModelError(f"{path}: expected a string, got {show_as_written(raw)}")
         if f.choices is not None and raw not in f.choices:
-            raise ModelError(f"{path}: must be one of {', '.join(repr(c) for c in f.choices)}, got {raw!r}")
+            near = difflib.get_close_matches(raw, list(f.choices), n=1) if len(raw) <= 100 else []
+            hint = f" (did you mean {near[0]!r}?)" if near else ""
+            raise ModelError(f"{path}: must be one of {', '.join(repr(c) for c in f.choices)}, got {raw!r}{hint}")
         return raw
     if kind == "strings":
         if not isinstance(raw, list) or not all(isinstance(x, str) for x in raw):

@@ -146,6 +146,11 @@ def _positive_length(name: str, value: object) -> float:
     return x
 
 
+def _check_quake(obj: object, owner: str) -> None:
+    """The quake must be > 0 (refused with the rigid-plastic hint: a zero quake has no loading stiffness)."""
+    object.__setattr__(obj, "quake", _positive_length(f"{owner}.quake", obj.quake))
+
+
 @element("end", "soil-toe")
 @dataclass(frozen=True)
 class SoilToe(EndCondition):
@@ -171,6 +176,7 @@ class SoilToe(EndCondition):
 
     def __post_init__(self) -> None:
         _check_kind("SoilToe", self.damping_kind)
+        _check_quake(self, "SoilToe")
         check(self)
         _check_quakes(self, "SoilToe")
         _damping(self, "SoilToe", DEFAULT_TOE_DAMPING)
@@ -214,6 +220,7 @@ class ShaftResistance:
 
     def __post_init__(self) -> None:
         _check_kind("ShaftResistance", self.damping_kind)
+        _check_quake(self, "ShaftResistance")
         check(self)
         _check_quakes(self, "ShaftResistance")
         _damping(self, "ShaftResistance", DEFAULT_SHAFT_DAMPING)
