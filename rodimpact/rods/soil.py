@@ -207,8 +207,8 @@ class ShaftResistance:
 
     rod: int = rod_index("The pile: its name or its index (0 = first rod).")
     depths: Sequence[float] = quantities("length", "Layer boundaries from the rod's left end (increasing).")
-    unit_resistance: Sequence[float] = quantities("stiffness", "Ultimate resistance per unit length of each "
-                                                               "layer, N/m (one fewer than depths).")
+    unit_resistance: Sequence[float] = quantities("force per length", "Ultimate resistance per unit length "
+                                                                      "of each layer (one fewer than depths).")
     quake: float = quantity("length", "Quake q (displacement to reach R_u on loading).", default=DEFAULT_QUAKE)
     unloading_quake: Optional[float] = quantity("length", "Unloading quake q_u <= q; default q.", default=None)
     damping: Optional[float] = quantity("dimensionless", _DAMPING_DOC, bound="non_negative", default=None)
