@@ -48,8 +48,7 @@ def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
     """
     h = 0.5 * dt
     if code == SOIL_TOE:        # solved by toe_soil after this (the soil arrays are not end parameters)
-        w = 0.0
-        n = a
+        w, n = 0.0, 0.0
     elif code == FREE or code == FORCE:
         n = value
         w = (n - a) / z
