@@ -29,8 +29,10 @@ class SoilOutcome:
     unloading stiffness; a run that starts loaded counts its initial spring energy as given).
 
     The toe (``toe_end`` "left"/"right", or None without a :class:`~rodimpact.rods.soil.SoilToe`): ``toe_*`` the
-    same quantities. ``toe_set`` is the permanent set u_p of the toe: the set per blow once the pile has come to
-    rest (R_s = 0; otherwise the displacement after a full unloading of the toe spring).
+    same quantities. ``toe_set`` is the permanent set u_p of the toe, from the toe's start position: where the toe
+    is once the pile has come to rest (R_s = 0; otherwise the displacement after a full unloading of the toe
+    spring). ``toe_start_set`` is the u_p the run started with (a gap or preload left by the previous blow), and
+    :attr:`set_per_blow` the difference: the permanent set of this blow.
     """
 
     rod: np.ndarray
@@ -49,11 +51,17 @@ class SoilOutcome:
     toe_set: float = 0.0
     toe_work: float = 0.0
     toe_dissipated: float = 0.0
+    toe_start_set: float = 0.0
 
     def __repr__(self) -> str:
         toe = f", toe set {self.toe_set:.4g} m" if self.toe_end else ""
         return (f"SoilOutcome({self.rod.size} shaft nodes, {float(self.dissipated.sum()):.6g} J dissipated along "
                 f"the shaft{toe})")
+
+    @property
+    def set_per_blow(self) -> float:
+        """The toe's permanent set in this blow, m: ``toe_set - toe_start_set``."""
+        return self.toe_set - self.toe_start_set
 
     @property
     def total_dissipated(self) -> float:
@@ -88,7 +96,8 @@ def soil_outcome(system: System, lat: Lattice, arrays: dict, initial_state: np.n
         if par[row, S.ACTIVE]:
             out.update(toe_end=name, toe_ultimate=float(par[row, S.R_U]), toe_displacement=float(st[row, S.U]),
                        toe_resistance=float(st[row, S.R_S]), toe_set=float(st[row, S.U_P]),
-                       toe_work=float(st[row, S.WORK]), toe_dissipated=float(dissipated[row]))
+                       toe_work=float(st[row, S.WORK]), toe_dissipated=float(dissipated[row]),
+                       toe_start_set=float(initial_state[row, S.U_P]))
             break
     return SoilOutcome(**out)
 
