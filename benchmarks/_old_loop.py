@@ -186,7 +186,7 @@ def old_simulate(system, steps: int, dt: float, probes=(), snapshot_every=None, 
     e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
     snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
     static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key not in ("step_inputs", "sp_loaded")
-              and not key.startswith("soil_")}
+              and "soil" not in key}
     static["junction_q"] = law_state(arrays["junction_code"], arrays["junction_q"])
     k = 0
     for target in events:

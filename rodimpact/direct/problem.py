@@ -411,6 +411,7 @@ def kernel_arrays(system: System, lat: Lattice, N: np.ndarray, v: np.ndarray, pr
         sp_loaded=np.array([a in node_loads for a in sp_elem], dtype=bool)
         | (soil_state[:sp_elem.size, S.R_S] != 0.0),       # a soil node that starts loaded may move by itself
         soil_par=soil_par, soil_state=soil_state,
+        has_soil=bool(soil_nodes) or isinstance(system.left, SoilToe) or isinstance(system.right, SoilToe),
         pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),
         pr_sp=np.array(pr_sp, dtype=np.int64), pr_disp=np.zeros(n_p), acc=np.zeros(B.ACC_SLOTS),
         # per-step histories: shapes only (rows); the steps are written through _History's buffers

@@ -193,7 +193,7 @@ class Recorder:
                              work_joints=acc[:, 8], work_soil=acc[:, 9],
                              # I_left + I_right + ... (+ the shaft soil's, if any: the sums of runs without
                              # soil are those they always were)
-                             impulse=functools.reduce(np.add, acc[:, 4:8].T) + acc[:, 10] if np.any(acc[:, 10])
+                             impulse=functools.reduce(np.add, acc[:, 4:8].T) + acc[:, 10] if acc[:, 10].any()
                              else functools.reduce(np.add, acc[:, 4:8].T))
 
     def snapshots(self, lattice: Lattice) -> Optional[FieldSnapshots]:

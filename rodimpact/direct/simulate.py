@@ -179,7 +179,7 @@ def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays
     junctions = (*(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end",
                                           "junction_par")), B.law_state(arrays["junction_code"], arrays["junction_q"]))
     n_sp = arrays["sp_elem"].size
-    soil = soil_arrays(arrays["soil_par"], arrays["soil_state"])   # None without soil: no soil code compiled
+    soil = soil_arrays(arrays)   # None without soil: no soil code compiled
     scratch = (np.zeros(n_sp), np.zeros(n_sp))      # resolved force and velocity of each special node
     chunk = recorder.chunk
     probes = (arrays["pr_rod"], arrays["pr_local"], arrays["pr_sp"], *chunk[4:], arrays["pr_disp"])

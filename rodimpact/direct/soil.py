@@ -221,7 +221,7 @@ def toe_soil(soil, code, row, a, z, dt, w, n):
     return w, -r
 
 
-def soil_arrays(soil_par: np.ndarray, soil_state: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """The soil as the step loops take it: ``(soil_par, soil_state)``, or None if no row carries soil (then the
-    loops are compiled without the soil solver)."""
-    return (soil_par, soil_state) if np.any(soil_par[:, ACTIVE] != 0.0) else None
+def soil_arrays(arrays: dict) -> tuple[np.ndarray, np.ndarray] | None:
+    """The soil of the kernel ``arrays`` as the step loops take it: ``(soil_par, soil_state)``, or None if the
+    system has no soil (``has_soil``; then the loops are compiled without the soil solver)."""
+    return (arrays["soil_par"], arrays["soil_state"]) if arrays["has_soil"] else None

@@ -78,9 +78,9 @@ def _stored(par: np.ndarray, state: np.ndarray) -> np.ndarray:
 def soil_outcome(system: System, lat: Lattice, arrays: dict, initial_state: np.ndarray) -> Optional[SoilOutcome]:
     """The :class:`SoilOutcome` of a run from its kernel arrays (``soil_state`` as the run left it,
     ``initial_state`` as it started); None without soil."""
-    par, st = arrays["soil_par"], arrays["soil_state"]
-    if not np.any(par[:, S.ACTIVE]):
+    if not arrays["has_soil"]:
         return None
+    par, st = arrays["soil_par"], arrays["soil_state"]
     n_sp = arrays["sp_elem"].size
     rows = np.flatnonzero(par[:n_sp, S.ACTIVE])
     a = arrays["sp_elem"][rows]
