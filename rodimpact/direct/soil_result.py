@@ -138,3 +138,42 @@ def next_blow(result: Any, velocities: Optional[Sequence[float]] = None, residua
             initial[r] = InitialState(force=result.final_force[rs[r]:rs[r + 1]].copy())
     return dataclasses.replace(system, velocities=tuple(system.velocities if velocities is None else velocities),
                                loads=tuple(loads), initial=tuple(initial), **ends)
+
+
+#: the shaft nodes' fields stored as ``soil_<field>`` along ``soil_node`` (units; integers as int32)
+SHAFT_FIELDS = {"rod": "", "node": "", "position": "m", "ultimate": "N", "displacement": "m", "resistance": "N",
+                "plastic_set": "m", "work": "J", "dissipated": "J"}
+#: the toe's fields stored as ``soil_toe_<field>`` along ``soil_toe`` (one entry, its coordinate names the end)
+TOE_FIELDS = {"ultimate": "N", "displacement": "m", "resistance": "N", "set": "m", "work": "J", "dissipated": "J",
+              "start_set": "m"}
+
+
+def soil_variables(soil: Optional[SoilOutcome]) -> tuple[dict, dict]:
+    """The data variables and coordinates of a result file that hold ``soil`` (none without soil; no variable
+    along an empty dimension)."""
+    data: dict = {}
+    coords: dict = {}
+    if soil is None:
+        return data, coords
+    if soil.rod.size:
+        for name, unit in SHAFT_FIELDS.items():
+            values = getattr(soil, name)
+            data[f"soil_{name}"] = (("soil_node",), values.astype(np.int32) if not unit else values,
+                                    {"units": unit} if unit else {})
+    if soil.toe_end is not None:
+        coords["soil_toe"] = ("soil_toe", np.array([soil.toe_end]), {"long_name": "outer end with a soil toe"})
+        for name, unit in TOE_FIELDS.items():
+            data[f"soil_toe_{name}"] = (("soil_toe",), np.array([getattr(soil, f"toe_{name}")]), {"units": unit})
+    return data, coords
+
+
+def soil_from_variables(v: Any, coords: Any) -> Optional[SoilOutcome]:
+    """The :class:`SoilOutcome` of a result file's variables ``v`` and coordinates (None if it holds none: no soil,
+    or a file written before soil existed)."""
+    has_shaft, has_toe = "soil_rod" in v, "soil_toe" in coords
+    if not (has_shaft or has_toe):
+        return None
+    shaft = {name: (np.asarray(v[f"soil_{name}"], dtype=np.int64 if not unit else float) if has_shaft
+                    else np.zeros(0, dtype=np.int64 if not unit else float)) for name, unit in SHAFT_FIELDS.items()}
+    toe = {f"toe_{name}": float(v[f"soil_toe_{name}"][0]) for name in TOE_FIELDS} if has_toe else {}
+    return SoilOutcome(**shaft, toe_end=str(coords["soil_toe"].values[0]) if has_toe else None, **toe)

@@ -56,6 +56,7 @@ from .._validate import caller_stacklevel
 from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, JOINT_FIELDS, json_default, result_dataset
 from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents, Probe,
                              ProbeHistory, SimulationResult, first_within_rounding)
+from ..direct.soil_result import soil_from_variables
 from ..lattice.discretize import RodDiscretization
 from ..lattice.lattice import Lattice
 from ._files import write_text_atomic  # noqa: F401  (public here: the CLI writes single files with it)
@@ -810,4 +811,5 @@ def _from_dataset(ds: Any, nc: Path) -> SimulationResult:
         end_velocity={"left": v["end_velocity"][0].copy(), "right": v["end_velocity"][1].copy()},
         probes=probes, snapshots=snapshots, energy=energy, final_force=v["final_force"],
         final_velocity=v["final_velocity"], diagnostics=diagnostics, record_every=record_every,
-        n_steps=int(ds.attrs.get("steps", n_steps)), junction_events=events, bit_rock=bit_rock, joints=joints)
+        n_steps=int(ds.attrs.get("steps", n_steps)), junction_events=events, bit_rock=bit_rock, joints=joints,
+        soil=soil_from_variables(v, ds.coords))

@@ -69,6 +69,12 @@ def test_soil_work_is_saved_and_loaded(tmp_path) -> None:
     ri.save(res, tmp_path / "blow")
     back = ri.load(tmp_path / "blow")
     assert np.array_equal(back.energy.work_soil, res.energy.work_soil) and res.energy.work_soil[-1] < 0
+    for name in ("rod", "node", "position", "ultimate", "displacement", "resistance", "plastic_set", "work",
+                 "dissipated"):
+        assert np.array_equal(getattr(back.soil, name), getattr(res.soil, name)), name
+    assert (back.soil.toe_end, back.soil.toe_set, back.soil.toe_dissipated) == (
+        res.soil.toe_end, res.soil.toe_set, res.soil.toe_dissipated)
+    assert ri.next_blow(back).right == ri.next_blow(res).right       # the next blow from the stored result
 
 
 @pytest.mark.parametrize("old, new, message", [
