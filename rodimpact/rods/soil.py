@@ -146,9 +146,15 @@ def _positive_length(name: str, value: object) -> float:
     return x
 
 
-def _check_quake(obj: object, owner: str) -> None:
-    """The quake must be > 0 (refused with the rigid-plastic hint: a zero quake has no loading stiffness)."""
+def _check_law(obj: object, owner: str, default_damping: float) -> None:
+    """The checks that a soil element shares: the damping kind (with a did-you-mean), the quake > 0 (with the
+    rigid-plastic hint: a zero quake has no loading stiffness), the declared fields, q_u <= q and the default
+    damping factor of the kind."""
+    _check_kind(owner, obj.damping_kind)
     object.__setattr__(obj, "quake", _positive_length(f"{owner}.quake", obj.quake))
+    check(obj)
+    _check_quakes(obj, owner)
+    _damping(obj, owner, default_damping)
 
 
 @element("end", "soil-toe")
@@ -175,11 +181,7 @@ class SoilToe(EndCondition):
     code = 8
 
     def __post_init__(self) -> None:
-        _check_kind("SoilToe", self.damping_kind)
-        _check_quake(self, "SoilToe")
-        check(self)
-        _check_quakes(self, "SoilToe")
-        _damping(self, "SoilToe", DEFAULT_TOE_DAMPING)
+        _check_law(self, "SoilToe", DEFAULT_TOE_DAMPING)
         if self.resistance > self.ultimate:
             raise ValueError(f"SoilToe.resistance: must lie in [0, ultimate = {self.ultimate:.6g} N], got "
                              f"{self.resistance:.6g} N")
@@ -219,11 +221,7 @@ class ShaftResistance:
                                                         "(empty: 0).", default=())
 
     def __post_init__(self) -> None:
-        _check_kind("ShaftResistance", self.damping_kind)
-        _check_quake(self, "ShaftResistance")
-        check(self)
-        _check_quakes(self, "ShaftResistance")
-        _damping(self, "ShaftResistance", DEFAULT_SHAFT_DAMPING)
+        _check_law(self, "ShaftResistance", DEFAULT_SHAFT_DAMPING)
         d, r = self.depths, self.unit_resistance
         if len(d) < 2:
             raise ValueError(f"ShaftResistance.depths: needs at least two depths (the top and bottom of a layer), "
