@@ -118,12 +118,14 @@ def read_head_csv(path: str | Path, *, compression_positive: bool = False) -> He
     missing = [n for n in _HEAD_COLUMNS if n not in factors]
     if missing:
         raise ValueError(f"{p}: header row: no column {', '.join(missing)} (need time, force, velocity)")
+    short = next((i for i, r in enumerate(rows[1:]) if len(r) != len(rows[0])), None)
+    if short is not None:
+        raise ValueError(f"{p}: data row {short + 1}: every row must have {len(rows[0])} columns like the header, "
+                         f"got {len(rows[short + 1])}")
     try:
         data = np.array([[float(x) for x in r] for r in rows[1:]])
     except ValueError as exc:
         raise ValueError(f"{p}: every row after the header must hold numbers ({exc})") from None
-    if data.ndim != 2 or data.shape[1] != len(rows[0]):
-        raise ValueError(f"{p}: every row must have {len(rows[0])} columns like the header")
     get: Any = {n: data[:, k] * f for n, (k, f) in factors.items()}
     force = -get["force"] if compression_positive else get["force"]
     return HeadRecord(get["time"], force, get["velocity"], source=str(p))
