@@ -40,7 +40,6 @@ from .._version import __version__
 from ..inverse.recursive import SynthesisWarning, synthesize
 from ..rods.rod import Rod
 from ..signals.pulses import pulse_features
-from .reflectors import anomalies_of_profile
 from .result import IdentificationResult
 
 __all__ = ["StrikerEstimate", "estimate_striker", "identify_striker"]
@@ -160,7 +159,7 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
                    "misfit_definition": "max |simulated - target face force| / max |target| over the windows "
                                         "(the identified striker re-simulated against the bar)"}
     return IdentificationResult(depth=depth, impedance=point.impedance, lower=lower, upper=upper,
-                                anomalies=anomalies_of_profile(depth, point.impedance, 0.05), toe=point.length,
+                                toe=point.length,
                                 toe_band=bands.get("length"), wave_speed=cs, matched=matched,
                                 misfit=float(report.max_deviation),
                                 method="striker", diagnostics=diagnostics)
