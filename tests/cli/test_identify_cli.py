@@ -7,20 +7,10 @@ from pathlib import Path
 import numpy as np
 
 import rodimpact as ri
-from rodimpact import cli
+from test_cli import main_in_process as main          # tests/cli/test_cli.py: the console script, in process
 
 DT = 1e-6
 LANL = Path(__file__).resolve().parents[1] / "data" / "hoppybar" / "LANLstandard-Cu" / "20061201_1148HE_CuOFE_273K.raw"
-
-
-def main(args, cwd, capsys, monkeypatch):
-    monkeypatch.chdir(cwd)
-    try:
-        code = cli.main(list(args))
-    except SystemExit as exc:
-        code = exc.code
-    cap = capsys.readouterr()
-    return code, cap.out, cap.err
 
 
 def pile_csv(path):

@@ -58,3 +58,19 @@ def test_toe_is_the_reflector_nearest_the_known_length(simulated_head):
 def test_classes(beta, name):
     """The class table of docs/identification.md (bounds as quoted after Rausche and Goble 1979)."""
     assert beta_class(beta) == name
+
+
+def test_velocity_only_record_with_a_parametrised_hammer(simulated_head):
+    """Low strain: the head velocity alone and the half-sine hammer of known width. Before any echo returns the
+    head carries the down-going wave alone (v = -N / Z), which fixes the amplitude; the force is then the
+    lattice's own half-sine, so beta is exact again."""
+    from rodimpact.identify import HeadRecord, hammer_record
+
+    z = np.r_[np.full(50, 4.0e5), np.full(150, 0.7 * 4.0e5)]
+    record, rod = simulated_head(z, DT, hammer, 300, every=1)
+    low = hammer_record(record.time, record.velocity, z[0], WIDTH * DT)
+    assert np.max(np.abs(low.force - record.force)) < 1e-12 * 1.0e3
+    c = float(np.sqrt(rod.segments[0].material.youngs_modulus / rod.segments[0].material.density))
+    (step,) = identify_by_beta(low, z[0], c).anomalies
+    assert step.beta == pytest.approx(0.7, rel=1e-12)
+    assert isinstance(low, HeadRecord)
