@@ -39,8 +39,9 @@ from ..inverse import peel_layers
 from .records import HeadRecord, check_units, split_waves
 from .reflectors import anomalies_of_profile
 from .result import IdentificationResult
+from .validity import IdentificationWarning
 
-__all__ = ["IdentificationWarning", "identify_by_peeling", "peel_waves"]
+__all__ = ["identify_by_peeling", "peel_waves"]
 
 #: A first down-wave sample below this share of the down wave's peak is refused (the recursion divides by it).
 ONSET_SHARE = 1e-3
@@ -48,10 +49,6 @@ ONSET_SHARE = 1e-3
 #: arithmetic, -1 + O(eps kappa) after rounding.
 TOE_SHARE = 1e-6
 METHODS = ("schur", "reference")
-
-
-class IdentificationWarning(UserWarning):
-    """An identification ran outside the conditions its method assumes (docs/identification.md)."""
 
 
 def peel_waves(down: np.ndarray, up: np.ndarray, impedance: float) -> tuple[np.ndarray, int]:

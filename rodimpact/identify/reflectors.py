@@ -31,6 +31,7 @@ from .._validate import caller_stacklevel, positive
 from .._version import __version__
 from .records import HeadRecord, check_units, split_waves
 from .result import Anomaly, IdentificationResult
+from .validity import IdentificationWarning, one_dimensional_warnings
 
 __all__ = ["BETA_CLASSES", "beta_class", "anomalies_of_profile", "first_peak", "identify_by_beta", "reflectogram"]
 
@@ -88,8 +89,6 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     a deep break and a toe look alike).
     ``diameter`` (m): checks the 1D limits (:func:`rodimpact.identify.validity.one_dimensional_warnings`).
     """
-    from .validity import one_dimensional_warnings
-
     wall0 = _time.perf_counter()
     if not isinstance(record, HeadRecord):
         raise TypeError(f"record: must be a HeadRecord, got {type(record).__name__}")
@@ -132,7 +131,7 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     boundaries.append(max(end, boundaries[-1] + 0.5 * c * record.interval))
     warn_list = one_dimensional_warnings(diameter, c * width, [a.depth for a in anomalies], length)
     for w in warn_list:
-        warnings.warn(w, UserWarning, stacklevel=caller_stacklevel())
+        warnings.warn(w, IdentificationWarning, stacklevel=caller_stacklevel())
     diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0, "threshold": threshold,
                    "pulse_width_s": width, "reflection_coefficients": [f[1] for f in found],
                    "depth_resolution_m": 0.25 * c * record.interval, "source": record.source,

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import time as _time
 import warnings
+from dataclasses import dataclass
 from typing import Any, Optional
 
 import numpy as np
@@ -50,15 +51,16 @@ EDGE_SHARE = 0.1
 BAND = (0.05, 0.95)
 
 
+@dataclass(frozen=True)
 class StrikerEstimate:
-    """The numbers of one identification: profile (N s/m from the impact face), v0 (m/s), length (m)."""
+    """The numbers of one identification: profile (N s/m from the impact face), v0 (m/s), length (m), the
+    synthesis that gave the profile and its element travel time dt (s)."""
 
-    def __init__(self, impedance: np.ndarray, velocity: float, length: float, synthesis: Any, dt: float) -> None:
-        self.impedance = impedance
-        self.dt = dt
-        self.velocity = velocity
-        self.length = length
-        self.synthesis = synthesis
+    impedance: np.ndarray
+    velocity: float
+    length: float
+    synthesis: Any
+    dt: float
 
 
 def estimate_striker(time: np.ndarray, force: np.ndarray, bar_impedance: float, striker_wave_speed: float,

@@ -18,7 +18,12 @@ from __future__ import annotations
 
 from typing import Optional, Sequence
 
-__all__ = ["NEAR_FIELD_DIAMETERS", "PULSE_DIAMETERS", "TOE_SLENDERNESS", "one_dimensional_warnings"]
+__all__ = ["IdentificationWarning", "NEAR_FIELD_DIAMETERS", "PULSE_DIAMETERS", "TOE_SLENDERNESS",
+           "one_dimensional_warnings"]
+
+class IdentificationWarning(UserWarning):
+    """An identification ran outside the conditions its method assumes (docs/identification.md)."""
+
 
 PULSE_DIAMETERS = 4.0
 NEAR_FIELD_DIAMETERS = 4.0

@@ -54,7 +54,8 @@ def test_toe_is_the_reflector_nearest_the_known_length(simulated_head):
 
 
 @pytest.mark.parametrize("beta, name", [(1.0, "uniform"), (0.95, "slight damage"), (0.8, "slight damage"),
-                                        (0.7, "damage"), (0.6, "damage"), (0.59, "broken"), (1.2, "increase")])
+                                        (0.79, "damage"), (0.7, "damage"), (0.6, "damage"), (0.59, "broken"),
+                                        (1.2, "increase")])
 def test_classes(beta, name):
     """The class table of docs/identification.md (bounds as quoted after Rausche and Goble 1979)."""
     assert beta_class(beta) == name
