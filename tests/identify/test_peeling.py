@@ -75,3 +75,22 @@ def test_split_waves_of_a_down_going_wave():
     n = np.array([-1.0, -2.0, -3.0, -1.0, 0.5])
     d, u = split_waves(HeadRecord(t, n, -n / 7.0), 7.0)
     assert np.allclose(d, n, rtol=1e-15) and np.allclose(u, 0.0, atol=1e-15)
+
+
+def test_velocity_driven_head_comes_back_to_rounding():
+    """The head's velocity prescribed instead of its force (a velocity history, rodimpact.VelocityEnd): the same
+    closed system, the profile back to rounding."""
+    import rodimpact as ri
+    from rodimpact.identify import HeadRecord
+
+    n = 100
+    z = 4.0e5 * np.exp(np.cumsum(np.random.default_rng(7).normal(0.0, 0.08, n)))
+    rod = ri.Rod.from_impedance(list(z), dt=DT)
+    tk = DT * np.arange(2 * n + 1)
+    head = ri.VelocityEnd((tk, 0.5 * np.exp(-tk / 80e-6)), interpolation="previous")
+    system = ri.System([rod], [0.0], left=head, right="nonreflecting")
+    res = ri.simulate(ri.Problem.of(system, steps=2 * n, dt=DT), backend="numpy")
+    record = HeadRecord(res.time[::2], np.asarray(res.end_force["left"])[::2],
+                        np.asarray(res.end_velocity["left"])[::2])
+    out = identify_by_peeling(record, z[0], wave_speed(rod))
+    assert np.max(np.abs(out.impedance / z - 1.0)) < 1e-10
