@@ -60,3 +60,24 @@ def test_striker_of_the_lanl_shot(tmp_path, capsys, monkeypatch):
     assert code == 0, err
     summary = json.loads(out)
     assert abs(summary["toe_m"] - 0.127) < 0.022 * 0.127            # the sheet's 127 mm (see test_striker.py)
+
+
+def test_a_recording_with_named_channels_and_units(tmp_path, capsys, monkeypatch):
+    """The same pile as a recording with a time column and named channels, force in kN (compression positive),
+    velocity in mm/s (rodimpact.io.read_csv_recording's header units): the units are converted, beta unchanged.
+    A channel unit of the wrong dimension names the key."""
+    c = pile_csv(tmp_path / "pile.csv")
+    rows = (tmp_path / "pile.csv").read_text().splitlines()[1:]
+    table = ["time [ms],F [kN],V [mm/s]"] + [",".join([a, b, repr(float(v) * 1e3)]) for a, b, v in
+                                                (r.split(",") for r in rows)]
+    (tmp_path / "rec.csv").write_text("\n".join(table) + "\n")
+    spec = (f'[identify]\nmethod = "beta"\n[record]\nforce_sign = "compression"\nforce_channel = "F"\n'
+            f'velocity_channel = "V"\n[rod]\nimpedance = "400 kN s/m"\nwave_speed = {c!r}\n')
+    (tmp_path / "spec.toml").write_text(spec)
+    code, out, err = main(["identify", "rec.csv", "--spec", "spec.toml", "--json"], tmp_path, capsys, monkeypatch)
+    assert code == 0, err
+    (a,) = json.loads(out)["anomalies"]
+    assert abs(a["beta"] - 0.7) < 1e-12
+    (tmp_path / "rec.csv").write_text("\n".join(["time [ms],F [kN],V [kN]"] + table[1:]) + "\n")
+    code, _, err = main(["identify", "rec.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
+    assert code == 2 and "record.velocity_channel (V [kN])" in err
