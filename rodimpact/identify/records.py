@@ -34,6 +34,16 @@ UNIFORM_SAMPLING = 1e-6
 UNIT_RATIO_LIMIT = 10.0
 
 
+def time_series(time: Any, values: Any, name: str, min_size: int = 2) -> tuple[np.ndarray, np.ndarray]:
+    """``time`` and the samples ``values`` of the quantity ``name`` as float arrays, finite, of one length (at
+    least ``min_size``); an error names the argument."""
+    t = finite_array("time", time, min_size=min_size)
+    x = finite_array(name, values)
+    if x.size != t.size:
+        raise ValueError(f"{name}: must have one sample per time sample ({t.size}), got {x.size}")
+    return t, x
+
+
 @dataclass(frozen=True)
 class HeadRecord:
     """Force and velocity at the measured face, on one uniform time axis.
@@ -96,10 +106,7 @@ def hammer_record(time: Any, velocity: Any, impedance: float, width: float, star
     echo returns the head carries the down-going wave alone, ``v = -N / Z``, so A is the least-squares fit of
     ``Z v`` to the half-sine shape over the pulse, ``A = Z sum(v s) / sum(s^2)`` with ``s`` the unit half-sine.
     Valid while no echo arrives within the pulse (reflectors deeper than c width / 2)."""
-    t = finite_array("time", time, min_size=2)
-    v = finite_array("velocity", velocity)
-    if v.size != t.size:
-        raise ValueError(f"velocity: must have one sample per time sample ({t.size}), got {v.size}")
+    t, v = time_series(time, velocity, "velocity")
     z = positive("impedance", impedance, "N s/m")
     w = positive("width", width, "s")
     shape = np.where((t >= start) & (t < start + w), np.sin(np.pi * (t - start) / w), 0.0)
@@ -155,10 +162,7 @@ def amplified(time: Any, values: Any, rate: float, start: float = 0.0) -> np.nda
     """``values * exp(rate (t - start))`` for t >= start (unchanged before): the exponential amplification of
     pile-integrity reflectograms, which offsets the decay of the reflections by shaft friction and material
     damping for display (a display aid, not a correction: it also amplifies the noise). ``rate`` in 1/s (>= 0)."""
-    t = finite_array("time", time)
-    x = finite_array("values", values)
-    if x.size != t.size:
-        raise ValueError(f"values: must have one value per time sample ({t.size}), got {x.size}")
+    t, x = time_series(time, values, "values", min_size=1)
     rate = float(rate)
     if not (np.isfinite(rate) and rate >= 0.0):
         raise ValueError(f"rate: must be a finite amplification rate >= 0 1/s, got {rate!r}")

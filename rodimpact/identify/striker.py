@@ -36,11 +36,12 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._validate import finite_array, positive
+from .._validate import positive
 from .._version import __version__
 from ..inverse.recursive import SynthesisWarning, synthesize
 from ..rods.rod import Rod
 from ..signals.pulses import pulse_features
+from .records import time_series
 from .result import IdentificationResult
 
 __all__ = ["StrikerEstimate", "estimate_striker", "identify_striker"]
@@ -106,10 +107,7 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     duration, ``diagnostics`` holds v0 (``striker_velocity_m_per_s``) and its band.
     """
     wall0 = _time.perf_counter()
-    t = finite_array("time", time, min_size=8)
-    f = finite_array("force", force)
-    if f.size != t.size:
-        raise ValueError(f"force: must have one sample per time sample ({t.size}), got {f.size}")
+    t, f = time_series(time, force, "force", min_size=8)
     zb = positive("bar_impedance", bar_impedance, "N s/m")
     cs = positive("striker_wave_speed", striker_wave_speed, "m/s")
     if velocity is not None:
