@@ -21,7 +21,9 @@ striker's pulse lasts its two-way travel time). The profile is synthesized over 
 in them; their length defaults to the rise time, so that the ringing of a measured plateau (Pochhammer-Chree
 dispersion between the impact face and the gauge) is averaged over and the first window is close to the plateau:
 a window much shorter than the rise asks the striker's tip for a force growth that its waves cannot give
-(existence, thesis eq. 4.20), since a 1D striker cannot make a finite rise time other than by a soft tip. Bands: the pre-trigger baseline's standard deviation sigma is the
+(existence, thesis eq. 4.20), since a 1D striker cannot make a finite rise time other than by a soft tip.
+
+Bands: the pre-trigger baseline's standard deviation sigma is the
 noise level; ``resamples`` copies of the pulse with independent normal noise of that sigma added go through the
 whole identification, and the 5 % and 95 % quantiles of each number are its 90 % band (white noise: it does not
 know the correlation of the real noise, docs/identification.md).
@@ -154,7 +156,8 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
                    "striker_velocity_m_per_s": point.velocity, "striker_velocity_band": bands.get("velocity"),
                    "length_m": point.length, "noise_sigma_N": sigma, "resamples": int(resamples),
                    "resamples_used": len(samples), "velocity_given": velocity is not None,
-                   "elements_synthesized": m, "element_travel_time_s": point.dt, "synthesis_failure": None if point.synthesis.failure is None
+                   "elements_synthesized": m, "element_travel_time_s": point.dt,
+                   "synthesis_failure": None if point.synthesis.failure is None
                    else point.synthesis.failure.message,
                    "misfit_definition": "max |simulated - target face force| / max |target| over the windows "
                                         "(the identified striker re-simulated against the bar)"}

@@ -4,7 +4,8 @@
 A record is a plain CSV table of time, force and velocity at the head (:func:`rodimpact.io.identification.
 read_head_csv`; several files are blows, averaged), a recording with named channels in a format the package reads
 (a CSV table with a time column, TDMS, Tektronix CSV files; ``record.force_channel`` and ``velocity_channel``) or,
-for ``method = "striker"``, a LANL ``.raw`` shot (its sheet gives the bar and gauge, the spec the bridge). :func:`load_spec` reads and validates the spec (errors name the
+for ``method = "striker"``, a LANL ``.raw`` shot (its sheet gives the bar and gauge, the spec the bridge).
+:func:`load_spec` reads and validates the spec (errors name the
 key path), :func:`run` identifies, :func:`summarize` and :func:`format_summary` report, :func:`write_files` writes
 the data files (figures: :func:`rodimpact.output_folders.write_identification`).
 """

@@ -13,9 +13,9 @@ def test_profile_steps_and_band():
     r = IdentificationResult(np.array([0.0, 1.0, 3.0]), z, 0.9 * z, 1.1 * z,
                              anomalies=(Anomaly(1.0, 2.0, -0.3, 0.7, "damage"),), method="beta")
     ax = plot_identified_profile(r)
-    step = ax.patches[0]
-    assert np.allclose(step.get_path().vertices[:, 0].min(), 0.0) and np.isclose(step.get_path().vertices[:, 0].max(), 3.0)
-    assert np.isclose(step.get_path().vertices[:, 1].max(), 400.0)          # kN s/m
+    corners = ax.patches[0].get_path().vertices
+    assert np.isclose(corners[:, 0].min(), 0.0) and np.isclose(corners[:, 0].max(), 3.0)
+    assert np.isclose(corners[:, 1].max(), 400.0)                            # kN s/m
     assert len(ax.patches) == 2                                              # the profile and its band
 
 
