@@ -81,3 +81,11 @@ def test_a_recording_with_named_channels_and_units(tmp_path, capsys, monkeypatch
     (tmp_path / "rec.csv").write_text("\n".join(["time [ms],F [kN],V [kN]"] + table[1:]) + "\n")
     code, _, err = main(["identify", "rec.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
     assert code == 2 and "record.velocity_channel (V [kN])" in err
+
+
+def test_the_spec_reference_in_the_docs_is_current():
+    """docs/identification.md holds the generated spec reference (rodimpact docs identify) verbatim."""
+    from rodimpact.io.identify_spec import spec_reference_markdown
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "identification.md").read_text(encoding="utf-8")
+    assert spec_reference_markdown() in page, "docs/identification.md: regenerate the spec reference section"
