@@ -39,7 +39,7 @@ from ..inverse import peel_layers
 from .records import HeadRecord, check_units, split_waves
 from .reflectors import anomalies_of_profile
 from .result import IdentificationResult
-from .validity import IdentificationWarning
+from .validity import IdentificationWarning, resolution_warnings
 
 __all__ = ["identify_by_peeling", "peel_waves"]
 
@@ -82,7 +82,8 @@ def peel_waves(down: np.ndarray, up: np.ndarray, impedance: float) -> tuple[np.n
 
 def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float, *,
                         depth: Optional[float] = None, method: str = "schur", threshold: float = 0.05,
-                        noise: Optional[float] = None, resamples: int = 100, seed: int = 0) -> IdentificationResult:
+                        noise: Optional[float] = None, resamples: int = 100, seed: int = 0,
+                        diameter: Optional[float] = None) -> IdentificationResult:
     """The impedance profile below the head from a clean, lossless force and velocity record (module docstring).
 
     Parameters
@@ -106,6 +107,9 @@ def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float,
         velocity's is ``noise / Z``); ``resamples`` copies with independent normal noise of that size are peeled
         and the 5 % and 95 % quantiles of each element form the band. Noise grows along the recursion: the
         profile is cut where more than 10 % of the copies stop (|r| >= 1), with a warning. ``None``: no bands.
+    diameter:
+        The rod's diameter (m) for the 1D-validity warnings
+        (:func:`rodimpact.identify.validity.resolution_warnings`); ``None``: no check.
     """
     wall0 = _time.perf_counter()
     if not isinstance(record, HeadRecord):
@@ -160,6 +164,8 @@ def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float,
         lower, upper = np.nanquantile(copies[:, :stop], BAND, axis=0)
         lower, upper = np.minimum(lower, z), np.maximum(upper, z)
     depths = element * np.arange(stop + 1)
+    anomalies = anomalies_of_profile(depths, z, threshold)
+    warn_list += resolution_warnings(diameter, element, [a.depth for a in anomalies])
     if abs(onset_up) > ONSET_UP_SHARE:
         warn_list.append(f"the up-going wave at the onset is {onset_up:.3g} of the down-going one (0 for a record "
                          "that starts at the onset of the blow); it was set to 0: does the record start before or "
@@ -175,7 +181,7 @@ def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float,
     if noise is not None:
         diagnostics.update(noise_N=noise, resamples=resamples, seed=int(seed))
     return IdentificationResult(
-        depth=depths, impedance=z, lower=lower, upper=upper, anomalies=anomalies_of_profile(depths, z, threshold),
+        depth=depths, impedance=z, lower=lower, upper=upper, anomalies=anomalies,
         toe=float(depths[-1]) if ends else None, wave_speed=c, method="peeling", diagnostics=diagnostics)
 
 

@@ -59,7 +59,7 @@ ROD = Table("rod", "The rod below the measured face (the bar, for method striker
                                  "bar's from the sheet)", required=False),
     _q("wave_speed", "velocity", "Wave speed c: turns travel time into depth (default for a LANL shot: the "
                                  "sheet's calibrated speed).", required=False),
-    _q("diameter", "length", "Diameter, for the 1D-validity checks (method beta).", required=False),
+    _q("diameter", "length", "Diameter, for the 1D-validity checks (methods peeling and beta).", required=False),
     _q("length", "length", "Known length (method beta: the toe is the echo nearest to it).", required=False),
 ), '[rod]\nimpedance = "1.2 MN s/m"\nwave_speed = "4000 m/s"\ndiameter = "0.4 m"\nlength = "12 m"')
 
@@ -70,13 +70,16 @@ SETTINGS = Table("identify", "The method and its settings.", (
     _q("threshold", "dimensionless", "Reflectors: the smallest relative change reported.", default=0.05,
        required=False),
     _q("depth", "length", "Peeling: identify down to this depth.", required=False),
+    _q("noise", "force", "Peeling: standard deviation of the force record's noise, for 90 % bands by "
+                         "resampling (the velocity's: noise / Z).", required=False),
     _q("amplification", "rate", "Reflectogram plot: exponential amplification rate.", sign="non_negative",
        default=0.0, required=False),
     _q("striker_wave_speed", "velocity", "Striker: its wave speed (default: the bar's).", required=False),
     _q("striker_impedance", "impedance", "Striker: its impedance, for the velocity (default: the bar's).",
        required=False),
     _q("striker_velocity", "velocity", "Striker: its impact velocity if known.", required=False),
-    Field("resamples", "integer", "Striker: noisy copies for the 90 % bands.", default=100),
+    Field("resamples", "integer", "Striker, and peeling with `noise`: noisy copies for the 90 % bands.",
+          default=100),
 ), '[identify]\nmethod = "beta"\nthreshold = 0.05')
 
 OUTPUT = Table("output", "What to write.", (Field("plots", "boolean", "Write the plots.", default=True),))
@@ -194,7 +197,9 @@ def run(spec: IdentifySpec, files: Sequence[str | Path] = ()) -> IdentificationR
     z, c = _required(rod, "impedance"), _required(rod, "wave_speed")
     method = settings["method"]
     if method == "peeling":
-        return identify_by_peeling(record, z, c, depth=settings["depth"], threshold=settings["threshold"])
+        return identify_by_peeling(record, z, c, depth=settings["depth"], threshold=settings["threshold"],
+                                   noise=settings["noise"], resamples=max(settings["resamples"], 2),
+                                   diameter=rod["diameter"])
     if method == "beta":
         return identify_by_beta(record, z, c, threshold=settings["threshold"], length=rod["length"],
                                 diameter=rod["diameter"])

@@ -5,6 +5,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import rodimpact as ri
 from test_cli import main_in_process as main          # tests/cli/test_cli.py: the console script, in process
@@ -89,3 +90,25 @@ def test_the_spec_reference_in_the_docs_is_current():
 
     page = (Path(__file__).resolve().parents[2] / "docs" / "identification.md").read_text(encoding="utf-8")
     assert spec_reference_markdown() in page, "docs/identification.md: regenerate the spec reference section"
+
+
+def test_identify_peeling_with_noise_bands(tmp_path, capsys, monkeypatch):
+    """A clean record of a two-step pile hit by a mass (sharp front) through the command line: peeling gives the
+    profile back to rounding (the CSV keeps every digit), and with `noise` the result carries bands."""
+    rod = ri.Rod.from_impedance([4.0e5] * 30 + [3.0e5] * 30, dt=DT)
+    tk = DT * np.arange(121)
+    head = ri.ForceEnd((tk, -1.0e5 * np.exp(-tk / 60e-6)), interpolation="previous")
+    res = ri.simulate(ri.Problem.of(ri.System([rod], [0.0], left=head, right="nonreflecting"), steps=120, dt=DT),
+                      backend="numpy")
+    rows = np.column_stack([res.time, res.end_force["left"], res.end_velocity["left"]])[::2]
+    (tmp_path / "head.csv").write_text("time [s],force [N],velocity [m/s]\n" + "\n".join(
+        ",".join(repr(float(x)) for x in r) for r in rows) + "\n")
+    (tmp_path / "spec.toml").write_text('[identify]\nmethod = "peeling"\nnoise = "1 N"\nresamples = 20\n'
+                                        '[rod]\nimpedance = "400 kN s/m"\nwave_speed = "5175.5 m/s"\n')
+    code, _, err = main(["identify", "head.csv", "--spec", "spec.toml", "-o", "out", "--no-plots"], tmp_path, capsys,
+                        monkeypatch)
+    assert code == 0, err
+    back = ri.load(tmp_path / "out" / "identification.nc")
+    assert np.max(np.abs(back.impedance / np.r_[[4.0e5] * 30, [3.0e5] * 30] - 1)) < 1e-10
+    assert back.lower is not None and np.all(back.lower <= back.impedance)
+    assert back.anomalies[0].beta == pytest.approx(0.75, rel=1e-10)

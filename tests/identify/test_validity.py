@@ -23,3 +23,13 @@ def test_beta_warns_for_a_short_pulse():
     n = np.where(t < 3e-6, -1.0, 0.0)
     with pytest.warns(IdentificationWarning, match="shorter than 4 diameters"):
         identify_by_beta(HeadRecord(t, n, -n / 2.0), 2.0, 4000.0, diameter=0.1)
+
+
+def test_peeling_warns_for_elements_shorter_than_four_diameters(simulated_head):
+    """Elements c T / 2 = 5175.5 m/s x 1 us = 5.2 mm long on a 10 mm rod: shorter than 4 diameters."""
+    z = np.full(20, 4.0e5)
+    record, rod = simulated_head(z, 1e-6, lambda t: -1.0e5 * np.exp(-t / 60e-6), 40)
+    from rodimpact.identify import identify_by_peeling
+
+    with pytest.warns(IdentificationWarning, match="shorter than 4 diameters"):
+        identify_by_peeling(record, z[0], 5175.5, diameter=0.01)
