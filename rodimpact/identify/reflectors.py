@@ -129,6 +129,9 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
         anomalies.append(Anomaly(x, max(float(below) - x, 0.0), beta - 1.0, beta, beta_class(beta)))
     end = toe if toe is not None else reach
     boundaries.append(max(end, boundaries[-1] + 0.5 * c * record.interval))
+    fitted = _primaries(down / down[peak], [k - peak for k in picks], [float(rho[k]) for k in picks])
+    after = slice(peak, None)
+    misfit = float(np.sqrt(np.mean((rho[after] - fitted[after]) ** 2)) / max(np.max(np.abs(rho[after])), 1e-300))
     warn_list = one_dimensional_warnings(diameter, c * width, [a.depth for a in anomalies], length)
     for w in warn_list:
         warnings.warn(w, IdentificationWarning, stacklevel=caller_stacklevel())
@@ -136,10 +139,22 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
                    "pulse_width_s": width, "reflection_coefficients": [f[1] for f in found],
                    "depth_resolution_m": 0.25 * c * record.interval, "source": record.source,
                    "warnings": warn_list,
-                   "misfit_definition": "none: beta is read from the record, nothing is fitted"}
+                   "misfit_definition": "rms(rho - primaries) / max|rho| after the down-going peak: rho the "
+                                        "reflectogram, primaries the echoes of the reflectors found (each r_k "
+                                        "times its passage times the down-going pulse, delayed by 2 x_k / c)"}
     return IdentificationResult(depth=np.array(boundaries), impedance=np.array(profile_z), anomalies=tuple(anomalies),
                                 toe=toe, wave_speed=c, method="beta", diagnostics=diagnostics,
-                                matched={"reflectogram": (t, rho, rho)})
+                                matched={"reflectogram": (t, rho, fitted)}, misfit=misfit)
+
+
+def _primaries(pulse: np.ndarray, lags: list[int], heights: list[float]) -> np.ndarray:
+    """The reflectogram the reflectors alone would give: each echo is the down-going ``pulse`` (over its peak)
+    delayed by its lag (samples) and scaled by its height (r_k times its passage), the primaries of a lossless rod
+    whose echoes are not sent down again."""
+    out = np.zeros(pulse.size)
+    for lag, h in zip(lags, heights):
+        out[lag:] += h * pulse[:pulse.size - lag]
+    return out
 
 
 def first_peak(down: np.ndarray) -> int:

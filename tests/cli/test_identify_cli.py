@@ -42,6 +42,7 @@ def test_identify_beta_from_a_csv(tmp_path, capsys, monkeypatch):
     back = ri.load(tmp_path / "out" / "identification.nc")
     assert back.anomalies[0].beta == a["beta"]
     assert (tmp_path / "out" / "profile.csv").is_file() and (tmp_path / "out" / "plots" / "profile.png").is_file()
+    assert (tmp_path / "out" / "plots" / "reflectogram.png").is_file()
 
 
 def test_spec_errors_name_the_key(tmp_path, capsys, monkeypatch):

@@ -75,3 +75,16 @@ def test_velocity_only_record_with_a_parametrised_hammer(simulated_head):
     (step,) = identify_by_beta(low, z[0], c).anomalies
     assert step.beta == pytest.approx(0.7, rel=1e-12)
     assert isinstance(low, HeadRecord)
+
+
+def test_primaries_fit_the_reflectogram_until_the_first_multiple(simulated_head):
+    """The fitted reflectogram (the echoes of the reflectors found, each the down-going pulse delayed and
+    scaled) equals the measured one wherever the record holds primaries only: the neck's record up to 200 steps
+    (test_neck_gives_both_betas_exactly). The head holds its force at zero after the blow, so the down-going
+    wave there is the blow alone; the misfit is rounding."""
+    z = np.r_[np.full(50, 4.0e5), np.full(30, 0.7 * 4.0e5), np.full(120, 4.0e5)]
+    record, _ = simulated_head(z, DT, hammer, 200, every=1)
+    out = identify_by_beta(record, z[0], 5175.5)
+    t, measured, fitted = out.matched["reflectogram"]
+    assert out.misfit < 1e-12
+    assert np.max(np.abs(measured[t >= 0] - fitted[t >= 0])) < 1e-12
