@@ -113,3 +113,17 @@ def test_identify_peeling_with_noise_bands(tmp_path, capsys, monkeypatch):
     assert np.max(np.abs(back.impedance / np.r_[[4.0e5] * 30, [3.0e5] * 30] - 1)) < 1e-10
     assert back.lower is not None and np.all(back.lower <= back.impedance)
     assert back.anomalies[0].beta == pytest.approx(0.75, rel=1e-10)
+
+
+@pytest.mark.parametrize("text, message", [
+    ('[identify]\nmethod = "peel"\n', "identify.method"),
+    ('[identify]\nmethod = "beta"\nthreshhold = 0.1\n', "identify.threshhold"),
+    ('[identify]\nmethod = "beta"\n[record]\nstart = "2 ms"\nend = "1 ms"\n', "record.end: must be after record.start"),
+    ('[identify]\nmethod = "beta"\n[record]\nlow_pass = "5 kN"\n', "record.low_pass"),
+    ('[rod]\nimpedance = "1 kN s/m"\n', "identify: missing"),
+])
+def test_bad_specs_name_the_key(tmp_path, capsys, monkeypatch, text, message):
+    pile_csv(tmp_path / "pile.csv")
+    (tmp_path / "spec.toml").write_text(text)
+    code, _, err = main(["identify", "pile.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
+    assert code == 2 and message in err, err
