@@ -24,7 +24,8 @@ import numpy as np
 
 from .._validate import finite_array, positive
 
-__all__ = ["HeadRecord", "amplified", "average_blows", "band_limited", "hammer_record", "split_waves"]
+__all__ = ["HeadRecord", "amplified", "average_blows", "band_limited", "hammer_record", "split_waves",
+           "waves_record"]
 
 #: Relative spread of the sampling intervals accepted as uniform sampling (rounding of the time column in files).
 UNIFORM_SAMPLING = 1e-6
@@ -114,6 +115,16 @@ def hammer_record(time: Any, velocity: Any, impedance: float, width: float, star
         raise ValueError(f"width, start: the pulse [{start:.6g}, {start + w:.6g}) s holds no sample of the record")
     amplitude = z * float(np.dot(v, shape) / np.dot(shape, shape))
     return HeadRecord(t, -amplitude * shape, v, source)
+
+
+def waves_record(time: Any, down: Any, up: Any, impedance: float, source: str = "") -> HeadRecord:
+    """A record at a measuring section from its separated force waves (N, tension positive): ``down`` travelling
+    along +x, ``up`` along -x (e.g. :func:`rodimpact.identify.separate_waves` times E A): ``N = down + up``,
+    ``v = (up - down) / Z`` (module docstring), so that the identifications see the section as a head."""
+    t, d = time_series(time, down, "down")
+    _, u = time_series(time, up, "up")
+    z = positive("impedance", impedance, "N s/m")
+    return HeadRecord(t, d + u, (u - d) / z, source)
 
 
 def average_blows(records: Sequence[HeadRecord]) -> HeadRecord:
