@@ -85,8 +85,8 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     ``impedance``: the head impedance (N s/m); ``wave_speed`` (m/s) turns echo times into depths, x = c t / 2.
     Every extreme of rho(t) beyond ``threshold`` (a share of the down-going peak; the package's choice, not from
     a standard) that stands apart from the previous one by at least the pulse width is a reflector. ``length``
-    (m): the known length; the toe is then the reflector nearest to it (without it no reflector is taken for the toe:
-    a deep break and a toe look alike).
+    (m): the known length; the toe is then the reflector nearest to it, and echoes from below it are multiples
+    and dropped (without it no reflector is taken for the toe: a deep break and a toe look alike).
     ``diameter`` (m): checks the 1D limits (:func:`rodimpact.identify.validity.one_dimensional_warnings`).
     """
     wall0 = _time.perf_counter()
@@ -111,7 +111,7 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     found = []
     for k in picks:
         r = float(rho[k]) / passage
-        r = min(max(r, -1.0 + 1e-12), 1.0 - 1e-12)
+        r = min(max(r, -1.0 + 1e-12), 1.0 - 1e-12)     # a free (fixed) end: r = -1 (+1); noise may pass it
         beta = (1.0 + r) / (1.0 - r)
         found.append((0.5 * c * t[k], r, beta))
         passage *= 1.0 - r * r
@@ -119,6 +119,7 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     toe = None
     if found and length is not None:
         toe = min(found, key=lambda f: abs(f[0] - length))[0]
+        found = [f for f in found if f[0] <= toe]       # deeper echoes: multiples (the rod ends at the toe)
     anomalies = []
     for i, (x, r, beta) in enumerate(found):
         below = found[i + 1][0] if i + 1 < len(found) else (length if length is not None else reach)
