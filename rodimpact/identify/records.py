@@ -45,6 +45,22 @@ def time_series(time: Any, values: Any, name: str, min_size: int = 2) -> tuple[n
     return t, x
 
 
+def check_uniform(t: np.ndarray, name: str = "time") -> float:
+    """The sampling interval (s) of the time axis ``t``, which must increase strictly and uniformly (to
+    :data:`UNIFORM_SAMPLING`); an error names ``name``."""
+    steps = np.diff(t)
+    if not np.all(steps > 0):
+        i = int(np.flatnonzero(steps <= 0)[0]) + 1
+        raise ValueError(f"{name}: must be strictly increasing; sample {i} (t = {t[i]!r} s) is not after "
+                         f"sample {i - 1}")
+    spread = float((steps.max() - steps.min()) / steps.mean())
+    if spread > UNIFORM_SAMPLING:
+        raise ValueError(f"{name}: must be uniformly sampled (intervals from {steps.min():.6g} to "
+                         f"{steps.max():.6g} s, spread {spread:.3g} > {UNIFORM_SAMPLING:g}); resample the "
+                         f"record first")
+    return float((t[-1] - t[0]) / (t.size - 1))
+
+
 @dataclass(frozen=True)
 class HeadRecord:
     """Force and velocity at the measured face, on one uniform time axis.
@@ -69,16 +85,7 @@ class HeadRecord:
             if arrays[name].size != t.size:
                 raise ValueError(f"{name}{where}: must have one sample per time sample ({t.size}), got "
                                  f"{arrays[name].size}; the force and velocity records have different lengths")
-        steps = np.diff(t)
-        if not np.all(steps > 0):
-            i = int(np.flatnonzero(steps <= 0)[0]) + 1
-            raise ValueError(f"time{where}: must be strictly increasing; sample {i} (t = {t[i]!r} s) is not after "
-                             f"sample {i - 1}")
-        spread = float((steps.max() - steps.min()) / steps.mean())
-        if spread > UNIFORM_SAMPLING:
-            raise ValueError(f"time{where}: must be uniformly sampled (intervals from {steps.min():.6g} to "
-                             f"{steps.max():.6g} s, spread {spread:.3g} > {UNIFORM_SAMPLING:g}); resample the "
-                             f"record first")
+        check_uniform(t, f"time{where}")
         for name, value in arrays.items():
             value.setflags(write=False)
             object.__setattr__(self, name, value)

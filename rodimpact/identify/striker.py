@@ -38,12 +38,13 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._validate import positive
+from .._validate import caller_stacklevel, integer, positive
 from .._version import __version__
 from ..inverse.recursive import SynthesisWarning, synthesize
 from ..rods.rod import Rod
 from ..signals.pulses import pulse_features
-from .records import time_series
+from .records import check_uniform, time_series
+from .validity import IdentificationWarning
 from .result import IdentificationResult
 
 __all__ = ["StrikerEstimate", "estimate_striker", "identify_striker"]
@@ -110,6 +111,10 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     """
     wall0 = _time.perf_counter()
     t, f = time_series(time, force, "force", min_size=8)
+    check_uniform(t)
+    resamples = integer("resamples", resamples, 0, "noisy copies for the bands")
+    if window is not None:
+        window = integer("window", window, 1, "samples per force window")
     zb = positive("bar_impedance", bar_impedance, "N s/m")
     cs = positive("striker_wave_speed", striker_wave_speed, "m/s")
     if velocity is not None:
@@ -130,9 +135,12 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     if not np.max(-f) > 0:
         raise ValueError("force: no compressive pulse (tension positive: an incident pulse is negative)")
     point = estimate_striker(t, f, zb, cs, velocity, striker_impedance, window)
+    if point.synthesis.failure is not None:
+        warnings.warn(f"the pulse implies a striker only for the first {point.impedance.size} force windows: "
+                      f"{point.synthesis.failure.message}", IdentificationWarning, stacklevel=caller_stacklevel())
     rng = np.random.default_rng(seed)
     samples = []
-    for _ in range(int(resamples)):
+    for _ in range(resamples):
         try:
             samples.append(estimate_striker(t, f + rng.normal(0.0, sigma, f.size), zb, cs, velocity,
                                             striker_impedance, int(round(2 * point.dt / (t[1] - t[0])))))
@@ -154,7 +162,7 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     matched = {"face force": (report.time, report.target, report.achieved)}
     diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0,
                    "striker_velocity_m_per_s": point.velocity, "striker_velocity_band": bands.get("velocity"),
-                   "length_m": point.length, "noise_sigma_N": sigma, "resamples": int(resamples),
+                   "length_m": point.length, "noise_sigma_N": sigma, "resamples": resamples,
                    "resamples_used": len(samples), "velocity_given": velocity is not None,
                    "elements_synthesized": m, "element_travel_time_s": point.dt,
                    "synthesis_failure": None if point.synthesis.failure is None
