@@ -17,6 +17,7 @@ from .rods.conditions import (BitRockEnd, Bonded, Contact, Cushion, EndCondition
                               SpringDashpot, SpringEnd, VelocityEnd)
 from .rods.laws import CowperSymonds, ElasticPlastic, FrewShaper, JohnsonCook, LinearElastic, TabulatedLaw
 from .rods.loads import Bearings, NodalForce
+from .rods.soil import ShaftResistance, SmithSoil, SoilToe
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
 from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents,
@@ -24,6 +25,7 @@ from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, Joint
 from .direct.recording import Outputs
 from .direct.problem import Problem, TimeGrid
 from .direct.simulate import simulate
+from .direct.soil_result import SoilOutcome, next_blow
 from .direct.sweep import drilling_metrics, sweep
 from .direct.batch import BatchOutputs, BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
@@ -36,7 +38,7 @@ from .io.results import summarize
 from .io.storage import load, save
 from . import inverse, io
 
-_LAZY_SUBPACKAGES = ("plotting", "reference", "shpb", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
+_LAZY_SUBPACKAGES = ("identify", "plotting", "reference", "shpb", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
 
 
 def __getattr__(name: str):
@@ -56,6 +58,7 @@ __all__ = [
     "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "Specimen", "PulseShaper",
     "PointMass", "Cushion", "LumpedEnd", "LumpedJoint",
     "LinearElastic", "ElasticPlastic", "JohnsonCook", "CowperSymonds", "FrewShaper", "TabulatedLaw", "NodalForce", "Bearings",
+    "SmithSoil", "ShaftResistance", "SoilToe", "SoilOutcome", "next_blow",
     "Lattice", "build_lattice",
     "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
     "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
@@ -66,5 +69,5 @@ __all__ = [
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
     "design", "DesignResult", "MatchObjective", "EfficiencyObjective", "StrikerLimits", "SearchOptions",
     "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
-    "inverse", "io", "plotting", "reference", "shpb", "signals",
+    "identify", "inverse", "io", "plotting", "reference", "shpb", "signals",
 ]

@@ -27,6 +27,7 @@ from ..lattice.discretize import discretize_rod
 from ..rods.conditions import LumpedEnd, LumpedJoint, NonReflectingEnd
 from ..rods.material import STEEL
 from ..rods.rod import Rod
+from ..rods.soil import ShaftResistance, SoilToe
 from ..rods.system import System
 from . import _batch_kernels as BK
 from . import boundary as B
@@ -341,6 +342,10 @@ def slot_problem(system: System) -> str:
     if chains:
         return (f"{chains[0]}: lumped chains (point masses and cushions) are not supported in a batch; run each "
                 "design with simulate (or a sweep)")
+    if any(isinstance(ld, ShaftResistance) for ld in system.loads) or any(
+            isinstance(e, SoilToe) for e in (system.left, system.right)):
+        return ("system: simulate_batch does not support Smith soil (ShaftResistance, SoilToe) yet; run the "
+                "designs one by one with simulate")
     if system.initial[0] is not None:
         return ("system.initial[0]: the striker slot starts force-free with velocities[d]; give None for rod 0 "
                 "(use simulate for a non-uniform initial state)")
