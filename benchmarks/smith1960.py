@@ -135,12 +135,22 @@ class SmithBlow:
 
 
 def drive(model: SmithModel, dt: float, steps: int, *, record_forces: bool = False,
-          external_force=None) -> SmithBlow:
+          external_force=None, shaft_damping: str = "smith") -> SmithBlow:
     """Run Smith's recurrence (module docstring, eqs. 1-5) for ``steps`` steps of ``dt`` seconds.
 
     ``external_force(t)`` (N, downward positive, optional) is added on mass 0 at each step (used by the elastic
     checks: a prescribed force on the pile head instead of a hammer).
+
+    ``shaft_damping``: ``"smith"`` is eq. (4) as published, R = R_s (1 + J V). After a rebound the static shaft
+    force R_s is negative and the product R_s J V then pushes the pile along its motion (it gives energy).
+    ``"mirrored"`` uses R = R_s + J |R_s| V instead, the mirror image of the downward law, which rodimpact's
+    ``ShaftResistance(damping_kind="smith")`` uses (the two agree while R_s >= 0); the benchmark runs both so
+    that the difference of the laws is not mistaken for a difference of the discretisations. The point is the
+    same in both (its R_s is never negative).
     """
+    if shaft_damping not in ("smith", "mirrored"):
+        raise ValueError(f"shaft_damping: must be 'smith' or 'mirrored', got {shaft_damping!r}")
+    mirrored = shaft_damping == "mirrored"
     M = np.asarray(model.mass, float)
     K = np.asarray(model.stiffness, float)
     e2 = np.asarray(model.restitution, float) ** 2
@@ -183,7 +193,8 @@ def drive(model: SmithModel, dt: float, steps: int, *, record_forces: bool = Fal
         # soil: plastic displacement D' follows D at the quake's distance (loading and unloading)
         Dplastic = np.where(D - Dplastic > Q, D - Q, Dplastic)
         Dplastic = np.where(D - Dplastic < -Q, D + Q, Dplastic)
-        R = (D - Dplastic) * Ks * (1.0 + J * V_prev)                            # (4)
+        Rs = (D - Dplastic) * Ks
+        R = Rs + (np.abs(Rs) if mirrored else Rs) * J * V_prev                 # (4)
         # the point: pushes only, its D' only moves down
         if D[-1] - Dplastic_toe > model.toe_quake:
             Dplastic_toe = D[-1] - model.toe_quake
@@ -317,8 +328,9 @@ def pile_model(hammer: Optional[Hammer], pile: Pile, soil: Optional[Soil], segme
 
 
 def blow(hammer: Hammer, pile: Pile, soil: Soil, segments: int, duration: float, *, courant: float = 0.5,
-         record_forces: bool = False) -> SmithBlow:
+         record_forces: bool = False, shaft_damping: str = "smith") -> SmithBlow:
     """One blow with ``segments`` pile segments, ``dt = courant`` x the critical step, run for ``duration`` s."""
     model = pile_model(hammer, pile, soil, segments)
     dt = courant * model.critical_time_step()
-    return drive(model, dt, int(math.ceil(duration / dt)), record_forces=record_forces)
+    return drive(model, dt, int(math.ceil(duration / dt)), record_forces=record_forces,
+                 shaft_damping=shaft_damping)
