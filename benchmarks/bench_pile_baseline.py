@@ -168,6 +168,25 @@ def ours_row(found: dict[str, type], drive: str, ultimate: float, n: int) -> Row
                float(force.min()) / AREA, float(max(0.0, force.max())) / AREA, wall)
 
 
+def bare_row(drive: str, n: int) -> Row:
+    """rodimpact's lattice for the same pile and drive without soil (free toe): what the soil costs."""
+    import rodimpact as ri
+
+    found = elements()
+    if drive == "hammer":
+        mass, cushion = found["PointMass"], found["Cushion"]
+        head = found["LumpedEnd"](items=(mass(RAM, HAMMER.impact_velocity), cushion(CUSHION_K, CUSHION_E),
+                                         mass(HELMET, 0.0)))
+    else:
+        head = ri.ForceEnd(lambda t: -head_push(t))
+    pile = ri.Rod([ri.Cylinder(LENGTH, math.sqrt(4.0 * AREA / math.pi))], material=ri.Material(MODULUS, DENSITY))
+    problem = ri.Problem.of(ri.System([pile], [0.0], left=head, right="free"), duration=DURATION, elements=n,
+                            outputs=ri.Outputs(snapshot_every=1))
+    ri.simulate(problem, progress=False)
+    _, wall = _timed(lambda: ri.simulate(problem, progress=False), 3)
+    return Row(n, problem.time.dt, problem.time.steps, math.nan, math.nan, math.nan, wall)
+
+
 def orders(values: list[float]) -> list[float]:
     """Observed orders log2((a_n - a_2n) / (a_2n - a_4n)) of a sequence over halvings (nan when undefined)."""
     d = np.diff(np.asarray(values, float))
@@ -210,6 +229,12 @@ def convergence_section(drive: str, sizes: list[int], found: dict[str, type]) ->
         own = [abs(r.set - ref.set) / ref.set for r in ours[:-1]]
         lines += [f"Set relative to rodimpact's at {sizes[-1]} elements: Smith (mirrored) "
                   + ", ".join(f"{g:.3%}" for g in gap) + "; rodimpact " + ", ".join(f"{g:.3%}" for g in own) + "."]
+        a, o = smith_rows[-1], ours[-1]
+        per = (lambda r, masses: r.wall / (masses * r.steps) * 1e6)
+        masses = smith.pile_model(HAMMER if drive == "hammer" else None, PILE, soil(CASE_RESISTANCE), a.n).mass.size
+        lines += [f"Cost per mass (element) and step at {a.n} segments: Smith {per(a, masses):.2f} us, rodimpact "
+                  f"{per(o, o.n):.2f} us; rodimpact without soil (same pile and drive, free toe) "
+                  f"{per(bare_row(drive, o.n), o.n):.3f} us."]
     else:
         lines += ["rodimpact's side of this drive needs elements this build does not have: "
                   + ", ".join(sorted({"PointMass", "Cushion", "LumpedEnd", "ShaftResistance", "SoilToe"}
