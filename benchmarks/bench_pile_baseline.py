@@ -140,6 +140,20 @@ def can_run(found: dict[str, type], drive: str) -> bool:
     return need <= set(found)
 
 
+def _head_and_pile(found: dict[str, type], drive: str):
+    """rodimpact's pile head (the hammer's lumped chain or the prescribed push, tension positive) and pile rod."""
+    import rodimpact as ri
+
+    if drive == "hammer":
+        mass, cushion = found["PointMass"], found["Cushion"]
+        head = found["LumpedEnd"](items=(mass(RAM, HAMMER.impact_velocity), cushion(CUSHION_K, CUSHION_E),
+                                         mass(HELMET, 0.0)))
+    else:
+        head = ri.ForceEnd(lambda t: -head_push(t))
+    pile = ri.Rod([ri.Cylinder(LENGTH, math.sqrt(4.0 * AREA / math.pi))], material=ri.Material(MODULUS, DENSITY))
+    return head, pile
+
+
 def ours_row(found: dict[str, type], drive: str, ultimate: float, n: int) -> Row:
     """rodimpact's lattice with ``n`` elements in the pile (compiled kernels; call once before timing).
 
@@ -153,13 +167,7 @@ def ours_row(found: dict[str, type], drive: str, ultimate: float, n: int) -> Row
                                      unit_resistance=[s.shaft_ultimate / EMBEDMENT], quake=QUAKE,
                                      damping=J_SHAFT, damping_kind="smith")
     toe = found["SoilToe"](s.toe_ultimate, quake=QUAKE, damping=J_TOE, damping_kind="smith")
-    if drive == "hammer":
-        mass, cushion = found["PointMass"], found["Cushion"]
-        head = found["LumpedEnd"](items=(mass(RAM, HAMMER.impact_velocity), cushion(CUSHION_K, CUSHION_E),
-                                         mass(HELMET, 0.0)))
-    else:
-        head = ri.ForceEnd(lambda t: -head_push(t))
-    pile = ri.Rod([ri.Cylinder(LENGTH, math.sqrt(4.0 * AREA / math.pi))], material=ri.Material(MODULUS, DENSITY))
+    head, pile = _head_and_pile(found, drive)
     system = ri.System([pile], [0.0], left=head, right=toe, loads=[shaft])
     problem = ri.Problem.of(system, duration=DURATION, elements=n, outputs=ri.Outputs(snapshot_every=1))
     result, wall = _timed(lambda: ri.simulate(problem, progress=False), 3 if n <= 80 else 1)
@@ -173,13 +181,7 @@ def bare_row(drive: str, n: int) -> Row:
     import rodimpact as ri
 
     found = elements()
-    if drive == "hammer":
-        mass, cushion = found["PointMass"], found["Cushion"]
-        head = found["LumpedEnd"](items=(mass(RAM, HAMMER.impact_velocity), cushion(CUSHION_K, CUSHION_E),
-                                         mass(HELMET, 0.0)))
-    else:
-        head = ri.ForceEnd(lambda t: -head_push(t))
-    pile = ri.Rod([ri.Cylinder(LENGTH, math.sqrt(4.0 * AREA / math.pi))], material=ri.Material(MODULUS, DENSITY))
+    head, pile = _head_and_pile(found, drive)
     problem = ri.Problem.of(ri.System([pile], [0.0], left=head, right="free"), duration=DURATION, elements=n,
                             outputs=ri.Outputs(snapshot_every=1))
     ri.simulate(problem, progress=False)
