@@ -26,14 +26,19 @@ def write_section(name: str, body: str, path: Path = PERF, header: str = HEADER)
     os.replace(tmp, path)
 
 
-def best_time(fn, repeat: int) -> float:
-    """The shortest wall time of ``repeat`` calls of ``fn()``, s."""
+def timed(fn, repeat: int) -> tuple[object, float]:
+    """The result of ``fn()`` and the shortest wall time of ``repeat`` calls, s."""
     import math
     import time
 
-    best = math.inf
+    best, out = math.inf, None
     for _ in range(repeat):
         t0 = time.perf_counter()
-        fn()
+        out = fn()
         best = min(best, time.perf_counter() - t0)
-    return best
+    return out, best
+
+
+def best_time(fn, repeat: int) -> float:
+    """The shortest wall time of ``repeat`` calls of ``fn()``, s."""
+    return timed(fn, repeat)[1]

@@ -36,12 +36,12 @@ import platform
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Optional
 
 import numpy as np
 
 import smith1960 as smith
-from _report import write_section
+from _report import timed, write_section
 
 G = 9.80665                                  # m/s^2, standard gravity
 RAM, DROP, HELMET = 4536.0, 0.9144, 907.0    # kg, m, kg
@@ -86,16 +86,6 @@ class Row:
     wall: float
 
 
-def _timed(run: Callable[[], object], repeat: int) -> tuple[object, float]:
-    """The result of ``run()`` and the shortest wall time of ``repeat`` calls."""
-    best, out = math.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = run()
-        best = min(best, time.perf_counter() - t0)
-    return out, best
-
-
 def smith_row(drive: str, ultimate: float, n: int, law: str = "smith") -> Row:
     """Smith's method with ``n`` pile segments, dt = half the critical step."""
     if drive == "hammer":
@@ -108,7 +98,7 @@ def smith_row(drive: str, ultimate: float, n: int, law: str = "smith") -> Row:
         def run():
             return smith.drive(model, dt, int(math.ceil(DURATION / dt)), shaft_damping=law,
                                external_force=lambda t: float(head_push(t)))
-    out, wall = _timed(run, 3 if n <= 80 else 1)
+    out, wall = timed(run, 3 if n <= 80 else 1)
     return Row(n, out.dt, out.steps, out.set, out.peak_compression, out.peak_tension, wall)
 
 
@@ -170,7 +160,7 @@ def ours_row(found: dict[str, type], drive: str, ultimate: float, n: int) -> Row
     head, pile = _head_and_pile(found, drive)
     system = ri.System([pile], [0.0], left=head, right=toe, loads=[shaft])
     problem = ri.Problem.of(system, duration=DURATION, elements=n, outputs=ri.Outputs(snapshot_every=1))
-    result, wall = _timed(lambda: ri.simulate(problem, progress=False), 3 if n <= 80 else 1)
+    result, wall = timed(lambda: ri.simulate(problem, progress=False), 3 if n <= 80 else 1)
     force = result.snapshots.force
     return Row(n, problem.time.dt, problem.time.steps, float(result.soil.toe_set),
                float(force.min()) / AREA, float(max(0.0, force.max())) / AREA, wall)
@@ -185,7 +175,7 @@ def bare_row(drive: str, n: int) -> Row:
     problem = ri.Problem.of(ri.System([pile], [0.0], left=head, right="free"), duration=DURATION, elements=n,
                             outputs=ri.Outputs(snapshot_every=1))
     ri.simulate(problem, progress=False)
-    _, wall = _timed(lambda: ri.simulate(problem, progress=False), 3)
+    _, wall = timed(lambda: ri.simulate(problem, progress=False), 3)
     return Row(n, problem.time.dt, problem.time.steps, math.nan, math.nan, math.nan, wall)
 
 
