@@ -116,9 +116,9 @@ class SmithBlow:
     over all pile springs and times (tension positive; the pile cushion's force counts as the head force);
     ``head_force`` (N, tension positive): force of the spring above the first pile mass at each step;
     ``toe_displacement`` (m): point displacement at each step, ``toe_velocity`` (m/s): its velocity over the
-    following step (the recurrence's velocities sit half a step later than its displacements); ``forces`` (N, tension positive, steps x springs)
-    when recorded; ``final_displacement`` (m) and ``final_velocity`` (m/s) of every mass, downward positive;
-    ``steps`` and ``dt``.
+    following step (the recurrence's velocities sit half a step later than its displacements); ``forces`` (N,
+    tension positive, steps x springs) when recorded; ``final_displacement`` (m) and ``final_velocity`` (m/s) of
+    every mass, downward positive; ``steps`` and ``dt``.
     """
 
     time: np.ndarray
