@@ -15,8 +15,9 @@ cushion is used its spring joins the helmet to the first pile mass and the last 
 (Lowery 1993, "Cushion in pile driving"). The soil acts on each pile mass as an elastic-plastic spring with a
 dashpot (side), and under the last mass as a spring that can push but never pull (point).
 
-The recurrence, in Smith's symbols and order (his eqs. 1-5; SI units here, so his factors 12 and g drop out),
-for every time step ``t`` of length ``dt``:
+The recurrence, in Smith's symbols and order (numbered 1-5 here; his paper could not be read, so its own
+equation numbers are not given; SI units, so the factors 12 and g of the inch-pound form drop out), for every
+time step ``t`` of length ``dt``:
 
     D(m, t) = D(m, t-1) + V(m, t-1) dt                        displacement, downward positive       (1)
     C(m, t) = D(m, t) - D(m+1, t)                             compression of spring m                (2)
