@@ -7,7 +7,7 @@ Hirsch, L. L. Lowery, H. M. Coyle, C. H. Samson, "Pile-driving analysis by one-d
 the art", Highway Research Record 333, 1970) and of FHWA GEC-12 (Hannigan et al., FHWA-NHI-16-009, 2016,
 chapter 12). Nothing here is rodimpact: this module imports numpy only, so that it stays an independent check.
 
-The model (Smith 1960, his Fig. 2): the ram, the helmet (pile cap) and the pile are point masses ``M(m)`` joined
+The model (Smith 1960): the ram, the helmet (pile cap) and the pile are point masses ``M(m)`` joined
 by massless springs ``K(m)`` (spring ``m`` lies between masses ``m`` and ``m + 1``); the hammer cushion (capblock)
 and the pile cushion are such springs, the pile of length ``L`` is cut into ``n`` segments, each of mass
 ``rho A L / n`` lumped in one mass, joined by ``n - 1`` springs of stiffness ``E A / (L / n)``. When a pile
@@ -47,7 +47,8 @@ are positive downward (into the ground), as in Smith.
 
 Time step: the lumped chain integrated this way (it is the central-difference scheme) is stable for
 ``dt <= min_m sqrt(2 M(m) / (K(m-1) + K(m)))`` (for a uniform pile ``L / (n c)``, the travel time of one segment).
-Smith chose dt about half the critical value; ``courant = 0.5`` does the same.
+``courant = 0.5`` (dt half the critical value) is the customary choice of the programs that follow Smith;
+his own rule for dt could not be read here.
 """
 
 from __future__ import annotations

@@ -87,7 +87,7 @@ def test_at_courant_number_one_the_chain_is_the_exact_dalembert_solution(n: int)
 
 @pytest.mark.parametrize(("pulse", "expected"), [(_half_sine, 2 / 3), (_sine_squared, 4 / 3)])
 def test_at_smiths_half_step_the_chain_converges_to_dalembert_at_the_dispersive_rate(pulse, expected) -> None:
-    """At dt = half the critical step (Smith's choice) the scheme is second order but dispersive: the error of a
+    """At dt = half the critical step (the customary choice) the scheme is second order but dispersive: the error of a
     pulse is set by its least smooth point. For a pulse whose first derivative jumps (half sine) the largest error
     decays like h^(2/3), for one whose second derivative jumps (sin^2) like h^(4/3) (the rate r p / (r + 1) of
     an order-r dispersive scheme for data with p - 1 continuous derivatives, as recalled from Brenner, Thomee &
