@@ -1,9 +1,10 @@
 """Smith's 1960 lumped-mass method against rodimpact's exact lattice on one pile blow (issue 23).
 
 The same pile and soil are run with Smith's method (``benchmarks/smith1960.py``, plain numpy, dt = half the
-critical step, the customary choice) at segment lengths L/10, L/20, ... and with rodimpact's lattice (``ShaftResistance``
-and ``SoilToe``; the hammer as a ``LumpedEnd``) at the same numbers of elements: set per blow, peak compressive
-and tensile pile stress, and the wall time of each blow, side by side in one run. Two drives of the same pile:
+critical step, the customary choice) at segment lengths L/10, L/20, ... and with rodimpact's lattice
+(``ShaftResistance`` and ``SoilToe``; the hammer as a ``LumpedEnd``) at the same numbers of elements: set per blow,
+peak compressive and tensile pile stress, and the wall time of each blow, side by side in one run. Two drives of
+the same pile:
 
 * **head force**: a prescribed half-sine push of 3 MN lasting 4 ms on the pile head (no hammer): compares the
   pile and the soil alone;
