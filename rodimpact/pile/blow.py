@@ -23,7 +23,7 @@ import numpy as np
 from .._validate import non_negative, positive
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
-from ..direct.result import Probe, ProbeHistory, SimulationResult
+from ..direct.result import PEAK_REL_TOL, Probe, ProbeHistory, SimulationResult
 from ..direct.simulate import simulate
 from ..lattice.lattice import default_time_step
 from ..rods.conditions import Contact, FreeEnd
@@ -66,25 +66,38 @@ class StressEnvelope:
 
     @property
     def max_compression(self) -> tuple[float, float, float]:
-        """(stress Pa, depth m, time s) of the largest compressive stress of the blow."""
-        i = int(np.argmax(self.compression))
-        return float(self.compression[i]), float(self.depth[i]), float(self.compression_time[i])
+        """(stress Pa, depth m, time s) of the largest compressive stress of the blow (of equal maxima within
+        rounding, the one reached first)."""
+        return _extreme(self.compression, self.depth, self.compression_time)
 
     @property
     def max_tension(self) -> tuple[float, float, float]:
-        """(stress Pa, depth m, time s) of the largest tensile stress of the blow."""
-        i = int(np.argmax(self.tension))
-        return float(self.tension[i]), float(self.depth[i]), float(self.tension_time[i])
+        """(stress Pa, depth m, time s) of the largest tensile stress of the blow (the first, as above)."""
+        return _extreme(self.tension, self.depth, self.tension_time)
+
+
+def _extreme(values: np.ndarray, depth: np.ndarray, time: np.ndarray) -> tuple[float, float, float]:
+    top = float(values.max())
+    near = np.flatnonzero(values >= top - PEAK_REL_TOL * top)
+    i = int(near[np.argmin(time[near])])
+    return float(values[i]), float(depth[i]), float(time[i])
+
+
+def _first_near(stress: np.ndarray, extreme: np.ndarray) -> np.ndarray:
+    """Per row, the first sample within rounding (:data:`PEAK_REL_TOL` x the row's largest magnitude) of
+    ``extreme``: where a plateau at the extreme begins, not the sample rounding made largest."""
+    tol = PEAK_REL_TOL * np.abs(stress).max(axis=1)
+    return np.argmax(np.abs(stress - extreme[:, None]) <= tol[:, None], axis=1)
 
 
 def stress_envelope(depth: np.ndarray, time: np.ndarray, stress: np.ndarray) -> StressEnvelope:
     """The envelope of ``stress`` (Pa, tension positive, shape (elements, samples)) sampled at ``time`` (s), at
     element ``depth`` (m): per element the largest compression (-min, clipped at 0) and tension (max, clipped at
-    0) and the first time each is reached."""
-    lo, hi = np.argmin(stress, axis=1), np.argmax(stress, axis=1)
-    rows = np.arange(stress.shape[0])
-    return StressEnvelope(np.asarray(depth), np.maximum(-stress[rows, lo], 0.0), np.asarray(time)[lo],
-                          np.maximum(stress[rows, hi], 0.0), np.asarray(time)[hi])
+    0) and the first time each is reached (within rounding)."""
+    low, high = stress.min(axis=1), stress.max(axis=1)
+    t = np.asarray(time)
+    return StressEnvelope(np.asarray(depth), np.maximum(-low, 0.0), t[_first_near(stress, low)],
+                          np.maximum(high, 0.0), t[_first_near(stress, high)])
 
 
 @dataclass(frozen=True, eq=False)
