@@ -3,7 +3,7 @@
 
 Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design|shpb]``,
 ``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``shpb predict SPEC.toml``,
-``shpb reduce RECORDING...``,
+``shpb reduce RECORDING...``, ``drive SPEC.toml``,
 ``docs [TOPIC]`` and ``--version``; see docs/cli.md.
 
 Python warnings raised while a command runs are printed once each, as ``warning: <message>`` on stderr (never with
@@ -223,7 +223,8 @@ def cmd_init(args: argparse.Namespace) -> int:
     path = _file_target(args.output, default)
     _write_file(path, text, args.force, "model file" if kind == "simulate" else "spec file")
     if not args.quiet:
-        cmd = {"synthesize": "synthesize", "design": "design", "shpb": "shpb predict"}.get(kind, "simulate")
+        cmd = {"synthesize": "synthesize", "design": "design", "shpb": "shpb predict", "drive": "drive"}.get(kind,
+                                                                                                          "simulate")
         print(f"wrote {path}; edit it, then run:  rodimpact {cmd} {path}")
     return EXIT_OK
 
@@ -232,10 +233,11 @@ def _templates() -> dict[str, tuple[str, str]]:
     from .io import synthesis_spec
     from .io.templates import TEMPLATES
 
-    from .io import design_spec, shpb_spec
+    from .io import design_spec, pile_spec, shpb_spec
 
     return {**TEMPLATES, "synthesize": (synthesis_spec.TEMPLATE, "synthesis.toml"),
-            "design": (design_spec.TEMPLATE, "design.toml"), "shpb": (shpb_spec.TEMPLATE, "shpb.toml")}
+            "design": (design_spec.TEMPLATE, "design.toml"), "shpb": (shpb_spec.TEMPLATE, "shpb.toml"),
+            "drive": (pile_spec.TEMPLATE, "drive.toml")}
 
 
 # ============================================================================================ examples
@@ -417,18 +419,46 @@ def _add_shpb_parser(sub: Any, output_flags: Callable[..., None], set_flag: Call
     r.set_defaults(func=cmd_shpb_reduce)
 
 
+# ============================================================================================ drive
+def cmd_drive(args: argparse.Namespace) -> int:
+    from .io import pile_spec
+    from .output_folders import write_pile_run
+
+    def prepare(spec: Any) -> None:
+        if args.units is not None:
+            object.__setattr__(spec, "units", args.units)
+
+    return _run_spec(args, pile_spec, prepare, write=write_pile_run)
+
+
+def _add_drive_parser(sub: Any, output_flags: Callable[..., None], set_flag: Callable[..., None]) -> None:
+    """``rodimpact drive SPEC.toml``: pile driving."""
+    p = sub.add_parser("drive", help="pile driving: one blow, bearing graph, drivability, inspector's chart",
+                       description="Drive a pile as SPEC.toml describes (rodimpact init drive writes a template): one "
+                                   "blow (permanent set, blow count, stress envelopes, transferred energy), a bearing "
+                                   "graph, drivability over depth or an inspector's chart; writes CSV files, plots "
+                                   "and summary.json to OUTDIR.")
+    p.add_argument("spec", metavar="SPEC.toml", help="pile-driving specification")
+    p.add_argument("--units", choices=("si", "us"), default=None,
+                   help="units of the printed summary: si (default) or us (kips, ft, blows/ft)")
+    output_flags(p, "SPEC-NAME")
+    set_flag(p, "spec")
+    p.set_defaults(func=cmd_drive)
+
+
 # ============================================================================================ docs
 def _doc_topics() -> dict[str, tuple[str, Callable[[], str]]]:
     """Topic -> (description, function generating the page): the pages are generated from the schemas the
     files are validated with, so the installed package always has them, matching its own code."""
-    from .io import design_spec, schema, shpb_reduction_spec, shpb_spec, synthesis_spec
+    from .io import design_spec, pile_spec, schema, shpb_reduction_spec, shpb_spec, synthesis_spec
 
     return {"model": ("every key of a model file (docs/model-reference.md)", schema.reference_markdown),
             "synthesis": ("every key of a synthesis spec (docs/cli.md)", synthesis_spec.spec_reference_markdown),
             "design": ("every key of a design spec (docs/cli.md)", design_spec.spec_reference_markdown),
             "shpb": ("every key of a Kolsky-bar spec (docs/cli.md)", shpb_spec.spec_reference_markdown),
             "shpb-reduce": ("every key of a split-Hopkinson-bar reduction spec (docs/cli.md)",
-                            shpb_reduction_spec.spec_reference_markdown)}
+                            shpb_reduction_spec.spec_reference_markdown),
+            "drive": ("every key of a pile-driving spec (docs/pile-driving.md)", pile_spec.spec_reference_markdown)}
 
 
 def cmd_docs(args: argparse.Namespace) -> int:
@@ -503,9 +533,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     i = sub.add_parser("init", help="write a commented template that runs as it is",
                        description="Write a fully commented template model (simulate), synthesis spec "
-                                   "(synthesize), design spec (design) or Kolsky-bar spec (shpb) that runs as it "
-                                   "is.")
-    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default), synthesize, design or shpb")
+                                   "(synthesize), design spec (design), Kolsky-bar spec (shpb) or pile-driving spec "
+                                   "(drive) that runs as it is.")
+    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default), synthesize, design, shpb or "
+                                                               "drive")
     i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml; "
                                                           "an existing folder or a name ending in / means "
                                                           "that file inside it)")
@@ -546,11 +577,12 @@ def build_parser() -> argparse.ArgumentParser:
     g.set_defaults(func=cmd_design)
 
     _add_shpb_parser(sub, output_flags, set_flag)
+    _add_drive_parser(sub, output_flags, set_flag)
 
     d = sub.add_parser("docs", help="print reference pages of this installation (model-file keys, ...)",
                        description="Print a reference page as Markdown, generated by the installed rodimpact from "
                                    "the schema it validates files with; without TOPIC, list the topics.")
-    d.add_argument("topic", nargs="?", help="model, synthesis, design, shpb or shpb-reduce")
+    d.add_argument("topic", nargs="?", help="model, synthesis, design, shpb, shpb-reduce or drive")
     d.set_defaults(func=cmd_docs)
     return p
 
