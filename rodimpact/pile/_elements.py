@@ -42,15 +42,19 @@ class ShaftResistance:
     depths: Sequence[float]
     unit_resistance: Sequence[float]
     quake: float
-    unloading_quake: float | None
-    damping: float
-    damping_kind: str
+    unloading_quake: float | None = None
+    damping: float | None = None
+    damping_kind: str = "smith"
+    resistance: Sequence[float] = ()
+    plastic_set: Sequence[float] = ()
 
 
 @dataclass(frozen=True)
 class SoilToe:
     ultimate: float
     quake: float
-    unloading_quake: float | None
-    damping: float
-    damping_kind: str
+    unloading_quake: float | None = None
+    damping: float | None = None
+    damping_kind: str = "smith"
+    resistance: float = 0.0
+    plastic_set: float = 0.0

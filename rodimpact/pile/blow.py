@@ -155,10 +155,11 @@ def soil_elements(soil: SoilResistance, pile_index: int, pile_length: float) -> 
     become positions x = L - D + z from the pile head."""
     d = soil.dynamics
     top = pile_length - soil.penetration
-    shaft = ShaftResistance(pile_index, tuple(top + soil.depths), tuple(soil.unit_shaft), d.shaft_quake,
-                            d.shaft_quake, d.shaft_damping, d.damping_kind)
+    shaft = [] if not np.any(soil.unit_shaft > 0) else [
+        ShaftResistance(pile_index, tuple(top + soil.depths), tuple(soil.unit_shaft), d.shaft_quake, None,
+                        d.shaft_damping, d.damping_kind)]
     toe = SoilToe(soil.toe, d.toe_quake, d.unloading_quake, d.toe_damping, d.damping_kind)
-    return [shaft], toe
+    return shaft, toe
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -244,5 +245,6 @@ def evaluate_blow(result: SimulationResult, pile: Rod, pile_index: int, soil: Op
 
 
 def toe_permanent_set(result: SimulationResult) -> float:
-    """The toe's permanent set of a blow with soil, m (from the soil toe's final state)."""
-    raise NotImplementedError("toe_permanent_set: needs the soil elements of branch pile-soil")
+    """The toe's permanent set of a blow with soil, m: the plastic set u_p of the toe's soil spring at the end of
+    the run (the set once the pile has come to rest; :class:`~rodimpact.direct.soil_result.SoilOutcome`)."""
+    return float(result.soil.toe_set)

@@ -34,8 +34,8 @@ SUM_TOLERANCE = 1e-6
 
 @dataclass(frozen=True)
 class SoilDynamics:
-    """Smith's dynamic soil parameters: the quakes (m; deformation at which the static resistance reaches its
-    ultimate value) of the shaft and the toe, the toe's unloading quake (m; ``None``: the loading quake), the
+    """Smith's dynamic soil parameters: the quakes (m, > 0; deformation at which the static resistance reaches its
+    ultimate value; a rigid-plastic soil is approached by a small quake) of the shaft and the toe, the toe's unloading quake (m, at most the toe quake; ``None``: the toe quake), the
     damping factors of the shaft and the toe (s/m for the ``smith`` and ``smith-viscous`` kinds, dimensionless
     for ``case``) and the ``damping_kind``. No defaults: typical values (Smith 1960: quake 0.1 in = 2.54 mm, toe
     damping 0.15 s/ft, shaft damping 0.05 s/ft) are shown in the template (``rodimpact init drive``)."""
@@ -49,10 +49,13 @@ class SoilDynamics:
 
     def __post_init__(self) -> None:
         for name in ("shaft_quake", "toe_quake"):
-            object.__setattr__(self, name, non_negative(f"SoilDynamics.{name}", getattr(self, name), "m"))
+            object.__setattr__(self, name, positive(f"SoilDynamics.{name}", getattr(self, name), "m"))
         if self.unloading_quake is not None:
-            object.__setattr__(self, "unloading_quake", non_negative("SoilDynamics.unloading_quake",
-                                                                     self.unloading_quake, "m"))
+            qu = positive("SoilDynamics.unloading_quake", self.unloading_quake, "m")
+            if qu > self.toe_quake:
+                raise ValueError(f"SoilDynamics.unloading_quake: must be <= toe_quake = {self.toe_quake:.6g} m (a "
+                                 f"passive soil unloads at least as stiffly as it loads), got {qu:.6g} m")
+            object.__setattr__(self, "unloading_quake", qu)
         unit = "" if self.damping_kind == "case" else "s/m"
         for name in ("shaft_damping", "toe_damping"):
             object.__setattr__(self, name, non_negative(f"SoilDynamics.{name}", getattr(self, name), unit))

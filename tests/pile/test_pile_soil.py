@@ -76,8 +76,11 @@ def test_profile_that_does_not_reach_the_toe_is_refused():
 
 
 @pytest.mark.parametrize("make, match", [
-    (lambda: SoilDynamics(-1e-3, 2e-3, 0.1, 0.1), "SoilDynamics.shaft_quake: must be >= 0"),
-    (lambda: SoilDynamics(1e-3, 2e-3, 0.1, 0.1, unloading_quake=-1e-3), "SoilDynamics.unloading_quake: must be >= 0"),
+    (lambda: SoilDynamics(-1e-3, 2e-3, 0.1, 0.1), "SoilDynamics.shaft_quake: must be > 0"),
+    (lambda: SoilDynamics(1e-3, 0.0, 0.1, 0.1), "SoilDynamics.toe_quake: must be > 0"),
+    (lambda: SoilDynamics(1e-3, 2e-3, 0.1, 0.1, unloading_quake=-1e-3), "SoilDynamics.unloading_quake: must be > 0"),
+    (lambda: SoilDynamics(1e-3, 2e-3, 0.1, 0.1, unloading_quake=3e-3),
+     "SoilDynamics.unloading_quake: must be <= toe_quake = 0.002 m"),
     (lambda: SoilDynamics(1e-3, 2e-3, 0.1, 0.1, "viscous"), "SoilDynamics.damping_kind: must be one of"),
     (lambda: CapacitySoil(1e6, 1.2, DYN), r"CapacitySoil.shaft_share: must lie in \[0, 1\]"),
     (lambda: CapacitySoil(1e6, 0.5, DYN, distribution="trapezoid"), "CapacitySoil.top_ratio: needed by the trapezoid"),

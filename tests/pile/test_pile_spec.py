@@ -1,0 +1,82 @@
+"""`rodimpact drive SPEC.toml`, `rodimpact init drive`, `rodimpact docs drive`: the template, the reference page and
+bad specs refused with exit code 2 naming the key path."""
+
+from __future__ import annotations
+
+import pytest
+
+from rodimpact import cli
+from rodimpact.io.pile_spec import TEMPLATE, loads_spec, spec_reference_markdown
+from rodimpact.io.quantities import ModelError
+
+
+def test_init_drive_writes_the_template(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["init", "drive"]) == 0
+    assert capsys.readouterr().out == "wrote drive.toml; edit it, then run:  rodimpact drive drive.toml\n"
+    assert (tmp_path / "drive.toml").read_text() == TEMPLATE
+
+
+def test_docs_drive_prints_the_generated_reference(capsys):
+    assert cli.main(["docs", "drive"]) == 0
+    out = capsys.readouterr().out
+    assert out == spec_reference_markdown() + "\n" or out == spec_reference_markdown()
+    for key in ("`efficiency`", "`shaft_share`", "`unit_shaft_resistance`", "`capacities`", "`units`"):
+        assert key in out
+
+
+def test_template_builds_its_objects():
+    spec = loads_spec(TEMPLATE)
+    assert spec.driving.impact_velocity == pytest.approx((2 * 9.80665 * 0.8 * 1.0) ** 0.5, rel=1e-15)
+    assert spec.penetration == 15.0 and spec.soil.capacity == 1.5e6 and spec.gauges == {"gauges": 0.6}
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("efficiency = 0.8\n", "", "driving.efficiency: missing; a drop_height needs the hammer efficiency"),
+    ('shaft_quake = "2.54 mm"', 'shaft_quake = "-2.54 mm"', "soil.shaft_quake: must be >= 0, got -2.54 mm"),
+    ('toe_quake = "2.54 mm"', 'toe_quake = "0 mm"', "soil.toe_quake: must be > 0"),
+    ("restitution = 0.8", "restitution = 1.5", r"driving.hammer_cushion.restitution: must (lie|be) in \(0, 1\]"),
+    ('penetration = "15 m"', 'penetration = "25 m"', r"soil.penetration: 25 m is deeper than the pile \(20 m long\)"),
+    ("shaft_share = 0.5", "shaft_share = 1.5", r"soil.shaft_share: must lie in \[0, 1\]"),
+    ('distribution = "triangular"', 'distribution = "custom"\ndepths = ["0 m", "15 m"]\n'
+                                    'shaft_resistances = ["0.7 MN"]',
+     r"soil.shaft_resistances: must sum to shaft_share x capacity = 750000 N, got 700000 N"),
+    ('distribution = "triangular"', 'distribution = "trapezoid"', "soil.top_ratio: needed by the trapezoid"),
+    ('ram_mass = "3000 kg"', 'ram_mass = "3000 kg"\nhammer = "vulcan-010"',
+     "driving: give exactly one of hammer, ram_mass or \\[driving.ram\\], not hammer and ram_mass"),
+])
+def test_bad_specs_name_the_key(old, new, message):
+    assert old in TEMPLATE
+    with pytest.raises(ModelError, match=message):
+        loads_spec(TEMPLATE.replace(old, new, 1))
+
+
+def test_layered_profile_deeper_than_the_pile_names_the_layer():
+    with pytest.raises(ModelError, match=r"soil.layers\[1\].bottom: the profile reaches 24 m, deeper than the pile "
+                                         r"\(20 m long\)"):
+        loads_spec(_layers_spec("24 m"))
+
+
+def _layers_spec(bottom: str) -> str:
+    """The template with a two-layer profile (its second layer down to ``bottom``) instead of a capacity."""
+    soil = ('[soil]\npenetration = "15 m"\nperimeter = "1.02 m"\ntoe_area = "0.0824 m^2"\nshaft_quake = "2.54 mm"\n'
+            'toe_quake = "2.54 mm"\nshaft_damping = 0.164\ntoe_damping = 0.492\n\n'
+            '[[soil.layers]]\nbottom = "10 m"\nunit_shaft_resistance = "20 kPa"\nsetup_factor = 2.0\n\n'
+            f'[[soil.layers]]\nbottom = "{bottom}"\nunit_shaft_resistance = "60 kPa"\nunit_toe_resistance = "4 MPa"\n')
+    start = TEMPLATE.index("[soil]")
+    end = TEMPLATE.index("# Gauge stations")
+    return TEMPLATE[:start] + soil + "\n" + TEMPLATE[end:]
+
+
+def test_layered_spec_builds_the_profile():
+    spec = loads_spec(_layers_spec("20 m"))
+    r = spec.soil.resistance(15.0)
+    assert r.unit_shaft == pytest.approx([20e3 * 1.02 / 2.0, 60e3 * 1.02], rel=1e-15)
+    assert r.toe == pytest.approx(4e6 * 0.0824, rel=1e-15)
+
+
+def test_drive_exits_2_naming_the_key(tmp_path, capsys):
+    spec = tmp_path / "drive.toml"
+    spec.write_text(TEMPLATE.replace("efficiency = 0.8\n", ""))
+    assert cli.main(["drive", str(spec)]) == 2
+    assert "rodimpact: error: driving.efficiency: missing" in capsys.readouterr().err
