@@ -70,3 +70,19 @@ def test_gauge_below_the_toe_is_refused():
     ram, pile = ri.Rod([ri.Cylinder(2.0, 0.3)]), ri.Rod([ri.Cylinder(10.0, 0.3)])
     with pytest.raises(ValueError, match=r"gauges.g: 12 m is below the pile's toe \(10 m\)"):
         drive_blow(pile, DrivingSystem(3.0, ram=ram), gauges={"g": 12.0})
+
+
+def test_soil_depths_become_positions_below_the_head():
+    """A 20 m pile with its toe 15 m below ground: the ground is 5 m below the head, so depths z = 0, 5, 15 m
+    are positions x = 5, 10, 20 m; the toe takes the toe resistance and the toe's quakes and damping."""
+    from rodimpact.pile import CapacitySoil, SoilDynamics
+    from rodimpact.pile.blow import soil_elements
+
+    dyn = SoilDynamics(2e-3, 3e-3, 0.1, 0.4, unloading_quake=1e-3)
+    soil = CapacitySoil(1e6, 0.6, dyn).resistance(15.0, np.array([0.0, 5.0, 15.0]))
+    (shaft,), toe = soil_elements(soil, 1, 20.0)
+    assert list(shaft.depths) == [5.0, 10.0, 20.0] and shaft.rod == 1
+    assert list(shaft.unit_resistance) == pytest.approx([40e3, 40e3], rel=1e-15)
+    assert (shaft.quake, shaft.damping, shaft.damping_kind) == (2e-3, 0.1, "smith")
+    assert (toe.ultimate, toe.quake, toe.unloading_quake, toe.damping) == (pytest.approx(4e5, rel=1e-15), 3e-3,
+                                                                          1e-3, 0.4)
