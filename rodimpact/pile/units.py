@@ -6,7 +6,8 @@ Publication 811, 2008, appendix B.8). The standard acceleration of gravity g_n =
 
 Blow counts: a blow that sets the pile permanently by ``s`` metres needs ``L / s`` blows to advance it by L, so
 blows per 0.25 m = 0.25 / s, blows per foot = 0.3048 / s and blows per inch = 0.0254 / s. A blow without
-permanent set (s <= 0) is refusal: the blow count is infinite.
+permanent set is refusal: the blow count is infinite. A set below :data:`REFUSAL_SET` (1 nm, 2.5e8 blows per
+0.25 m) counts as none: it is the rounding of a plastic set that did not grow, not penetration.
 """
 
 from __future__ import annotations
@@ -29,11 +30,12 @@ KIP = 1000.0 * POUND_FORCE
 KSI = KIP / INCH**2
 #: one foot-kip (ft-kip), J
 FOOT_KIP = FOOT * KIP
-#: the SI blow-count length: blows per 0.25 m (the European driving record's unit)
+#: the SI blow-count length: blows per 0.25 m
 QUARTER_METRE = 0.25
+#: sets below this (m) are refusal (rounding of a plastic set that did not grow)
+REFUSAL_SET = 1e-9
 
-#: display units: name -> (force, its unit, stress, its unit, energy, its unit, length, its unit, set, its unit,
-#: blow-count length, its label)
+#: display units: system -> quantity -> (size of the unit in SI, its label)
 UNIT_SYSTEMS = {
     "si": {"force": (1e3, "kN"), "stress": (1e6, "MPa"), "energy": (1e3, "kJ"), "length": (1.0, "m"),
            "set": (1e-3, "mm"), "velocity": (1.0, "m/s"), "blows": (QUARTER_METRE, "blows/0.25 m")},
@@ -44,9 +46,9 @@ UNIT_SYSTEMS = {
 
 def blows_per(length: float, permanent_set: float) -> float:
     """Blows needed to drive the pile ``length`` metres at ``permanent_set`` metres per blow; ``math.inf`` for a
-    blow without permanent set (refusal)."""
+    blow without permanent set (below :data:`REFUSAL_SET`: refusal)."""
     s = finite("permanent_set", permanent_set, "m")
-    return length / s if s > 0.0 else math.inf
+    return length / s if s > REFUSAL_SET else math.inf
 
 
 def blows_per_quarter_metre(permanent_set: float) -> float:

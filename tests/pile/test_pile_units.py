@@ -25,6 +25,8 @@ def test_blow_counts_are_length_over_set():
 def test_no_set_is_refusal():
     assert units.blows_per_quarter_metre(0.0) == math.inf
     assert units.blows_per_foot(-1e-4) == math.inf
+    assert units.blows_per_inch(8.7e-19) == math.inf            # the rounding of a plastic set that did not grow
+    assert units.blows_per_quarter_metre(2e-9) == pytest.approx(1.25e8, rel=1e-15)
 
 
 def test_unknown_unit_system_is_named():
