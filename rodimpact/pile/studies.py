@@ -108,6 +108,9 @@ def drivability(pile: Rod, driving: DrivingSystem, profile: SoilProfile, depths:
     the layered ``profile`` (resistance during driving: the static values divided by the layers' setup
     factors)."""
     zs = finite_array("depths", depths, unit="m")
+    if profile.bottoms[-1] > pile.length * (1 + 1e-12):
+        raise ValueError(f"profile.layers[{len(profile.layers) - 1}].bottom: the profile reaches "
+                         f"{profile.bottoms[-1]:.6g} m, deeper than the pile ({pile.length:.6g} m long) can be driven")
     if np.any(zs <= 0) or np.any(zs > pile.length * (1 + 1e-12)):
         bad = zs[(zs <= 0) | (zs > pile.length * (1 + 1e-12))][0]
         raise ValueError(f"depths: must lie in (0, {pile.length:.6g}] m (the pile's length), got {bad:.6g} m")
