@@ -33,7 +33,7 @@ def test_template_builds_its_objects():
 
 @pytest.mark.parametrize("old, new, message", [
     ("efficiency = 0.8\n", "", "driving.efficiency: missing; a drop_height needs the hammer efficiency"),
-    ('shaft_quake = "2.54 mm"', 'shaft_quake = "-2.54 mm"', "soil.shaft_quake: must be >= 0, got -2.54 mm"),
+    ('shaft_quake = "2.54 mm"', 'shaft_quake = "-2.54 mm"', "soil.shaft_quake: must be > 0, got -2.54 mm"),
     ('toe_quake = "2.54 mm"', 'toe_quake = "0 mm"', "soil.toe_quake: must be > 0"),
     ("restitution = 0.8", "restitution = 1.5", r"driving.hammer_cushion.restitution: must (lie|be) in \(0, 1\]"),
     ('penetration = "15 m"', 'penetration = "25 m"', r"soil.penetration: 25 m is deeper than the pile \(20 m long\)"),
