@@ -27,9 +27,9 @@ import time
 import numpy as np
 
 import rodimpact as ri
-from rodimpact.pile import CapacitySoil, DrivingSystem, SoilDynamics, SoilLayer, SoilProfile
+from rodimpact.pile import CapacitySoil, DrivingSystem, SoilDynamics, SoilLayer, SoilProfile, drive_blow
 from rodimpact.pile.studies import bearing_graph, drivability
-from rodimpact.rods.conditions import Cushion
+from rodimpact.rods.conditions import Cushion, FreeEnd
 
 from _report import write_section
 
@@ -63,6 +63,12 @@ def main() -> None:
     t_np, _ = timed(lambda: bearing_graph(PILE, DRIVING, SOIL, CAPACITIES[:2], 25.0, progress=False,
                                           backend="numpy"))
     bg = bearing_graph(PILE, DRIVING, SOIL, CAPACITIES, 25.0, progress=False)
+    toe_only = CapacitySoil(2e6, 0.0, DYNAMICS).resistance(25.0)
+    parts = [("hammer chain, pile, free toe", lambda: drive_blow(PILE, DRIVING, toe=FreeEnd())),
+             ("... and a soil toe", lambda: drive_blow(PILE, DRIVING, toe_only)),
+             ("... and the shaft soil (the bearing graph's blow)",
+              lambda: drive_blow(PILE, DRIVING, SOIL.resistance(25.0, np.linspace(0.0, 25.0, 84))))]
+    split = [(name, min(timed(run)[0] for _ in range(3))) for name, run in parts]
     lines = [
         "## Pile driving (`benchmarks/bench_pile.py`)",
         "",
@@ -78,6 +84,12 @@ def main() -> None:
         f"| drivability, compiled kernels | 50 | {t_dr:.3f} | {t_dr / 50 * 1e3:.1f} |",
         f"| baseline: bearing graph with the numpy reference path (2 points, scaled to 20) | 20 | "
         f"{t_np * 10:.2f} | {t_np / 2 * 1e3:.1f} |",
+        "",
+        "Where the time of one blow goes (best of 3, ms):",
+        "",
+        "| blow | ms |",
+        "|---|---:|",
+        *[f"| {name} | {t * 1e3:.1f} |" for name, t in split],
         "",
         f"Bearing graph: {bg.blows_per_quarter_metre[0]:.3g} to "
         f"{bg.blows_per_quarter_metre[np.isfinite(bg.blows_per_quarter_metre)][-1]:.3g} blows/0.25 m over "
