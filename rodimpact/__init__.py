@@ -16,6 +16,7 @@ from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEn
                               NonReflectingEnd, PulseShaper, Specimen, SpringDashpot, SpringEnd, VelocityEnd)
 from .rods.laws import CowperSymonds, ElasticPlastic, FrewShaper, JohnsonCook, LinearElastic, TabulatedLaw
 from .rods.loads import Bearings, NodalForce
+from .rods.soil import ShaftResistance, SmithSoil, SoilToe
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
 from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents, Probe,
@@ -23,6 +24,7 @@ from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, Joint
 from .direct.recording import Outputs
 from .direct.problem import Problem, TimeGrid
 from .direct.simulate import simulate
+from .direct.soil_result import SoilOutcome, next_blow
 from .direct.sweep import drilling_metrics, sweep
 from .direct.batch import BatchOutputs, BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
@@ -54,6 +56,7 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "Specimen", "PulseShaper",
     "LinearElastic", "ElasticPlastic", "JohnsonCook", "CowperSymonds", "FrewShaper", "TabulatedLaw", "NodalForce", "Bearings",
+    "SmithSoil", "ShaftResistance", "SoilToe", "SoilOutcome", "next_blow",
     "Lattice", "build_lattice",
     "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
     "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
