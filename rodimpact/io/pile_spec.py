@@ -21,7 +21,7 @@ from typing import Any, Mapping, Optional
 
 import numpy as np
 
-from ..pile import (Blow, CapacitySoil, DrivingSystem, SoilDynamics, SoilLayer, SoilProfile, drive_blow, hammer,
+from ..pile import (Blow, CapacitySoil, DrivingSystem, SoilDynamics, SoilLayer, SoilProfile, drive_blows, hammer,
                     hammer_names)
 from ..pile._elements import Cushion
 from ..pile.soil import DAMPING_KINDS, DISTRIBUTIONS
@@ -119,9 +119,12 @@ GAUGE = Table("gauges", "A gauge station: force and velocity are recorded there.
 
 ANALYSES = ("blow", "bearing-graph", "drivability", "inspector-chart")
 ANALYSIS = Table("analysis", "What to compute.", (
-    Field("kind", "string", "`blow` (one blow at `soil.penetration`), `bearing-graph` (over `capacities`), "
+    Field("kind", "string", "`blow` (`blows` successive blows at `soil.penetration`), `bearing-graph` (over "
+                            "`capacities`), "
                             "`drivability` (over `depths`, needs layers), `inspector-chart` (over `velocities` or "
                             "`strokes`).", default="blow", choices=ANALYSES),
+    Field("blows", "integer", "`blow`: successive blows, each from the soil state and residual forces the one "
+                              "before left; the summary is the last blow's.", default=1, minimum=1),
     Field("capacities", "quantities", "Bearing graph: capacities during driving.", dimension="force",
           sign="positive"),
     Field("depths", "quantities", "Drivability: toe depths below the ground.", dimension="length", sign="positive"),
@@ -198,6 +201,7 @@ class PileSpec:
     penetration: Optional[float]
     gauges: dict[str, float]
     analysis: str
+    blows: int
     points: Optional[np.ndarray]
     points_key: Optional[str]
     efficiency: Optional[float]
@@ -263,7 +267,10 @@ def _spec(raw: dict, base: Path, text: str) -> PileSpec:
                                                                        "head" else "used twice"))
         gauges[g["name"]] = g["distance"]
     out = d["output"] or validate_table(OUTPUT, {}, "output")
-    return PileSpec(pile, driving, soil, penetration, gauges, analysis["kind"], points, points_key, dr["efficiency"],
+    if analysis["blows"] != 1 and analysis["kind"] != "blow":
+        raise ModelError(f"analysis.blows: successive blows belong to the blow analysis, not {analysis['kind']!r}")
+    return PileSpec(pile, driving, soil, penetration, gauges, analysis["kind"], analysis["blows"], points, points_key,
+                    dr["efficiency"],
                     sim["dt"],
                     sim["duration"], sim["backend"], out["plots"], out["units"], d["title"] or "", text)
 
@@ -361,6 +368,7 @@ class PileRun:
     blow: Optional[Blow] = None
     table: Optional[BlowTable] = None
     warnings: list[str] = field(default_factory=list)
+    sets: list[float] = field(default_factory=list)
 
 
 def _resistance(spec: PileSpec, depth: float) -> Any:
@@ -381,7 +389,8 @@ def run(spec: PileSpec, progress: Optional[bool] = None) -> PileRun:
 def _run(spec: PileSpec, progress: Optional[bool]) -> PileRun:
     opts, kind = spec.blow_options, spec.analysis
     if kind == "blow":
-        return PileRun(kind, blow=drive_blow(spec.pile, spec.driving, _resistance(spec, spec.penetration), **opts))
+        blows = drive_blows(spec.pile, spec.driving, _resistance(spec, spec.penetration), spec.blows, **opts)
+        return PileRun(kind, blow=blows[-1], sets=[b.permanent_set for b in blows])
     if kind == "bearing-graph":
         table = bearing_graph(spec.pile, spec.driving, spec.soil, spec.points, spec.penetration, progress=progress,
                               **opts)
@@ -409,6 +418,7 @@ def summarize_run(r: PileRun, spec: PileSpec) -> dict[str, Any]:
         c, t = b.envelope.max_compression, b.envelope.max_tension
         out.update({
             "penetration_m": spec.penetration, "soil_resistance_N": b.soil.total,
+            "blows": len(r.sets), "permanent_sets_m": r.sets,
             "permanent_set_m": b.permanent_set, "blows_per_0.25m": _finite(b.blows_per_quarter_metre),
             "blows_per_ft": _finite(b.blows_per_foot), "emx_J": b.emx,
             "max_compression_Pa": c[0], "max_compression_depth_m": c[1], "max_compression_time_s": c[2],
@@ -439,6 +449,9 @@ def format_summary(s: dict[str, Any], spec: PileSpec, units: Optional[str] = Non
         blows = s["blows_per_0.25m"] if u["blows"][0] == 0.25 else s["blows_per_ft"]
         lines.append(f"toe at {show(s['penetration_m'], 'length')}, soil resistance during driving "
                      f"{show(s['soil_resistance_N'], 'force')}")
+        if s["blows"] > 1:
+            lines.append(f"{s['blows']} blows, sets " + ", ".join(show(x, "set") for x in s["permanent_sets_m"])
+                         + "; the last blow:")
         lines.append(f"permanent set {show(s['permanent_set_m'], 'set')}: "
                      + ("refusal" if blows is None else f"{blows:.4g} {u['blows'][1]}"))
         lines.append(f"EMX (largest energy through the head) {show(s['emx_J'], 'energy')}")

@@ -8,7 +8,7 @@ units inside (US customary for display: :mod:`rodimpact.pile.units`); x runs dow
 are tension positive, downward velocity and set are positive.
 """
 
-from .blow import Blow, StressEnvelope, blow_setup, drive_blow, stress_envelope, transferred_energy
+from .blow import Blow, StressEnvelope, blow_setup, drive_blow, drive_blows, stress_envelope, transferred_energy
 from .driving import DrivingSystem, impact_velocity
 from .hammers import HAMMER_KINDS, Hammer, hammer, hammer_names
 from .soil import CapacitySoil, SoilDynamics, SoilLayer, SoilProfile, SoilResistance
@@ -26,6 +26,7 @@ __all__ = [
     "StressEnvelope",
     "blow_setup",
     "drive_blow",
+    "drive_blows",
     "hammer",
     "hammer_names",
     "impact_velocity",

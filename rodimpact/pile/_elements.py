@@ -1,6 +1,6 @@
-"""PLACEHOLDER until the branches pile-chain and pile-soil are merged: stand-ins with the agreed names and fields
-of the kernel elements, so that the application layer can be built and its conversions tested. Replaced by imports
-from ``rodimpact.rods`` at the merge."""
+"""PLACEHOLDER until the branch pile-chain is merged: stand-ins with the agreed names and fields of the lumped-chain
+elements, so that the application layer can be built and its conversions tested. Replaced by imports from
+``rodimpact.rods.conditions`` at the merge."""
 
 from __future__ import annotations
 
@@ -34,27 +34,3 @@ class LumpedEnd:
 @dataclass(frozen=True)
 class LumpedJoint:
     items: Sequence[Any]
-
-
-@dataclass(frozen=True)
-class ShaftResistance:
-    rod: int
-    depths: Sequence[float]
-    unit_resistance: Sequence[float]
-    quake: float
-    unloading_quake: float | None = None
-    damping: float | None = None
-    damping_kind: str = "smith"
-    resistance: Sequence[float] = ()
-    plastic_set: Sequence[float] = ()
-
-
-@dataclass(frozen=True)
-class SoilToe:
-    ultimate: float
-    quake: float
-    unloading_quake: float | None = None
-    damping: float | None = None
-    damping_kind: str = "smith"
-    resistance: float = 0.0
-    plastic_set: float = 0.0

@@ -15,21 +15,23 @@ velocity at the gauges).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Any, Mapping, Optional
 
 import numpy as np
 
-from .._validate import non_negative, positive
+from .._validate import integer, non_negative, positive
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
 from ..direct.result import PEAK_REL_TOL, Probe, ProbeHistory, SimulationResult
 from ..direct.simulate import simulate
+from ..direct.soil_result import next_blow
 from ..lattice.lattice import default_time_step
 from ..rods.conditions import Contact, FreeEnd
 from ..rods.rod import Rod
+from ..rods.soil import ShaftResistance, SoilToe
 from ..rods.system import System
-from ._elements import ShaftResistance, SoilToe
 from .driving import DrivingSystem
 from .soil import SoilResistance
 from .units import blows_per_foot, blows_per_inch, blows_per_quarter_metre
@@ -242,6 +244,28 @@ def evaluate_blow(result: SimulationResult, pile: Rod, pile_index: int, soil: Op
     enthru = transferred_energy(head.force, head.velocity, result.dt)
     permanent = None if soil is None else toe_permanent_set(result)
     return Blow(result, pile, pile_index, soil, head, enthru, stress_envelope(depth, snaps.time, stress), permanent)
+
+
+def drive_blows(pile: Rod, driving: DrivingSystem, soil: SoilResistance, count: int, *,
+                gauges: Optional[Mapping[str, float]] = None, duration: Optional[float] = None,
+                dt: Optional[float] = None, backend: str = "numba", residual: bool = True) -> list[Blow]:
+    """``count`` successive blows: each next blow starts from the soil state the previous one left (every node's
+    static resistance and plastic set, :func:`rodimpact.direct.soil_result.next_blow`) and, with ``residual``,
+    the pile's final element forces (the residual stress that balances the loaded soil), the pile at rest and
+    the hammer as at the first blow. The soil is the same for every blow (the pile's advance, a few millimetres
+    per blow, does not change it); each blow's ``permanent_set`` is its own, from where it started."""
+    n = integer("count", count, 1, "blows")
+    setup = blow_setup(pile, driving, soil, gauges=gauges, duration=duration, dt=dt)
+    problem = setup.problem
+    blows: list[Blow] = []
+    for _ in range(n):
+        result = simulate(problem, backend=backend, progress=False)
+        blows.append(evaluate_blow(result, pile, setup.pile_index, soil))
+        system = next_blow(result, problem.system.velocities, residual)
+        if driving.ram is None:
+            system = dataclasses.replace(system, left=driving.pile_head())
+        problem = dataclasses.replace(problem, system=system)
+    return blows
 
 
 def toe_permanent_set(result: SimulationResult) -> float:
