@@ -63,7 +63,7 @@ def _run_waves(n_steps, N, v, Z, R, touch, rod_start, end_code, end_par, end_sta
         sp_elem, sp_cap,
         sp_force, sp_F, sp_V, pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp, junction_N, junction_contact, end_N,
         end_V, rod_NL, rod_VL, rod_NR, rod_VR)
-    junctions = junctions + (junction_par, junction_q)     # the joints of later work (not in the old loop)
+    junctions = junctions + (junction_par, junction_q, None)     # the joints and lumped chains of later work
     f = 0.5 * (N - Z * v)
     g = 0.5 * (N + Z * v)
     for i in range(n_steps):
@@ -185,8 +185,8 @@ def old_simulate(system, steps: int, dt: float, probes=(), snapshot_every=None, 
     events = sorted(set(energy_steps) | set(snap_steps) | set(range(0, n_steps, _MAX_CHUNK)))
     e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
     snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
-    static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key not in ("step_inputs", "sp_loaded")
-              and "soil" not in key}
+    static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key not in ("step_inputs", "sp_loaded",
+              "lumped") and "soil" not in key}
     static["junction_q"] = law_state(arrays["junction_code"], arrays["junction_q"])
     k = 0
     for target in events:

@@ -12,15 +12,16 @@ from .rods.segments import (AreaFunction, Cone, CoshHorn, CosHorn, Cylinder, Exp
                             QuadraticHorn, Segment, TabulatedProfile, Tube, stepped_profile)
 from .rods.rod import Rod
 from .rods.history import History
-from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEnd, ForceEnd, FreeEnd, Junction,
-                              NonReflectingEnd, PulseShaper, Specimen, SpringDashpot, SpringEnd, VelocityEnd)
+from .rods.conditions import (BitRockEnd, Bonded, Contact, Cushion, EndCondition, FixedEnd, ForceEnd, FreeEnd,
+                              Junction, LumpedEnd, LumpedJoint, NonReflectingEnd, PointMass, PulseShaper, Specimen,
+                              SpringDashpot, SpringEnd, VelocityEnd)
 from .rods.laws import CowperSymonds, ElasticPlastic, FrewShaper, JohnsonCook, LinearElastic, TabulatedLaw
 from .rods.loads import Bearings, NodalForce
 from .rods.soil import ShaftResistance, SmithSoil, SoilToe
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
-from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents, Probe,
-                            ProbeHistory, SimulationResult)
+from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents,
+                            LumpedOutcome, Probe, ProbeHistory, SimulationResult)
 from .direct.recording import Outputs
 from .direct.problem import Problem, TimeGrid
 from .direct.simulate import simulate
@@ -55,13 +56,14 @@ __all__ = [
     "Rod", "History", "System", "InitialState",
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "Specimen", "PulseShaper",
+    "PointMass", "Cushion", "LumpedEnd", "LumpedJoint",
     "LinearElastic", "ElasticPlastic", "JohnsonCook", "CowperSymonds", "FrewShaper", "TabulatedLaw", "NodalForce", "Bearings",
     "SmithSoil", "ShaftResistance", "SoilToe", "SoilOutcome", "next_blow",
     "Lattice", "build_lattice",
     "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
     "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
     "FieldSnapshots", "EnergyHistory",
-    "JunctionEvents", "BitRockOutcome", "JointOutcome",
+    "JunctionEvents", "BitRockOutcome", "JointOutcome", "LumpedOutcome",
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",

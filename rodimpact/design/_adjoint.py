@@ -179,7 +179,7 @@ class ImpactProblem:
         ends = (a["end_code"], a["end_par"], np.zeros((2, 2)), self._end_value)
         junctions = (a["junction_code"], np.zeros(n_j, dtype=np.int64), a["gap"].copy(), a["gap_tol"],
                      np.zeros((n_rods, 2)), a["junction_par"],
-                     law_state(a["junction_code"], np.zeros_like(a["junction_q"])))
+                     law_state(a["junction_code"], np.zeros_like(a["junction_q"])), None)   # design refuses chains
         specials = (a["sp_elem"], a["sp_cap"], self._sp_force, np.zeros(n_sp), np.zeros(n_sp), None)   # no soil
         probes = (a["pr_rod"], a["pr_local"], a["pr_sp"], np.zeros((n_p, steps)), np.zeros((n_p, steps)),
                   np.zeros((n_p, steps)), np.zeros(n_p))

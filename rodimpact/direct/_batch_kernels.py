@@ -141,7 +141,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     end_state = np.zeros((2, 2))
     ends = (end_code, end_par[d].copy(), end_state, end_value)
     junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)),
-                 junction_par, fresh_law_state(law_q))
+                 junction_par, fresh_law_state(law_q), None)     # no lumped chains (batch.py refuses them)
     specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V, None)     # no soil in a batch (batch.slot_problem)
     probes = (no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0))
     outputs = (junction_N, junction_contact, end_N, end_V)

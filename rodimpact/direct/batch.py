@@ -24,7 +24,7 @@ from .._moved import moved
 from .._version import __version__
 from .._validate import caller_stacklevel, finite_array, finite_values, fits_in_memory, positive
 from ..lattice.discretize import discretize_rod
-from ..rods.conditions import NonReflectingEnd
+from ..rods.conditions import LumpedEnd, LumpedJoint, NonReflectingEnd
 from ..rods.material import STEEL
 from ..rods.rod import Rod
 from ..rods.soil import ShaftResistance, SoilToe
@@ -336,6 +336,12 @@ def slot_problem(system: System) -> str:
     if any(ld.rod == 0 for ld in system.loads):
         return ("system.loads: rod 0 is the striker slot, which is replaced per design; loads on it are not "
                 "supported in a batch (use simulate)")
+    chains = [where for where, p in [("system.left", system.left), ("system.right", system.right)]
+              + [(f"system.junctions[{i}]", j) for i, j in enumerate(system.junctions)]
+              if isinstance(p, (LumpedEnd, LumpedJoint))]
+    if chains:
+        return (f"{chains[0]}: lumped chains (point masses and cushions) are not supported in a batch; run each "
+                "design with simulate (or a sweep)")
     if any(isinstance(ld, ShaftResistance) for ld in system.loads) or any(
             isinstance(e, SoilToe) for e in (system.left, system.right)):
         return ("system: simulate_batch does not support Smith soil (ShaftResistance, SoilToe) yet; run the "

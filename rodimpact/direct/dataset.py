@@ -15,9 +15,10 @@ Variables: ``junction_force``, ``junction_contact`` (junction, time); ``end_forc
 ``probe_position``, ``probe_node_position`` (probe); energies, works and momentum per rod (rod, energy_time); the
 lattice (``impedance``, ``element_length``, ``rod_start``, ``rod_*``), the final state and the field snapshots
 (``force_field``, ``velocity_field`` (element, snapshot_time), ``displacement_field`` (node, snapshot_time)); the
-contact events; with deformable joints their outcomes (``joint_*`` along ``joint``); with a bit-rock end, its
-outcome (``bit_rock_*`` along ``bit_rock``, whose coordinate names the
-end: :class:`~rodimpact.direct.result.BitRockOutcome`; absent in files written before it); with soil, the
+contact events; with deformable joints their outcomes (``joint_*`` along ``joint``); with lumped chains their
+energies (``lumped_*`` along ``lumped``, the per-item values in the attribute ``lumped_items``); with a bit-rock
+end, its outcome (``bit_rock_*`` along ``bit_rock``, whose coordinate names the end:
+:class:`~rodimpact.direct.result.BitRockOutcome`; absent in files written before it); with soil, the
 :class:`~rodimpact.direct.soil_result.SoilOutcome` (``soil_*`` along ``soil_node``, ``soil_toe_*`` along
 ``soil_toe``). Every variable has a
 ``units`` attribute. Written so that every NetCDF flavour can hold it: integers as int32/int8, no variables
@@ -50,6 +51,12 @@ BIT_ROCK_FIELDS = {"loading_stiffness": "N/m", "unloading_stiffness": "N/m", "ma
 #: The fields of a :class:`~rodimpact.direct.result.JointOutcome` stored as ``joint_<field>``, with units.
 JOINT_FIELDS = {"junction": "", "shortening": "m", "strain": "1", "plastic_strain": "1",
                 "accumulated_plastic_strain": "1", "plastic_work": "J", "stored_energy": "J"}
+
+
+#: The energies of a :class:`~rodimpact.direct.result.LumpedOutcome` stored as ``lumped_<field>`` (J) along
+#: ``lumped`` (its coordinate: the chain's place); the mass velocities and cushion compressions of each chain go
+#: into the attribute ``lumped_items`` (JSON: [[velocities, max_compressions], ...]).
+LUMPED_FIELDS = ("initial_kinetic_energy", "kinetic_energy", "stored_energy", "dissipated_energy", "energy_to_rods")
 
 
 def json_default(o: Any) -> Any:
@@ -145,6 +152,12 @@ def result_dataset(result: Any, fields: bool = True):
             values = np.array([getattr(o, name) for o in result.joints])
             data[f"joint_{name}"] = (("joint",), values.astype(np.int32) if name == "junction" else values,
                                      {"units": unit} if unit else {})
+    if result.lumped:
+        coords["lumped"] = ("lumped", np.array([o.place for o in result.lumped]),
+                            {"long_name": "place of a lumped chain (left, right, junction <r>)"})
+        for name in LUMPED_FIELDS:
+            data[f"lumped_{name}"] = (("lumped",), np.array([getattr(o, name) for o in result.lumped]),
+                                      {"units": "J"})
     soil_data, soil_coords = soil_variables(getattr(result, "soil", None))
     data.update(soil_data)
     coords.update(soil_coords)
@@ -155,4 +168,6 @@ def result_dataset(result: Any, fields: bool = True):
              "diagnostics": json.dumps(result.diagnostics, default=json_default),
              "conventions": "SI units; normal force positive in tension; node values per step at the step start "
                             "time k*dt, every record_every-th step kept; contact phases [start, stop) in steps"}
+    if result.lumped:
+        attrs["lumped_items"] = json.dumps([[o.velocities, o.max_compressions] for o in result.lumped])
     return xr.Dataset(data, coords=coords, attrs=attrs)

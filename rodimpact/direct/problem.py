@@ -19,8 +19,8 @@ import numpy as np
 
 from .._validate import positive
 from ..lattice.lattice import Lattice, build_lattice, default_time_step
-from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
-                               DeformableJoint, SpringDashpot, SpringEnd, VelocityEnd)
+from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, FreeEnd, LumpedEnd, LumpedJoint,
+                               NonReflectingEnd, DeformableJoint, PointMass, SpringDashpot, SpringEnd, VelocityEnd)
 from ..rods.laws import N_PARAMS
 from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
@@ -29,6 +29,7 @@ from ..rods.system import InitialState, System
 from . import boundary as B
 from . import soil as S
 from .joints import HEADER_COLUMNS, STATE_COLUMNS
+from .lumped import CUSHION, MASS
 from .recording import Outputs, check_probes
 from .result import Probe
 
@@ -308,6 +309,8 @@ def _end_setup(cond: EndCondition, side: int, N: np.ndarray, v: np.ndarray, z: n
     elif isinstance(cond, BitRockEnd):
         code = B.BITROCK
         par = (cond.loading_stiffness, cond.unloading_stiffness)
+    elif isinstance(cond, LumpedEnd):
+        code = B.LUMPED                  # its items go to lumped_arrays
     elif isinstance(cond, SoilToe):
         code = B.SOIL_TOE           # its law is a row of the soil arrays (soil_rows); p1: its start R_s
         par = (0.0, cond.resistance)
@@ -416,7 +419,37 @@ def kernel_arrays(system: System, lat: Lattice, N: np.ndarray, v: np.ndarray, pr
         pr_sp=np.array(pr_sp, dtype=np.int64), pr_disp=np.zeros(n_p), acc=np.zeros(B.ACC_SLOTS),
         # per-step histories: shapes only (rows); the steps are written through _History's buffers
         pr_N=np.zeros((n_p, 0)), pr_V=np.zeros((n_p, 0)), pr_u=np.zeros((n_p, 0)), junction_N=np.zeros((n_j, 0)),
-        junction_contact=np.zeros((n_j, 0)), end_N=np.zeros((2, 0)), end_V=np.zeros((2, 0)))
+        junction_contact=np.zeros((n_j, 0)), end_N=np.zeros((2, 0)), end_V=np.zeros((2, 0)),
+        lumped=lumped_arrays(system))
+
+
+def lumped_arrays(system: System) -> Optional[tuple]:
+    """The lumped chains of ``system`` in the layout of :mod:`rodimpact.direct.lumped` (rows 0 and 1 the left and
+    right end, 2 + r junction r; masses at their initial velocities, cushions uncompressed, every contact of a
+    mass with a rod face touching), or None if it has none (the step loops are then compiled without the chain
+    solver)."""
+    places = [system.left, system.right, *system.junctions]
+    chains = {row: p.items for row, p in enumerate(places) if isinstance(p, (LumpedEnd, LumpedJoint))}
+    if not chains:
+        return None
+    width = max(len(items) for items in chains.values())
+    n_items = np.zeros(len(places), dtype=np.int64)
+    kind = np.zeros((len(places), width), dtype=np.int64)
+    par = np.zeros((len(places), width, 2))
+    state = np.zeros((len(places), width, 3))
+    contact = np.zeros((len(places), 2, 2))
+    contact[:, :, 0] = 1.0
+    for row, items in chains.items():
+        n_items[row] = len(items)
+        for i, item in enumerate(items):
+            if isinstance(item, PointMass):
+                kind[row, i] = MASS
+                par[row, i, 0] = item.mass
+                state[row, i, 0] = item.velocity * (-1.0 if row == 1 else 1.0)    # along the chain: -x at right
+            else:
+                kind[row, i] = CUSHION
+                par[row, i] = item.stiffness, item.unloading_stiffness
+    return n_items, kind, par, state, contact
 
 
 # ---------------------------------------------------------------------------------------------- soil

@@ -10,12 +10,13 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from ..lattice.lattice import Lattice
-from ..rods.conditions import BitRockEnd, DeformableJoint
+from ..rods.conditions import BitRockEnd, DeformableJoint, LumpedEnd, LumpedJoint, PointMass
 from ..rods.declared import check, quantity, text
 from ..rods.declared import rod as rod_index
 from ..rods.laws import FREW
 from ..rods.system import System
 from ._momentum import mean_velocities
+from .lumped import chain_energies
 from .tables import SimulationTables
 
 
@@ -281,6 +282,51 @@ def joint_outcomes(system: System, gap: np.ndarray, state: np.ndarray) -> tuple[
     return tuple(out)
 
 
+@dataclass(frozen=True)
+class LumpedOutcome:
+    """The energies of a lumped chain (:class:`~rodimpact.LumpedEnd`, :class:`~rodimpact.LumpedJoint`) at the end
+    of a run, J, and its state.
+
+    ``place``: ``"left"``, ``"right"`` or ``"junction <r>"``. ``initial_kinetic_energy`` and ``kinetic_energy``:
+    sum of M V^2 / 2 of its masses at t = 0 and at the end. ``stored_energy``: what the cushions would give back,
+    the area under their unloading lines (k / e^2) (d - r)^2 / 2 above the release point r = d_max (1 - e^2).
+    ``dissipated_energy``: the work the cushions took minus ``stored_energy`` (for a cushion unloaded after one
+    compression to d_max: (1 - e^2) k d_max^2 / 2). ``energy_to_rods``: the work the chain did on the rod faces,
+    ``initial_kinetic_energy - kinetic_energy - stored_energy - dissipated_energy`` (at an outer end the end's
+    ``EnergyHistory.work_left`` / ``work_right``, in a joint its share of ``work_joints``). ``velocities``: of
+    the masses, m/s along x, in item order; ``max_compressions``: d_max of the cushions, m, in item order.
+    """
+
+    place: str
+    initial_kinetic_energy: float
+    kinetic_energy: float
+    stored_energy: float
+    dissipated_energy: float
+    energy_to_rods: float
+    velocities: tuple[float, ...]
+    max_compressions: tuple[float, ...]
+
+
+def lumped_outcomes(system: System, lumped: Optional[tuple]) -> tuple[LumpedOutcome, ...]:
+    """A :class:`LumpedOutcome` for each lumped chain of ``system`` (left end, right end, junctions in order)
+    from the kernel's final chain state ``lumped`` (:mod:`rodimpact.direct.lumped`)."""
+    out = []
+    places = [("left", system.left), ("right", system.right),
+              *((f"junction {r}", j) for r, j in enumerate(system.junctions))]
+    for row, (name, p) in enumerate(places):
+        if not isinstance(p, (LumpedEnd, LumpedJoint)):
+            continue
+        kinetic, stored, work = chain_energies(lumped, row)
+        initial = sum(0.5 * it.mass * it.velocity ** 2 for it in p.items if isinstance(it, PointMass))
+        sign = -1.0 if row == 1 else 1.0            # along the chain -> along x
+        state = lumped[3][row]
+        out.append(LumpedOutcome(
+            name, initial, kinetic, stored, work - stored, initial - kinetic - work,
+            tuple(sign * float(state[i, 0]) for i, it in enumerate(p.items) if isinstance(it, PointMass)),
+            tuple(float(state[i, 1]) for i, it in enumerate(p.items) if not isinstance(it, PointMass))))
+    return tuple(out)
+
+
 @dataclass(frozen=True, repr=False)
 class JunctionEvents:
     """Contact phases of one junction, taken at every time step (whatever the recording stride).
@@ -412,6 +458,7 @@ class SimulationResult(SimulationTables):
     junction_events: Optional[tuple[JunctionEvents, ...]] = None   # default: from the histories
     bit_rock: tuple[BitRockOutcome, ...] = ()   # one per outer end with a BitRockEnd (left first)
     joints: tuple[JointOutcome, ...] = ()       # one per deformable joint (Specimen, PulseShaper), left first
+    lumped: tuple[LumpedOutcome, ...] = ()      # one per lumped chain (LumpedEnd, LumpedJoint): left, right, joints
     soil: Any = None        # the soil's final state, a rodimpact.direct.soil_result.SoilOutcome (None: no soil)
 
     def __post_init__(self) -> None:

@@ -20,7 +20,8 @@ from .problem import Problem, wave_arrays
 from .recording import Recorder, Outputs
 from .soil import soil_arrays
 from .soil_result import soil_outcome
-from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes, joint_outcomes
+from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes, joint_outcomes, \
+    lumped_outcomes
 
 Backend = Literal["numba", "numpy"]
 _MAX_CHUNK = 65536   # steps per compiled call at most: bounds the per-step input and output arrays
@@ -156,7 +157,7 @@ def _solve(problem: Problem, backend: Backend, progress: Optional[bool],
         bit_rock=bit_rock_outcomes(system, arrays["end_state"], energy.work_left[-1], energy.work_right[-1],
                                    energy.kinetic[:, 0] + energy.strain[:, 0]),
         joints=joint_outcomes(system, arrays["gap"], arrays["junction_q"]),
-        soil=soil_outcome(system, lattice, arrays, soil_start))
+        lumped=lumped_outcomes(system, arrays["lumped"]), soil=soil_outcome(system, lattice, arrays, soil_start))
 
 
 def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays: dict, state: dict,
@@ -177,7 +178,8 @@ def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays
     wave_state = (N, v, f, g)
     lattice = (z, reflection, touch, arrays["rod_start"], quiet)
     junctions = (*(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end",
-                                          "junction_par")), B.law_state(arrays["junction_code"], arrays["junction_q"]))
+                                          "junction_par")), B.law_state(arrays["junction_code"], arrays["junction_q"]),
+                 arrays["lumped"])
     n_sp = arrays["sp_elem"].size
     soil = soil_arrays(arrays)   # None without soil: no soil code compiled
     scratch = (np.zeros(n_sp), np.zeros(n_sp))      # resolved force and velocity of each special node
@@ -215,8 +217,12 @@ def quiet_front(N: np.ndarray, v: np.ndarray, first: int, right_passive: bool, f
 
 def passive_right(arrays: dict) -> bool:
     """The right end cannot start a wave by itself: fixed, free, a spring or bit-rock law, or a non-reflecting
-    end whose continuation is at rest (prescribed forces and velocities may act at any step)."""
+    end whose continuation is at rest (prescribed forces and velocities may act at any step), and no mass of a
+    lumped chain at the right end or in a joint moves at the start."""
     code, par = int(arrays["end_code"][1]), arrays["end_par"][1]
+    lumped = arrays.get("lumped")
+    if lumped is not None and np.any(lumped[3][1:, :, 0] != 0.0):
+        return False        # a moving mass at the right end or in a joint moves the rods right of it
     return (code in (B.FREE, B.FIXED, B.SPRING, B.BITROCK) or (code == B.NONREFLECTING and par[1] == 0.0)
             or (code == B.SOIL_TOE and par[1] == 0.0))     # a soil toe that starts unloaded
 

@@ -20,8 +20,8 @@ from ..direct.problem import Problem
 from ..direct.recording import Outputs
 from ..direct.simulate import simulate
 from ..lattice.lattice import Lattice, build_lattice
-from ..rods.conditions import (BitRockEnd, Bonded, Contact, FixedEnd, ForceEnd, FreeEnd, NonReflectingEnd,
-                               SpringDashpot, SpringEnd)
+from ..rods.conditions import (BitRockEnd, Bonded, Contact, FixedEnd, ForceEnd, FreeEnd, LumpedEnd, LumpedJoint,
+                               NonReflectingEnd, SpringDashpot, SpringEnd)
 from ..rods.rod import Rod
 from ..rods.system import System
 from ._rectangular import chain_response
@@ -36,6 +36,7 @@ def as_struck_system(struck: Any) -> System:
         if not isinstance(struck.left, FreeEnd):
             raise ValueError("struck.left: the left end of the struck system is the impact face; give left='free' "
                              f"(it is driven by the contact force), got {struck.left!r}")
+        _refuse_lumped(struck)
         return struck
     if isinstance(struck, Rod) or (isinstance(struck, (list, tuple)) and struck):
         for i, r in enumerate([struck] if isinstance(struck, Rod) else struck):
@@ -44,6 +45,17 @@ def as_struck_system(struck: Any) -> System:
         return System.struck(struck)
     raise TypeError(f"struck: must be a Rod, a list of Rods (from the impact face outwards) or a System such as "
                     f"ri.System.struck(rods, far_end=...), got {type(struck).__name__}")
+
+
+def _refuse_lumped(struck: System) -> None:
+    """Refuse lumped chains (point masses and cushions): synthesis, force transformation and design's exact
+    gradients do not cover them (their cushions are nonlinear and the adjoint has no transpose of the chain);
+    ``simulate`` takes them."""
+    places = [("struck.right", struck.right)] + [(f"struck.junctions[{i}]", j) for i, j in enumerate(struck.junctions)]
+    for where, p in places:
+        if isinstance(p, (LumpedEnd, LumpedJoint)):
+            raise ValueError(f"{where}: a {type(p).__name__} (point masses and cushions) is not supported by "
+                             "synthesize, transform_force and design; simulate takes it")
 
 
 #: where the struck-system keywords of synthesize, transform_force and design went (rodimpact._moved)

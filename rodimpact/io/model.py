@@ -676,6 +676,8 @@ def _element(family: str, d: dict | str, path: str, params: dict[str, float], ba
         where = f"{path}.{f.name}"
         values[f.name] = (_history(d[f.name], where, params, base_dir, decl.dimension) if decl.kind == "history"
                           else _element(decl.family, d[f.name], where, params, base_dir) if decl.kind == "part"
+                          else [_element(decl.family, x, f"{where}[{i}]", params, base_dir)
+                                for i, x in enumerate(d[f.name])] if decl.kind == "parts"
                           else str(base_dir / d[f.name]) if decl.kind == "path" and d[f.name] is not None
                           else d[f.name])
     return _wrap(path, lambda: cls(**values), cls.__name__)
@@ -894,6 +896,8 @@ class _Writer:
                     d[f.name] = [float(x) for x in value]
             elif decl.kind == "part":
                 d[f.name] = self.element(value, f"{path}.{f.name}", inline=True)
+            elif decl.kind == "parts":
+                d[f.name] = [self.element(x, f"{path}.{f.name}[{i}]", inline=True) for i, x in enumerate(value)]
             elif decl.kind == "path" and value is None and hasattr(e, "plastic_strain"):
                 raise ModelWriteError(f"{path}: a table given as arrays cannot be written to a model file; give "
                                       "it as a CSV file")

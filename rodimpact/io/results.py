@@ -53,9 +53,10 @@ from .._version import __version__
 from .._permissions import normal_mode
 from .._result_files import netcdf_engine
 from .._validate import caller_stacklevel
-from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, JOINT_FIELDS, json_default, result_dataset
-from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents, Probe,
-                             ProbeHistory, SimulationResult, first_within_rounding)
+from ..direct.dataset import (BIT_ROCK_FIELDS, FORMAT_VERSION, JOINT_FIELDS, LUMPED_FIELDS, json_default,
+                              result_dataset)
+from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents,
+                             LumpedOutcome, Probe, ProbeHistory, SimulationResult, first_within_rounding)
 from ..direct.soil_result import soil_from_variables
 from ..lattice.discretize import RodDiscretization
 from ..lattice.lattice import Lattice
@@ -804,6 +805,11 @@ def _from_dataset(ds: Any, nc: Path) -> SimulationResult:
     joints = tuple(JointOutcome(**{name: (int if name == "junction" else float)(v[f"joint_{name}"][i])
                                    for name in JOINT_FIELDS}) for i in range(v["joint_junction"].size)) \
         if "joint_junction" in v else ()
+    places = [str(p) for p in ds["lumped"].values] if "lumped" in ds.coords else []
+    items = json.loads(ds.attrs.get("lumped_items", "[]"))
+    lumped = tuple(LumpedOutcome(place=place, **{name: float(v[f"lumped_{name}"][i]) for name in LUMPED_FIELDS},
+                                 velocities=tuple(items[i][0]), max_compressions=tuple(items[i][1]))
+                   for i, place in enumerate(places))
     events = _events(v, n_j) if "junction_min_force" in v or n_j == 0 else None   # format 1: rebuilt from histories
     return SimulationResult(
         system=system, lattice=lattice, time=time, junction_force=jf, junction_contact=jc,
@@ -812,4 +818,4 @@ def _from_dataset(ds: Any, nc: Path) -> SimulationResult:
         probes=probes, snapshots=snapshots, energy=energy, final_force=v["final_force"],
         final_velocity=v["final_velocity"], diagnostics=diagnostics, record_every=record_every,
         n_steps=int(ds.attrs.get("steps", n_steps)), junction_events=events, bit_rock=bit_rock, joints=joints,
-        soil=soil_from_variables(v, ds.coords))
+        lumped=lumped, soil=soil_from_variables(v, ds.coords))

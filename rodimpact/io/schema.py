@@ -95,9 +95,10 @@ def element_table(name: str, cls: type, example: str = "") -> Table:
     fields = []
     for f, d in declarations(cls):
         optional = has_default(f)
-        if d.kind == "part":               # a nested element, chosen by its type
-            fields.append(Field(f.name, "variant", d.doc, required=True,
-                                variants=Variants("type", element_tables(d.family))))
+        if d.kind in ("part", "parts"):    # nested elements, each chosen by its type
+            fields.append(Field(f.name, "variant" if d.kind == "part" else "tables", d.doc, required=True,
+                                variants=Variants("type", element_tables(d.family)),
+                                minimum=1 if d.kind == "parts" else None))
             continue
         fields.append(Field(f.name, _DECLARED_KINDS[d.kind], d.doc,
                             dimension=d.dimension if d.kind in ("quantity", "quantities", "history") else None,
@@ -214,6 +215,7 @@ MATERIAL = Table("materials", "Named materials (`[materials.NAME]`), used by `ma
 
 JUNCTION_TYPES = element_tables("junction")
 LAW_TYPES = element_tables("law")
+LUMPED_TYPES = element_tables("lumped")
 END_TYPES = element_tables("end")
 
 _END_VARIANTS = Variants("type", END_TYPES, aliases=(("non-reflecting", "nonreflecting"),))
@@ -667,6 +669,12 @@ def reference_markdown() -> str:
                   "(docs/shpb.md).", ""])
     for name, t in LAW_TYPES.items():
         _table_md(f"law type = \"{name}\"", t, 4, lines, key="type")
+    lines.extend(["### Items of lumped chains (`items = [{ type = ... }, ...]`)", "", "The `items` of a `lumped` "
+                  "end (from the outside towards the rod face, the outermost a `point-mass`) or junction (from the "
+                  "left rod's face to the right rod's face): point masses and cushions, never two of a kind next to "
+                  "each other (docs/lumped.md).", ""])
+    for name, t in LUMPED_TYPES.items():
+        _table_md(f"item type = \"{name}\"", t, 4, lines, key="type")
     _table_md("`[ends]`", ENDS, 2, lines)
     for name, t in END_TYPES.items():
         _table_md(f"type = \"{name}\"", t, 3, lines, key="type")

@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from .declared import check, choice, element, flag, history, part, quantity, type_name
+from .declared import check, choice, element, flag, history, part, parts, quantity, type_name
 from .laws import FREW, Law
 from .history import HistoryLike
 
@@ -163,7 +163,7 @@ def as_end_condition(value: Any, where: str) -> EndCondition:
     if isinstance(value, str) and value.strip().lower() in END_NAMES:
         return END_NAMES[value.strip().lower()]()
     text = (f"{where}: must be an end condition object (FreeEnd, FixedEnd, ForceEnd, VelocityEnd, "
-            f"NonReflectingEnd, SpringEnd, BitRockEnd) or one of the names {sorted(END_NAMES)}, got {value!r}")
+            f"NonReflectingEnd, SpringEnd, BitRockEnd, LumpedEnd) or one of the names {sorted(END_NAMES)}, got {value!r}")
     if not isinstance(value, str):
         raise TypeError(text + f" (of type {type(value).__name__})")
     raise ValueError(text + _did_you_mean(value, END_NAMES))
@@ -319,6 +319,112 @@ class PulseShaper(DeformableJoint):
     @property
     def initial_length(self) -> float:
         return self.thickness
+
+
+# ------------------------------------------------------------------------------------- lumped chains (issue 23)
+@element("lumped", "point-mass")
+@dataclass(frozen=True)
+class PointMass:
+    """A rigid mass in a lumped chain (a hammer ram, a helmet, an anvil), moving along the rod axis.
+
+    ``velocity`` is its velocity at t = 0, positive along x (a ram above the head of a pile on its right moves
+    with +V0). In a step it moves with its midpoint velocity V_mid = (V_k + V_k+1) / 2 and M (V_k+1 - V_k) is the
+    impulse of the forces of its neighbours (docs/lumped.md). A mass next to a rod face rests on it in
+    unilateral contact: it pushes, and separates when the face force would turn tensile.
+    """
+
+    mass: float = quantity("mass", "Mass M.")
+    velocity: float = quantity("velocity", "Velocity at t = 0 (positive along x).", bound=None, default=0.0)
+
+    def __post_init__(self) -> None:
+        check(self)
+
+
+@element("lumped", "cushion")
+@dataclass(frozen=True)
+class Cushion:
+    """A massless, compression-only cushion in a lumped chain (hammer cushion, pile cushion) with a coefficient
+    of restitution e: it loads along F = k d (virgin loading while the compression d exceeds its largest value
+    d_max so far) and unloads and reloads along the line of slope k / e^2 through (d_max, k d_max), carrying
+    nothing below the release point d_max (1 - e^2).
+
+    A full load-unload cycle to d_max stores k d_max^2 / 2 and gives back e^2 of it, the usual definition of the
+    cushion's restitution in pile-driving analysis (E. A. L. Smith, Pile-driving analysis by the wave equation,
+    J. Soil Mech. Found. Div. ASCE 86 (1960), SM4, pp. 35-61; FHWA GEC-12, FHWA-NHI-16-009, 2016).
+    It is the bit-rock law of :class:`BitRockEnd` with k1 = k, k2 = k / e^2, solved the same way (exact mean
+    force over the step's linear path).
+    """
+
+    stiffness: float = quantity("stiffness", "Loading stiffness k.")
+    restitution: float = quantity("dimensionless", "Coefficient of restitution e, 0 < e <= 1 (unloading slope "
+                                                   "k / e^2).", default=1.0)
+
+    def __post_init__(self) -> None:
+        check(self)
+        if not self.restitution <= 1.0:
+            raise ValueError(f"Cushion.restitution: must be in (0, 1], got {self.restitution!r}: e > 1 would give "
+                             "back more energy than the cushion took")
+
+    @property
+    def unloading_stiffness(self) -> float:
+        """The unloading and reloading slope k / e^2, N/m."""
+        return self.stiffness / self.restitution ** 2
+
+
+def _check_chain(owner: str, items: tuple, outer_end: bool) -> None:
+    """Refuse a chain that the step cannot solve: two masses next to each other (one rigid body), two cushions
+    next to each other (a massless node between them), or, at an outer end, a chain that does not start with a
+    mass (a cushion with a free outer face carries nothing)."""
+    for i in range(1, len(items)):
+        kind = type(items[i])
+        if kind is type(items[i - 1]):
+            what = ("join them into one mass or put a Cushion between" if kind is PointMass
+                    else "combine them into one cushion or put a PointMass between")
+            raise ValueError(f"{owner}.items[{i}]: a {kind.__name__} next to another {kind.__name__} "
+                             f"(items[{i - 1}]); {what}")
+    if outer_end and not isinstance(items[0], PointMass):
+        raise ValueError(f"{owner}.items[0]: the outermost item of an end chain must be a PointMass (items are "
+                         f"listed from the outside towards the rod face); a {type(items[0]).__name__} with a free "
+                         "outer face carries no force")
+
+
+@element("end", "lumped")
+@dataclass(frozen=True)
+class LumpedEnd(EndCondition):
+    """A lumped chain of point masses and cushions at an outer end (a pile-driving hammer: ram, hammer cushion,
+    helmet, pile cushion), items listed from the outside towards the rod face, the outermost a
+    :class:`PointMass` (free on its outer side). A mass next to the rod face rests on it in unilateral contact.
+
+    Per step the masses move with their midpoint velocities, each cushion carries the mean of its law over its
+    linear compression path and the rod face follows its characteristic: a small monotone system, solved by
+    nonlinear Gauss-Seidel of exact scalar solves (docs/lumped.md). The chain's energies at the end of the run:
+    ``SimulationResult.lumped`` (:class:`~rodimpact.direct.result.LumpedOutcome`).
+    """
+
+    items: tuple = parts("lumped", "Point masses and cushions from the outside towards the rod face.")
+    code = 7
+
+    def __post_init__(self) -> None:
+        check(self)
+        _check_chain("LumpedEnd", self.items, True)
+
+
+@element("junction", "lumped")
+@dataclass(frozen=True)
+class LumpedJoint(Junction):
+    """A lumped chain of point masses and cushions between two rods (a ram rod, its cushions and helmet, and a
+    pile), items listed from the left rod's face to the right rod's face. A mass next to a rod face rests on it
+    in unilateral contact. The junction force recorded is the force on the right rod's face.
+
+    Solved as :class:`LumpedEnd`, with the left rod's face as the chain's first node.
+    """
+
+    items: tuple = parts("lumped", "Point masses and cushions from the left rod's face to the right rod's face.")
+    code = 4
+
+    def __post_init__(self) -> None:
+        check(self)
+        _check_chain("LumpedJoint", self.items, False)
 
 
 def as_junction(value: Any, where: str) -> Junction:

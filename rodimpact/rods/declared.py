@@ -132,6 +132,12 @@ def part(family: str, doc: str) -> Any:
     return _field(Declaration("part", doc, family=family), REQUIRED)
 
 
+def parts(family: str, doc: str) -> Any:
+    """A required non-empty list of elements of the registered ``family`` (an array of inline tables, each with
+    its ``type``, in model files); :func:`check` makes it a tuple."""
+    return _field(Declaration("parts", doc, family=family), REQUIRED)
+
+
 def declarations(cls: type) -> Iterator[tuple[dataclasses.Field, Declaration]]:
     """The declared fields of an element class, in declaration order (fields without a declaration, such as the
     ``material`` of a segment, are skipped)."""
@@ -183,6 +189,22 @@ def check(obj: Any) -> None:
         elif d.kind == "part" and type(value) not in ELEMENTS.get(d.family, {}).values():
             names = ", ".join(cls.__name__ for cls in ELEMENTS.get(d.family, {}).values())
             raise TypeError(f"{owner}.{f.name}: must be one of {names}, got {type(value).__name__}")
+        elif d.kind == "parts":
+            object.__setattr__(obj, f.name, _parts(f"{owner}.{f.name}", value, d.family))
+
+
+def _parts(where: str, value: Any, family: str) -> tuple:
+    """``value`` as a non-empty tuple of elements of ``family``, refused by name and index otherwise."""
+    names = ", ".join(cls.__name__ for cls in ELEMENTS.get(family, {}).values())
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        raise TypeError(f"{where}: must be a list of {names}, got {type(value).__name__}")
+    items = tuple(value)
+    if not items:
+        raise ValueError(f"{where}: must hold at least one of {names}, got an empty list")
+    for i, item in enumerate(items):
+        if type(item) not in ELEMENTS.get(family, {}).values():
+            raise TypeError(f"{where}[{i}]: must be one of {names}, got {type(item).__name__}")
+    return items
 
 
 #: family ("end", "junction", "load", "segment") -> type name -> class, in registration order
