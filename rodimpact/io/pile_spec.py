@@ -23,10 +23,10 @@ import numpy as np
 
 from ..pile import (Blow, CapacitySoil, DrivingSystem, SoilDynamics, SoilLayer, SoilProfile, drive_blows, hammer,
                     hammer_names)
-from ..pile._elements import Cushion
 from ..pile.soil import DAMPING_KINDS, DISTRIBUTIONS
 from ..pile.studies import COLUMNS, BlowTable, bearing_graph, drivability, inspector_chart, pile_edges
 from ..pile.units import UNIT_SYSTEMS
+from ..rods.conditions import Cushion
 from ..rods.rod import Rod
 from .dimensions import Parameters
 from .keypaths import Rule, translated

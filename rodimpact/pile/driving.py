@@ -21,8 +21,8 @@ from dataclasses import dataclass
 from typing import Any, Optional
 
 from .._validate import non_negative, positive
+from ..rods.conditions import Cushion, LumpedEnd, LumpedJoint, PointMass
 from ..rods.rod import Rod
-from ._elements import Cushion, LumpedEnd, LumpedJoint, PointMass
 from .hammers import Hammer
 from .units import STANDARD_GRAVITY
 

@@ -7,7 +7,7 @@ import pytest
 
 import rodimpact as ri
 from rodimpact.pile import DrivingSystem, hammer, impact_velocity
-from rodimpact.pile._elements import Cushion, LumpedJoint, PointMass
+from rodimpact.rods.conditions import Cushion, LumpedJoint, PointMass
 
 
 def test_impact_velocity_by_hand():

@@ -87,3 +87,55 @@ def test_docs_page_holds_the_generated_reference():
 
     page = (Path(__file__).resolve().parents[2] / "docs" / "pile-driving.md").read_text(encoding="utf-8")
     assert spec_reference_markdown() in page, "docs/pile-driving.md: regenerate the spec reference section"
+
+
+def test_successive_blows_from_the_spec():
+    from rodimpact.io.pile_spec import run, summarize_run
+
+    spec = loads_spec(TEMPLATE.replace('kind = "blow"', 'kind = "blow"\nblows = 2'))
+    summary = summarize_run(run(spec), spec)
+    assert summary["blows"] == 2 and len(summary["permanent_sets_m"]) == 2
+    assert summary["permanent_set_m"] == summary["permanent_sets_m"][-1] > 0
+
+
+def test_successive_blows_only_for_the_blow_analysis():
+    text = TEMPLATE.replace('kind = "blow"', 'kind = "bearing-graph"\nblows = 2\ncapacities = ["1 MN"]')
+    with pytest.raises(ModelError, match="analysis.blows: successive blows belong to the blow analysis"):
+        loads_spec(text)
+
+
+def test_drive_writes_the_folder_with_the_apis_numbers(tmp_path, capsys, monkeypatch):
+    import json
+
+    import numpy as np
+
+    from rodimpact.io.pile_spec import run, summarize_run
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "drive.toml").write_text(TEMPLATE)
+    assert cli.main(["drive", "drive.toml", "-o", "out"]) == 0
+    printed = capsys.readouterr().out
+    assert "permanent set" in printed and "blows/0.25 m" in printed and printed.rstrip().endswith("written to out")
+    out = tmp_path / "out"
+    assert sorted(f.name for f in out.iterdir()) == [".rodimpact-output", "envelope.csv", "head.csv", "plots",
+                                                    "spec.toml", "summary.json"]
+    assert sorted(f.name for f in (out / "plots").iterdir()) == ["head-force.png", "stress-envelope.png"]
+    spec = loads_spec(TEMPLATE)
+    r = run(spec)
+    written = json.loads((out / "summary.json").read_text())
+    assert {k: v for k, v in written.items() if k != "files"} == json.loads(json.dumps(summarize_run(r, spec)))
+    head = np.loadtxt(out / "head.csv", delimiter=",", skiprows=1)
+    assert np.array_equal(head[:, 1], r.blow.head.force) and np.array_equal(head[:, 3], r.blow.enthru)
+
+
+def test_bearing_graph_from_the_command_line_in_us_units(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "drive.toml").write_text(TEMPLATE.replace('kind = "blow"', 'kind = "bearing-graph"\n'
+                                                          'capacities = ["0.5 MN", "1.5 MN"]'))
+    assert cli.main(["drive", "drive.toml", "-o", "out", "--units", "us"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    header = next(line for line in lines if "blows/ft" in line)
+    assert header.split("|")[0].strip() == "capacity"
+    assert any(line.strip().startswith("112.4 kips") for line in lines)      # 0.5 MN = 112.404 kips
+    assert sorted(f.name for f in (tmp_path / "out" / "plots").iterdir()) == ["bearing-graph.png"]
+    assert (tmp_path / "out" / "table.csv").read_text().splitlines()[0].startswith("capacity [N],permanent_set [m]")
