@@ -540,9 +540,10 @@ helmet_mass = "500 kg"
 hammer_cushion = { stiffness = "1 GN/m", restitution = 0.8 }
 
 # The soil: a total capacity with a shaft share and a distribution (uniform, triangular, trapezoid, custom), or
-# [[soil.layers]] of unit resistances with the pile's perimeter and toe area. Quakes and damping as Smith
-# recommended (E. A. L. Smith, J. Soil Mech. Found. Div. ASCE 86 (SM4), 1960, 35-61): quake 0.1 in = 2.54 mm,
-# toe damping 0.15 s/ft = 0.492 s/m, shaft damping 0.05 s/ft = 0.164 s/m.
+# [[soil.layers]] of unit resistances with the pile's perimeter and toe area. Quakes and damping: the values
+# commonly attributed to Smith (E. A. L. Smith, J. Soil Mech. Found. Div. ASCE 86 (SM4), 1960, 35-61), quake
+# 0.1 in = 2.54 mm, toe damping 0.15 s/ft = 0.492 s/m, shaft damping 0.05 s/ft = 0.164 s/m; not verified against
+# the paper here: check them for your soil.
 [soil]
 penetration = "15 m"
 capacity = "1.5 MN"

@@ -9,8 +9,8 @@ during each step, so the head's transferred energy is an exact sum:
 
     ENTHRU(t_k+1) = sum_{j <= k} -N_j v_j dt       (J; -N v is the power the part above a node delivers below it)
 
-and EMX = max ENTHRU (the energy measure of ASTM D4945 pile driving analysers: the integral of force times
-velocity at the gauges).
+and EMX = max ENTHRU (the energy measure of pile driving analysers, ASTM D4945 -- not checked against the
+standard's text here: the integral of force times velocity at the gauges).
 """
 
 from __future__ import annotations

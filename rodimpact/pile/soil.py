@@ -37,8 +37,9 @@ class SoilDynamics:
     """Smith's dynamic soil parameters: the quakes (m, > 0; deformation at which the static resistance reaches its
     ultimate value; a rigid-plastic soil is approached by a small quake) of the shaft and the toe, the toe's unloading quake (m, at most the toe quake; ``None``: the toe quake), the
     damping factors of the shaft and the toe (s/m for the ``smith`` and ``smith-viscous`` kinds, dimensionless
-    for ``case``) and the ``damping_kind``. No defaults: typical values (Smith 1960: quake 0.1 in = 2.54 mm, toe
-    damping 0.15 s/ft, shaft damping 0.05 s/ft) are shown in the template (``rodimpact init drive``)."""
+    for ``case``) and the ``damping_kind``. No defaults: the values commonly attributed to Smith (1960), quake
+    0.1 in = 2.54 mm, toe damping 0.15 s/ft, shaft damping 0.05 s/ft, are shown in the template (``rodimpact init
+    drive``); they were not verified against the paper here (docs/soil.md says the same)."""
 
     shaft_quake: float
     toe_quake: float
