@@ -1,9 +1,9 @@
 """The ``rodimpact`` command line: thin wrappers around the Python API (output folders with figures:
 :mod:`rodimpact.output_folders`).
 
-Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design|shpb|identify]``,
+Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design|shpb|identify|drive]``,
 ``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``shpb predict SPEC.toml``,
-``shpb reduce RECORDING...``, ``identify RECORD... --spec SPEC.toml``,
+``shpb reduce RECORDING...``, ``identify RECORD... --spec SPEC.toml``, ``drive SPEC.toml``,
 ``docs [TOPIC]`` and ``--version``; see docs/cli.md.
 
 Python warnings raised while a command runs are printed once each, as ``warning: <message>`` on stderr (never with
@@ -224,7 +224,7 @@ def cmd_init(args: argparse.Namespace) -> int:
     _write_file(path, text, args.force, "model file" if kind == "simulate" else "spec file")
     if not args.quiet:
         cmd = {"synthesize": "synthesize", "design": "design", "shpb": "shpb predict",
-               "identify": "identify RECORD.csv --spec"}.get(kind, "simulate")
+               "identify": "identify RECORD.csv --spec", "drive": "drive"}.get(kind, "simulate")
         print(f"wrote {path}; edit it, then run:  rodimpact {cmd} {path}")
     return EXIT_OK
 
@@ -233,11 +233,11 @@ def _templates() -> dict[str, tuple[str, str]]:
     from .io import synthesis_spec
     from .io.templates import TEMPLATES
 
-    from .io import design_spec, identify_spec, shpb_spec
+    from .io import design_spec, identify_spec, pile_spec, shpb_spec
 
     return {**TEMPLATES, "synthesize": (synthesis_spec.TEMPLATE, "synthesis.toml"),
             "design": (design_spec.TEMPLATE, "design.toml"), "shpb": (shpb_spec.TEMPLATE, "shpb.toml"),
-            "identify": (identify_spec.TEMPLATE, "identify.toml")}
+            "identify": (identify_spec.TEMPLATE, "identify.toml"), "drive": (pile_spec.TEMPLATE, "drive.toml")}
 
 
 # ============================================================================================ examples
@@ -441,11 +441,38 @@ def cmd_identify(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+# ============================================================================================ drive
+def cmd_drive(args: argparse.Namespace) -> int:
+    from .io import pile_spec
+    from .output_folders import write_pile_run
+
+    def prepare(spec: Any) -> None:
+        if args.units is not None:
+            object.__setattr__(spec, "units", args.units)
+
+    return _run_spec(args, pile_spec, prepare, write=write_pile_run)
+
+
+def _add_drive_parser(sub: Any, output_flags: Callable[..., None], set_flag: Callable[..., None]) -> None:
+    """``rodimpact drive SPEC.toml``: pile driving."""
+    p = sub.add_parser("drive", help="pile driving: one blow, bearing graph, drivability, inspector's chart",
+                       description="Drive a pile as SPEC.toml describes (rodimpact init drive writes a template): one "
+                                   "blow (permanent set, blow count, stress envelopes, transferred energy), a bearing "
+                                   "graph, drivability over depth or an inspector's chart; writes CSV files, plots "
+                                   "and summary.json to OUTDIR.")
+    p.add_argument("spec", metavar="SPEC.toml", help="pile-driving specification")
+    p.add_argument("--units", choices=("si", "us"), default=None,
+                   help="units of the printed summary: si (default) or us (kips, ft, blows/ft)")
+    output_flags(p, "SPEC-NAME")
+    set_flag(p, "spec")
+    p.set_defaults(func=cmd_drive)
+
+
 # ============================================================================================ docs
 def _doc_topics() -> dict[str, tuple[str, Callable[[], str]]]:
     """Topic -> (description, function generating the page): the pages are generated from the schemas the
     files are validated with, so the installed package always has them, matching its own code."""
-    from .io import design_spec, identify_spec, schema, shpb_reduction_spec, shpb_spec, synthesis_spec
+    from .io import design_spec, identify_spec, pile_spec, schema, shpb_reduction_spec, shpb_spec, synthesis_spec
 
     return {"model": ("every key of a model file (docs/model-reference.md)", schema.reference_markdown),
             "synthesis": ("every key of a synthesis spec (docs/cli.md)", synthesis_spec.spec_reference_markdown),
@@ -454,7 +481,8 @@ def _doc_topics() -> dict[str, tuple[str, Callable[[], str]]]:
             "shpb-reduce": ("every key of a split-Hopkinson-bar reduction spec (docs/cli.md)",
                             shpb_reduction_spec.spec_reference_markdown),
             "identify": ("every key of an identification spec (docs/identification.md)",
-                         identify_spec.spec_reference_markdown)}
+                         identify_spec.spec_reference_markdown),
+            "drive": ("every key of a pile-driving spec (docs/pile-driving.md)", pile_spec.spec_reference_markdown)}
 
 
 def cmd_docs(args: argparse.Namespace) -> int:
@@ -529,10 +557,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     i = sub.add_parser("init", help="write a commented template that runs as it is",
                        description="Write a fully commented template model (simulate), synthesis spec "
-                                   "(synthesize), design spec (design) or Kolsky-bar spec (shpb) that runs as it "
-                                   "is.")
+                                   "(synthesize), design spec (design), Kolsky-bar spec (shpb), identification "
+                                   "spec (identify) or pile-driving spec (drive) that runs as it is.")
     i.add_argument("kind", nargs="?", default="simulate",
-                   help="simulate (default), synthesize, design, shpb or identify")
+                   help="simulate (default), synthesize, design, shpb, identify or drive")
     i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml; "
                                                           "an existing folder or a name ending in / means "
                                                           "that file inside it)")
@@ -586,11 +614,12 @@ def build_parser() -> argparse.ArgumentParser:
     output_flags(n, "RECORD-identify")
     set_flag(n, "spec")
     n.set_defaults(func=cmd_identify)
+    _add_drive_parser(sub, output_flags, set_flag)
 
     d = sub.add_parser("docs", help="print reference pages of this installation (model-file keys, ...)",
                        description="Print a reference page as Markdown, generated by the installed rodimpact from "
                                    "the schema it validates files with; without TOPIC, list the topics.")
-    d.add_argument("topic", nargs="?", help="model, synthesis, design, shpb, shpb-reduce or identify")
+    d.add_argument("topic", nargs="?", help="model, synthesis, design, shpb, shpb-reduce, identify or drive")
     d.set_defaults(func=cmd_docs)
     return p
 

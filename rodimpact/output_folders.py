@@ -3,7 +3,7 @@ figures of :mod:`rodimpact.plotting` in one folder, written atomically.
 
 io writes data only and plotting only draws; neither imports the other (docs/architecture.md, layers). This
 module sits above both and puts them together for ``rodimpact simulate``, ``sweep``, ``synthesize``, ``design``,
-``shpb predict`` and ``shpb reduce`` and for :func:`rodimpact.examples.run_example`. Every folder is written into a
+``shpb predict``, ``shpb reduce`` and ``drive`` and for :func:`rodimpact.examples.run_example`. Every folder is written into a
 temporary folder and moved into place at the end (:class:`rodimpact.io.results.AtomicFolder`: an existing folder is replaced only with
 ``overwrite=True`` and only if rodimpact wrote it), so its ``summary.json`` lists the figures too. A result's
 data alone: :func:`rodimpact.save`.
@@ -14,10 +14,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Callable, Optional, Sequence
 
-from .io import design_spec, model_sweep, shpb_reduction_spec, shpb_spec, synthesis_spec
+from .io import design_spec, model_sweep, pile_spec, shpb_reduction_spec, shpb_spec, synthesis_spec
 from .io.results import AtomicFolder, simulation_summary, write_simulation_files, write_summary
 from .plotting import design as design_plots
 from .plotting import new_axes, plot_sweep, save_plots
+from .plotting import pile as pile_plots
 from .plotting import shpb_model as shpb_model_plots
 from .plotting import shpb_reduction as shpb_reduction_plots
 from .plotting import synthesis as synthesis_plots
@@ -129,6 +130,26 @@ def write_shpb_reduction(reduction: Any, spec: Any, summary: dict[str, Any], out
             files += [f"plots/{name}" for name in _draw(tmp / "plots", _shpb_plots(reduction))]
         summary["files"] = files + ["summary.json"]
         return write_summary(tmp, summary)
+
+
+def write_pile_run(run: Any, spec: Any, outdir: str | Path, *, overwrite: bool = False,
+                   plots: bool = True) -> dict[str, Any]:
+    """Write the output folder of ``rodimpact drive``: the data files (:func:`rodimpact.io.pile_spec.write_files`),
+    ``plots/`` (one blow: ``head-force.png``, ``stress-envelope.png``; a bearing graph: ``bearing-graph.png``;
+    drivability or an inspector's chart: ``blow-count.png``; the figures of :mod:`rodimpact.plotting.pile`; not
+    with ``plots=False`` or ``plots = false`` in the spec) and ``summary.json``. Returns the summary."""
+    if run.blow is not None:
+        jobs: list[Job] = [("head-force.png", lambda ax: pile_plots.plot_head_force(run.blow, ax=ax)),
+                           ("stress-envelope.png", lambda ax: pile_plots.plot_stress_envelope(run.blow, ax=ax))]
+    elif run.kind == "bearing-graph":
+        jobs = [("bearing-graph.png", lambda ax: pile_plots.plot_bearing_graph(run.table, ax=ax))]
+    else:
+        jobs = [("blow-count.png", lambda ax: pile_plots.plot_drivability(run.table, ax=ax))]
+    with AtomicFolder(outdir, overwrite) as tmp:
+        files = pile_spec.write_files(run, spec, tmp)
+        if plots and spec.plots:
+            files += [f"plots/{name}" for name in _draw(tmp / "plots", jobs)]
+        return write_summary(tmp, {**pile_spec.summarize_run(run, spec), "files": files + ["summary.json"]})
 
 
 def _shpb_plots(reduction: Any) -> list[Job]:

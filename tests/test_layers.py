@@ -2,8 +2,8 @@
 so that there is no import circle (results know nothing about files or figures).
 
 Bottom to top: rods, lattice, direct, inverse, design, signals, testrig, shpb (the split-Hopkinson-bar
-application) and identify (identification: peeling, beta, strikers; beside shpb), then plotting and io side by
-side (io writes data files only; neither imports the other),
+application), identify (identification: peeling, beta, strikers) and pile (pile driving), side by side, then
+plotting and io side by side (io writes data files only; neither imports the other),
 output_folders (puts io's files and plotting's figures into one output folder for the command line and the
 examples), examples, cli (signals, the measurement layer, does not import the solvers: the test rig that simulates
 sits above them); ``reference`` is independent of lattice and direct so that it can check them (inverse uses its closed form of eq. 4.26 as the
@@ -37,18 +37,20 @@ BELOW = {
     # identification (peeling, beta, striker identification): composes the solvers and the measurement layer
     # like shpb, beside it (neither needs the other), below files and figures
     "identify": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
+    # pile driving: an application beside shpb and identify (the same floors below it, files and figures above it)
+    "pile": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
     # plotting draws and io reads and writes files: side by side, neither imports the other
     "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
-                 "identify"},
+                 "identify", "pile"},
     "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
-           "identify"},
+           "identify", "pile"},
     # output folders with figures: io's data files and plotting's figures, put together
     "output_folders": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
-                       "identify", "plotting", "io"},
+                       "identify", "pile", "plotting", "io"},
     "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
-                 "identify", "plotting", "io", "output_folders"},
+                 "identify", "pile", "plotting", "io", "output_folders"},
     "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "identify",
-            "plotting", "io", "output_folders", "examples"},
+            "pile", "plotting", "io", "output_folders", "examples"},
 }
 
 
