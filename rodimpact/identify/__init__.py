@@ -6,6 +6,11 @@ An application layer above the solvers and the measurement layer, below files, f
 (docs/architecture.md). SI units; forces positive in tension, depth from the measured face along the rod.
 """
 
+from .peeling import IdentificationWarning, identify_by_peeling, peel_waves
+from .records import HeadRecord, amplified, average_blows, band_limited, split_waves
+from .reflectors import BETA_CLASSES, beta_class, identify_by_beta, reflectogram
 from .result import Anomaly, IdentificationResult
 
-__all__ = ["Anomaly", "IdentificationResult"]
+__all__ = ["Anomaly", "BETA_CLASSES", "HeadRecord", "IdentificationResult", "IdentificationWarning", "amplified",
+           "average_blows", "band_limited", "beta_class", "identify_by_beta", "identify_by_peeling", "peel_waves",
+           "reflectogram", "split_waves"]

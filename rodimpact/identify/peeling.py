@@ -1,0 +1,155 @@
+"""Exact layer peeling of a clean, lossless head record (thesis chapter 1, the scattering problem, solved by the
+recursion of chapter 4): :func:`identify_by_peeling` and the plain reference :func:`peel_waves`.
+
+The rod below the head is taken as equal-travel-time elements whose two-way travel time is one sampling
+interval T: travel time dt = T / 2, element length c dt. Every path that leaves the head and returns is an even
+number of steps long, so the head's samples form a closed system (docs/inverse.md, "Step 2"): from the down- and
+up-going waves d_s, u_s (s = 0, 1, ...; :func:`rodimpact.identify.records.split_waves`) the elements follow one by
+one. At the bottom of element q, in the time frame of its wavefront, ``d_bot[s] = d_top[s]`` and ``u_bot[s] =
+u_top[s + 1]`` (the up wave is met one sample, two steps, earlier); the wavefront meets nothing coming back from
+below, so ``r_q = u_bot[0] / d_bot[0]`` is the reflection coefficient ``(Z_{q+1} - Z_q) / (Z_{q+1} + Z_q)`` and
+
+    Z_{q+1} = Z_q (1 + r_q) / (1 - r_q)                                              (thesis eq. 4.9)
+
+Crossing the interface keeps the force N = d + u and the velocity v = (u - d) / Z_q; below it
+``d = (N - Z_{q+1} v) / 2``, ``u = (N + Z_{q+1} v) / 2``. n samples give n elements. A free toe reflects with
+r = -1 (Z -> 0), a fixed one with r = +1: the recursion stops there (existence, thesis eq. 4.20), which is the toe.
+
+Requirements (checked): the record starts at the onset of the down-going wave, whose first sample must not be
+small (the recursion divides by it: a smooth pulse that starts from zero, like a hammer's half-sine, cannot be
+peeled at the sampling resolution; use :func:`rodimpact.identify.identify_by_beta`); lossless rod, no soil
+resistance, no dispersion (the 1D model: docs/identification.md).
+
+Two paths: ``method="schur"`` runs the package's O(n log^2 n) peel (:func:`rodimpact.inverse._schur.peel`, the
+same recursion written on the waves ``g = d``, ``f = u``); ``method="reference"`` the loops of this module (O(n^2),
+numpy). They agree to rounding (tests/identify/test_peeling.py).
+"""
+
+from __future__ import annotations
+
+import time as _time
+import warnings
+from typing import Optional
+
+import numpy as np
+
+from .._validate import caller_stacklevel, positive
+from .._version import __version__
+from ..inverse._schur import peel
+from .records import HeadRecord, check_units, split_waves
+from .reflectors import anomalies_of_profile
+from .result import IdentificationResult
+
+__all__ = ["IdentificationWarning", "identify_by_peeling", "peel_waves"]
+
+#: A first down-wave sample below this share of the down wave's peak is refused (the recursion divides by it).
+ONSET_SHARE = 1e-3
+#: A peeled impedance below this share of the head impedance is taken as the (free) toe: r = -1 in exact
+#: arithmetic, -1 + O(eps kappa) after rounding.
+TOE_SHARE = 1e-6
+METHODS = ("schur", "reference")
+
+
+class IdentificationWarning(UserWarning):
+    """An identification ran outside the conditions its method assumes (docs/identification.md)."""
+
+
+def peel_waves(down: np.ndarray, up: np.ndarray, impedance: float) -> tuple[np.ndarray, int]:
+    """Peel the element impedances from the head's down- and up-going force waves (module docstring): plain numpy
+    loops, O(n^2). ``down``, ``up``: N, one sample per two-way element travel time, from the onset;
+    ``impedance``: Z_1 (N s/m). Returns ``(z, m)``: z[:m] are the impedances of elements 1..m; m < n when the
+    recursion met |r| >= 1 (a free or fixed end) at the bottom of element m."""
+    d = np.asarray(down, dtype=float).copy()
+    u = np.asarray(up, dtype=float).copy()
+    n = d.size
+    z = np.zeros(n)
+    z[0] = impedance
+    for q in range(n - 1):
+        d_bot, u_bot = d[:-1], u[1:]
+        r = u_bot[0] / d_bot[0]
+        z_next = z[q] * (1.0 + r) / (1.0 - r)
+        if not (abs(r) < 1.0 and 0.0 < z_next < np.inf):
+            return z, q + 1
+        force = d_bot + u_bot
+        velocity = (u_bot - d_bot) / z[q]
+        d = 0.5 * (force - z_next * velocity)
+        u = 0.5 * (force + z_next * velocity)
+        z[q + 1] = z_next
+    return z, n
+
+
+def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float, *,
+                        depth: Optional[float] = None, method: str = "schur",
+                        threshold: float = 0.05) -> IdentificationResult:
+    """The impedance profile below the head from a clean, lossless force and velocity record (module docstring).
+
+    Parameters
+    ----------
+    record:
+        Head force (N, tension positive) and velocity (m/s, down the rod), starting at the onset of the blow.
+    impedance:
+        The impedance at the head Z_1 (N s/m, ``E A / c``), known from the rod's top section.
+    wave_speed:
+        c (m/s), assumed constant along the rod: it turns travel time into depth (element length c T / 2).
+    depth:
+        The depth (m) to identify down to; the record must last ``2 depth / c``. Default: as deep as the
+        record reaches, ``c (samples) T / 2``.
+    method:
+        ``"schur"`` (the package's fast peel) or ``"reference"`` (plain numpy loops).
+    threshold:
+        A run of elements whose impedance differs from the one above it by more than this share is reported as
+        an anomaly (a choice of this package, not from a standard; docs/identification.md).
+    """
+    wall0 = _time.perf_counter()
+    if not isinstance(record, HeadRecord):
+        raise TypeError(f"record: must be a HeadRecord, got {type(record).__name__}")
+    if method not in METHODS:
+        raise ValueError(f"method: must be one of {METHODS}, got {method!r}")
+    z1 = positive("impedance", impedance, "N s/m")
+    c = positive("wave_speed", wave_speed, "m/s")
+    element = 0.5 * c * record.interval
+    n = record.time.size
+    if depth is not None:
+        depth = positive("depth", depth, "m")
+        need = int(np.ceil(depth / element - 1e-9))
+        if need > n:
+            raise ValueError(f"depth: {depth:.6g} m needs a record of 2 depth / c = {2 * depth / c:.6g} s "
+                             f"({need} samples at {record.interval:.6g} s), the record has {n} samples "
+                             f"({record.duration:.6g} s); ask for at most {n * element:.6g} m")
+        n = need
+    check_units(record, z1)
+    down, up = split_waves(record, z1)
+    down, up = down[:n].copy(), up[:n].copy()
+    peak = float(np.max(np.abs(down)))
+    if not abs(down[0]) >= ONSET_SHARE * peak or peak == 0.0:
+        raise ValueError(f"record: the down-going wave's first sample is {down[0]:.6g} N, below {ONSET_SHARE:g} of "
+                         f"its peak {peak:.6g} N; peeling divides by it. Start the record at the onset of a blow "
+                         f"with a sharp front (a mass impact), or use identify_by_beta for a smooth pulse")
+    onset_up = float(up[0] / down[0])
+    up[0] = 0.0             # causality: nothing has come back at the onset (the first interface answers at s = 1)
+    if method == "schur":
+        z, _, kappa, m = peel(down + up, (down - up) / z1)
+    else:
+        z, m = peel_waves(down, up, z1)
+        kappa = None
+    z = z[:m]
+    low = np.flatnonzero(z < TOE_SHARE * z1)
+    stop = int(low[0]) if low.size else m
+    z = z[:stop]
+    ends = stop < n
+    depths = element * np.arange(stop + 1)
+    warn_list = []
+    if abs(onset_up) > 1e-6:
+        warn_list.append(f"the up-going wave at the onset is {onset_up:.3g} of the down-going one (0 for a record "
+                         "that starts at the onset of the blow); it was set to 0")
+    for w in warn_list:
+        warnings.warn(w, IdentificationWarning, stacklevel=caller_stacklevel())
+    diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0, "peeling": method,
+                   "element_length_m": element, "element_travel_time_s": 0.5 * record.interval,
+                   "samples_used": n, "onset_up_share": onset_up, "source": record.source, "warnings": warn_list,
+                   "misfit_definition": "none: peeling reproduces the record exactly by construction"}
+    if kappa is not None:
+        diagnostics["max_amplitude_growth"] = float(np.max(kappa[:max(stop, 1)]))
+    return IdentificationResult(
+        depth=depths, impedance=z, anomalies=anomalies_of_profile(depths, z, threshold),
+        toe=float(depths[-1]) if ends else None, wave_speed=c, method="peeling", diagnostics=diagnostics)
