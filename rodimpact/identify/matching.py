@@ -39,6 +39,7 @@ Penalty weight alpha (:func:`choose_weight`):
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, Callable, Optional
 
@@ -206,6 +207,50 @@ class Penalty:
 
 
 # ------------------------------------------------------------------------------------------------ one fit
+@contextmanager
+def _one_blas_thread():
+    """Run scipy's bundled OpenBLAS on one thread inside the block (restored after). L-BFGS-B's small dense
+    products with a few hundred unknowns spend far more time starting threads than computing: on the 2-core test
+    machine one fit of 164 unknowns took 7 ms per iteration with the default threads, 0.3 ms with one
+    (benchmarks/bench_identify.py). A no-op where the library is not found."""
+    lib = _scipy_openblas()
+    if lib is None:
+        yield
+        return
+    before = lib.scipy_openblas_get_num_threads()
+    lib.scipy_openblas_set_num_threads(1)
+    try:
+        yield
+    finally:
+        lib.scipy_openblas_set_num_threads(before)
+
+
+_OPENBLAS: list = []
+
+
+def _scipy_openblas():
+    if not _OPENBLAS:
+        import ctypes
+        import glob
+        import os
+
+        import scipy
+
+        lib = None
+        libs = os.path.join(os.path.dirname(os.path.dirname(scipy.__file__)), "scipy.libs")
+        for path in glob.glob(os.path.join(libs, "libscipy_openblas*.so*")):
+            try:
+                cand = ctypes.CDLL(path)
+                cand.scipy_openblas_get_num_threads.restype = ctypes.c_int
+                cand.scipy_openblas_set_num_threads.argtypes = [ctypes.c_int]
+                lib = cand
+                break
+            except (OSError, AttributeError):
+                continue
+        _OPENBLAS.append(lib)
+    return _OPENBLAS[0]
+
+
 @dataclass
 class Fit:
     """One regularised fit: theta, the record y, misfit chi2 = sum r_k^2 (whitened), penalty R, alpha."""
@@ -232,8 +277,9 @@ def fit(model: PileModel, data: np.ndarray, sigma: float, alpha: float, penalty:
         g[:n] += alpha * gr
         return f + alpha * r, g
 
-    res = minimize(fun, theta0, jac=True, method="L-BFGS-B", bounds=bounds,
-                   options={"maxiter": max_iterations, "ftol": tolerance, "gtol": 1e-8, "maxcor": 20})
+    with _one_blas_thread():
+        res = minimize(fun, theta0, jac=True, method="L-BFGS-B", bounds=bounds,
+                       options={"maxiter": max_iterations, "ftol": tolerance, "gtol": 1e-8, "maxcor": 20})
     theta = np.clip(res.x, [b[0] for b in bounds], [b[1] for b in bounds])
     y = model.simulate(theta)
     chi2 = float(np.sum(((y - data) / sigma) ** 2))
@@ -321,3 +367,281 @@ def summary_of(theta: np.ndarray, model: PileModel) -> dict[str, Any]:
     n = model.n
     return {"shaft_damping": float(np.sum(c[1:n])), "shaft_stiffness": float(np.sum(k[1:n])),
             "toe_stiffness": float(kt), "toe_damping": float(ct)}
+
+
+# ------------------------------------------------------------------------------------------------ entry
+#: 2 Delta Phi of a 90 % profile-likelihood interval for one parameter (chi-square, 1 degree of freedom)
+PROFILE_90 = 2.705543454095404
+
+
+def half_sine(time: np.ndarray, amplitude: float, duration: float, start: float = 0.0) -> np.ndarray:
+    """A hammer pulse: F(t) = -amplitude sin(pi (t - start) / duration) for start <= t < start + duration, else
+    0 (N, compression negative; ``amplitude`` > 0 N, ``duration`` > 0 s). For a low-strain record, whose force is
+    not measured, the pulse stands for the hammer."""
+    amplitude = _positive("amplitude", amplitude, "N")
+    duration = _positive("duration", duration, "s")
+    t = np.asarray(time, dtype=float) - float(start)
+    return np.where((t >= 0) & (t < duration), -amplitude * np.sin(np.pi * t / duration), 0.0)
+
+
+def _positive(name: str, value: Any, unit: str) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}: must be a number ({unit}), got {value!r}") from None
+    if not (np.isfinite(x) and x > 0):
+        raise ValueError(f"{name}: must be finite and > 0 {unit}, got {value!r}")
+    return x
+
+
+def _head_impedance(force: np.ndarray, velocity: np.ndarray) -> Optional[float]:
+    """Z_head = -sum F V / sum V^2 over the rise of the pulse (before the force's peak the head answers with
+    its own impedance, N = -Z V), or None if that is not positive."""
+    a = np.abs(force)
+    first = int(np.argmax(a > 0.01 * a.max()))
+    peak = int(np.argmax(a))
+    sl = slice(first, max(peak + 1, first + 2))
+    vv = float(np.sum(velocity[sl] ** 2))
+    if vv <= 0:
+        return None
+    z = -float(np.sum(force[sl] * velocity[sl])) / vv
+    return z if z > 0 else None
+
+
+def identify_by_matching(record: Any, wave_speed: float, length: float, *, impedance: Optional[float] = None,
+                         elements: Optional[int] = None, extension: float = 0.25, noise: Optional[float] = None,
+                         penalty: str = "tv", weight: Any = "auto", impedance_bounds: tuple[float, float] = (0.02, 3.0),
+                         soil: bool = True, toe: str = "spring", bands: str = "laplace", min_change: float = 0.08,
+                         window: Optional[int] = None, draws: int = 300, seed: int = 0, max_toe_scan: int = 12,
+                         progress: Optional[Callable[[str], None]] = None, backend: str = "numba"):
+    """The impedance profile of a pile by regularised matching of its head velocity (module docstring).
+
+    Parameters
+    ----------
+    record:
+        A :class:`~rodimpact.identify.HeadRecord`: head force (N, tension positive; the hammer force, measured in
+        a high-strain test or a :func:`half_sine` for a low-strain one) and velocity (m/s, down), with a
+        pre-trigger baseline (samples before the blow) from which the noise level is estimated.
+    wave_speed:
+        c (m/s), constant along the pile: element length = c dt.
+    length:
+        The expected pile length (m); the model reaches ``(1 + extension) length`` and the toe is identified
+        within it. The record must last 2 (1 + extension) length / c after the onset.
+    impedance:
+        The impedance scale Z_ref (N s/m; the nominal head impedance). Default: estimated from the rise of the
+        pulse, Z = -F/V.
+    elements:
+        Elements over ``length`` (the record is linearly resampled to dt = length / (c elements)); default: one
+        element per sample interval.
+    noise:
+        The noise standard deviation of the velocity (m/s); default: from the pre-trigger baseline.
+    penalty:
+        ``"tv"`` or ``"smooth"`` (module docstring).
+    weight:
+        ``"auto"`` (discrepancy principle with a noise level, else the L-curve) or a number alpha >= 0.
+    impedance_bounds:
+        Bounds of Z / Z_ref (the soil below the toe takes the lower one).
+    soil, toe:
+        Shaft spring and dashpot fitted (``soil=True``) or absent; toe ``"spring"`` (spring-dashpot, fitted) or
+        ``"fixed"``.
+    bands:
+        ``"laplace"`` (Gauss-Newton covariance), ``"sampling"`` (pCN chains started from it, stopped at
+        convergence) or ``"none"``.
+    min_change, window:
+        An anomaly departs from the running median of ``window`` elements (default a quarter of the pile) by
+        more than ``min_change`` (share) and its band excludes that median.
+    """
+    import time as _time
+
+    from .._version import __version__
+    from .records import HeadRecord
+    from .reflectors import beta_class
+    from .result import Anomaly, IdentificationResult
+    from . import uncertainty as unc
+
+    wall0 = _time.perf_counter()
+    if not isinstance(record, HeadRecord):
+        raise TypeError(f"record: must be a HeadRecord (time, force, velocity), got {type(record).__name__}")
+    c_w = _positive("wave_speed", wave_speed, "m/s")
+    L = _positive("length", length, "m")
+    if not (np.isfinite(extension) and 0.0 <= extension <= 2.0):
+        raise ValueError(f"extension: must be a share of the length in [0, 2], got {extension!r}")
+    lo_b, hi_b = (float(b) for b in impedance_bounds)
+    if not (0 < lo_b < 1.0 < hi_b and np.isfinite(hi_b)):
+        raise ValueError(f"impedance_bounds: must be (low, high) with 0 < low < 1 < high (shares of the impedance "
+                         f"scale, which is the start of the search), got {impedance_bounds!r}")
+    if bands not in ("laplace", "sampling", "none"):
+        raise ValueError(f"bands: must be 'laplace', 'sampling' or 'none', got {bands!r}")
+    pen = Penalty(penalty)
+    time_ = np.asarray(record.time, dtype=float)
+    force = np.asarray(record.force, dtype=float)
+    vel = np.asarray(record.velocity, dtype=float)
+    if not np.any(force != 0):
+        raise ValueError("record.force: is zero everywhere; give the hammer force (or a half_sine pulse)")
+    if elements is None:
+        dt = record.interval
+        n_pile = int(round(L / (c_w * dt)))
+    else:
+        if int(elements) != elements or elements < 4:
+            raise ValueError(f"elements: must be an integer >= 4, got {elements!r}")
+        n_pile = int(elements)
+        dt = L / (c_w * n_pile)
+    if n_pile < 4:
+        raise ValueError(f"length: {L:.6g} m is {n_pile} elements of c dt = {c_w * dt:.6g} m; give at least 4 "
+                         f"(a longer length or more elements)")
+    if elements is not None:
+        t_new = time_[0] + dt * np.arange(int(np.floor((time_[-1] - time_[0]) / dt)) + 1)
+        force = np.interp(t_new, time_, force)
+        vel = np.interp(t_new, time_, vel)
+        time_ = t_new
+    n = n_pile + int(np.ceil(extension * n_pile))
+    onset = int(np.argmax(np.abs(force) > 0.01 * np.abs(force).max()))
+    need = onset + 2 * n
+    if time_.size < need:
+        raise ValueError(f"record: lasts {time_.size} samples of {dt:.6g} s; the model of "
+                         f"(1 + extension) length = {n * c_w * dt:.6g} m needs {need} (the onset at sample "
+                         f"{onset} plus the two-way travel time); record longer or shorten length/extension")
+    sigma_known = noise is not None
+    sigma = _positive("noise", noise, "m/s") if sigma_known else baseline_noise(vel, force)
+    if sigma is not None and sigma == 0.0:
+        sigma = None
+    rule = "discrepancy" if sigma is not None else "lcurve"
+    if sigma is None:
+        sigma = 0.01 * float(np.sqrt(np.mean(vel[onset:] ** 2)))
+    if impedance is None:
+        z_ref = _head_impedance(force, vel)
+        if z_ref is None:
+            raise ValueError("impedance: could not be estimated from the record (force and velocity do not have "
+                             "opposite signs at the blow); give the head impedance")
+    else:
+        z_ref = _positive("impedance", impedance, "N s/m")
+    soil_hi = [5.0, 5.0, 50.0, 5.0] if soil else [0.0, 0.0, 50.0, 5.0]
+    if toe == "fixed":
+        soil_hi[2:] = [0.0, 0.0]
+    elif toe != "spring":
+        raise ValueError(f"toe: must be 'spring' or 'fixed', got {toe!r}")
+
+    def bounds_of(m):
+        return [(np.log(lo_b), np.log(hi_b))] * m + [(0.0, h) for h in soil_hi]
+
+    def theta_start(m):
+        return np.r_[np.zeros(m), [min(0.1, h) for h in soil_hi]]
+
+    model = PileModel(dt, n, force, z_ref, toe, backend)
+    if weight == "auto":
+        best = choose_weight(model, vel, sigma, pen, theta_start(n), bounds_of(n), rule=rule, progress=progress)
+    else:
+        alpha = float(weight)
+        if not (np.isfinite(alpha) and alpha >= 0):
+            raise ValueError(f"weight: must be 'auto' or a number >= 0, got {weight!r}")
+        best = fit(model, vel, sigma, alpha, pen, theta_start(n), bounds_of(n))
+        rule = "given"
+    alpha = best.alpha
+    # the toe: read off the extended model, then profile likelihood over truncated models ending there
+    # the toe: the steepest fall of ln Z in the deeper part of the extended model (the pile above, the soil
+    # below), then the profile likelihood over models truncated there
+    lo_scan = max(4, n_pile // 2)
+    j0 = lo_scan + int(np.argmin(np.diff(best.theta[lo_scan - 1:n])))
+    weight_vec = np.full(vel.size, 1.0 / sigma ** 2)
+
+    def phi_of(m_model, theta):
+        f, _, _ = m_model.misfit_gradient(theta, vel, weight_vec)
+        return f + alpha * pen.value_gradient(theta[:m_model.n])[0]
+
+    cache: dict[int, tuple[float, Fit, PileModel]] = {}
+
+    def truncated(j):
+        if j not in cache:
+            mm = PileModel(dt, j, force, z_ref, toe, backend)
+            near = min(cache, key=lambda q: abs(q - j)) if cache else None
+            if near is None:
+                start = np.r_[best.theta[:j], best.theta[n:]]
+            else:
+                th = cache[near][1].theta
+                m_part = np.r_[th[:near], np.full(max(j - near, 0), th[near - 1])][:j]
+                start = np.r_[m_part, th[near:]]
+            f = fit(mm, vel, sigma, alpha, pen, start, bounds_of(j))
+            cache[j] = (phi_of(mm, f.theta), f, mm)
+            if progress is not None:
+                progress(f"toe at element {j}: Phi = {cache[j][0]:.6g}")
+        return cache[j][0]
+
+    lo_j, hi_j = max(4, j0 - 2), min(n, j0 + 2)
+    for j in range(lo_j, hi_j + 1):
+        truncated(j)
+    for _ in range(4 * n):                        # descend to a local minimum, then close the 90 % interval
+        jb = min(cache, key=lambda q: cache[q][0])
+        pmin = cache[jb][0]
+        left, right = min(cache), max(cache)
+        grow = [j for j, edge in ((left - 1, left), (right + 1, right))
+                if 4 <= j <= n and abs(j - jb) <= max_toe_scan and 2 * (cache[edge][0] - pmin) <= PROFILE_90]
+        if not grow:
+            break
+        for j in grow:
+            truncated(j)
+    jb = min(cache, key=lambda q: cache[q][0])
+    pmin, final, fmodel = cache[jb]
+    inside = [j for j in cache if 2 * (cache[j][0] - pmin) <= PROFILE_90]
+    h = c_w * dt
+    toe_depth = jb * h
+    toe_band = (min(inside) * h, max(inside) * h)
+    theta = final.theta
+    m = theta[:jb]
+    Z = z_ref * np.exp(m)
+    depth = h * np.arange(jb + 1)
+    win = window if window is not None else max(9, n_pile // 4)
+    lower = upper = None
+    samples_m = None
+    diag_extra: dict[str, Any] = {}
+    if bands != "none":
+        _, J = fmodel.jacobian(theta)
+        bl = np.array([b[0] for b in bounds_of(jb)])
+        bu = np.array([b[1] for b in bounds_of(jb)])
+        free = bu > bl
+        C = unc.laplace_covariance(J, sigma, pen.hessian(m), alpha, free)
+        rng = np.random.default_rng(seed)
+        if bands == "laplace":
+            lo_m, up_m = unc.log_bands(m, C)
+            idx = np.flatnonzero(free[:jb])
+            sd = np.zeros((draws, jb))
+            Lc = np.linalg.cholesky(C[np.ix_(idx, idx)] + 1e-14 * np.eye(idx.size) * np.max(np.diag(C)))
+            sd[:, idx] = rng.standard_normal((draws, idx.size)) @ Lc.T
+            samples_m = m + sd
+        else:
+            bl_s, bu_s = bl.copy(), bu.copy()
+            res = unc.sample(lambda t: phi_of(fmodel, t), theta, C, bl_s, bu_s, seed=seed, progress=progress,
+                             watch=lambda t: t[:jb][:: max(1, jb // 16)])
+            flat = res.draws.reshape(-1, theta.size)
+            samples_m = flat[:, :jb]
+            lo_m, up_m = np.exp(np.percentile(samples_m, [5, 95], axis=0))
+            diag_extra = {"sampling_acceptance": res.acceptance, "sampling_rhat": res.rhat, "sampling_ess": res.ess,
+                          "sampling_converged": res.converged, "sampling_evaluations": res.evaluations,
+                          "sampling_draws": int(flat.shape[0])}
+        lower, upper = z_ref * lo_m, z_ref * up_m
+    feats = unc.find_anomalies(Z, lower, upper, window=win, min_change=min_change)
+    anomalies = []
+    for ft in feats:
+        depth_band = size_band = None
+        if samples_m is not None:
+            got = [unc.match_feature(unc.find_anomalies(np.exp(s), None, None, window=win, min_change=min_change), ft)
+                   for s in samples_m]
+            got = [g for g in got if g is not None]
+            if got:
+                depth_band = tuple(np.percentile([g.start * h for g in got], [5, 95]))
+                size_band = tuple(np.percentile([g.change for g in got], [5, 95]))
+        beta = 1.0 + ft.change
+        anomalies.append(Anomaly(ft.start * h, (ft.stop - ft.start) * h, ft.change, beta, beta_class(beta),
+                                 depth_band, size_band))
+    y = final.y
+    K = vel.size
+    diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0, "penalty": penalty,
+                   "weight_rule": rule, "alpha": alpha, "noise": sigma, "noise_given": sigma_known,
+                   "chi2_per_sample": final.chi2 / K, "elements_model": n, "element_length_m": h,
+                   "element_travel_time_s": dt, "impedance_scale": z_ref, "bands": bands,
+                   "toe_candidates": sorted(cache), "window": win, "min_change": min_change,
+                   **summary_of(theta, fmodel), **diag_extra,
+                   "misfit_definition": "chi2 / K = sum((y_k - d_k) / sigma)^2 / K over the K samples"}
+    return IdentificationResult(depth=depth, impedance=Z, lower=lower, upper=upper, anomalies=tuple(anomalies),
+                                toe=toe_depth, toe_band=toe_band, wave_speed=c_w,
+                                matched={"velocity": (time_, vel, y)}, misfit=final.chi2 / K, method="matching",
+                                diagnostics=diagnostics)

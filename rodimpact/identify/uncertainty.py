@@ -109,18 +109,6 @@ def find_anomalies(Z: np.ndarray, lower: Optional[np.ndarray], upper: Optional[n
     return sorted(out, key=lambda f: f.start)
 
 
-def toe_index(Z: np.ndarray, ratio: float = 0.35) -> int:
-    """The toe: the first element boundary below which Z stays under ``ratio`` times the median of Z above it
-    (the low-impedance soil the model continues into); n if there is none."""
-    n = Z.size
-    low = Z < ratio * np.median(Z[: max(4, n // 2)])
-    # the deepest boundary with low elements only below it
-    j = n
-    while j > 0 and low[j - 1]:
-        j -= 1
-    return j
-
-
 def match_feature(features: list[Feature], ref: Feature) -> Optional[Feature]:
     """The feature of ``features`` of the same sign overlapping ``ref`` most (None if none overlaps)."""
     best, over = None, 0
