@@ -251,6 +251,12 @@ class Penalty:
 
 
 # ------------------------------------------------------------------------------------------------ one fit
+#: the discrepancy search: a decade of alpha that lowers chi2 by less than 3 % has reached the model-error floor,
+#: and the target becomes 1.1 times that floor
+PLATEAU = 0.97
+FLOOR_MARGIN = 1.1
+
+
 @contextmanager
 def _one_blas_thread():
     """Run scipy's bundled OpenBLAS on one thread inside the block (restored after). L-BFGS-B's small dense
@@ -349,33 +355,25 @@ def choose_weight(model: PileModel, data: np.ndarray, sigma: float, penalty: Pen
         return f
 
     if rule == "discrepancy":
-        alpha = alpha_start
-        cur = run(alpha, theta0)
-        hi = lo = None                      # hi: an alpha whose chi2 > target; lo: one that fits (chi2 <= target)
-        if cur.chi2 > target:
-            hi = cur
-            while len(fits) < max_fits:
-                cur = run(hi.alpha / 10.0, hi.theta)
-                if cur.chi2 <= target:
-                    lo = cur
+        cur = run(alpha_start, theta0)
+        if cur.chi2 <= target:               # ascend until the fit leaves the noise level
+            while len(fits) < max_fits and cur.chi2 <= target:
+                cur = run(cur.alpha * 10.0, cur.theta)
+        else:                                # descend until it reaches it, or until the misfit stops falling
+            while len(fits) < max_fits and cur.chi2 > target:
+                prev = cur
+                cur = run(prev.alpha / 10.0, prev.theta)
+                if cur.chi2 > PLATEAU * prev.chi2:
+                    # less than 3 % gained over a decade: the model's own error (a record is never exactly a
+                    # lattice pile) sets a floor; the data are fitted to within 10 % of it, not into the noise
+                    target = max(target, FLOOR_MARGIN * cur.chi2)
                     break
-                hi = cur
-        else:
-            lo = cur
-            while len(fits) < max_fits:
-                cur = run(lo.alpha * 10.0, lo.theta)
-                if cur.chi2 > target:
-                    hi = cur
-                    break
-                lo = cur
-        if lo is None:
-            # nothing fits to the noise level: the model's own error (a record is never exactly a lattice pile)
-            # sets a floor chi2_min; the data are then fitted to within 10 % of that floor, not into the noise
-            target = 1.1 * min(f.chi2 for f in fits)
-            ok = [f for f in fits if f.chi2 <= target]
-            lo = max(ok, key=lambda f: f.alpha)
-            above = [f for f in fits if f.alpha > lo.alpha]
-            hi = min(above, key=lambda f: f.alpha) if above else None
+        ok = [f for f in fits if f.chi2 <= target]
+        if not ok:
+            return min(fits, key=lambda f: f.chi2)
+        lo = max(ok, key=lambda f: f.alpha)
+        above = [f for f in fits if f.alpha > lo.alpha]
+        hi = min(above, key=lambda f: f.alpha) if above else None
         while hi is not None and len(fits) < max_fits + 4 and hi.alpha / lo.alpha > 1.5:
             cur = run(np.sqrt(hi.alpha * lo.alpha), lo.theta)
             if cur.chi2 <= target:
@@ -602,42 +600,49 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
 
     cache: dict[int, tuple[float, Fit, PileModel]] = {}
 
-    def truncated(j):
-        if j not in cache:
+    def truncated(j, full=True):
+        """Phi of the model truncated at j, refitted from the extended fit (``full=False``, the coarse scan: at
+        most 60 iterations, an upper bound of the converged Phi)."""
+        key = (j, full)
+        if key not in cache:
             mm = PileModel(dt, j, force, z_ref, toe, backend)
-            near = min(cache, key=lambda q: abs(q - j)) if cache else None
-            if near is None:
-                start = np.r_[best.theta[:j], best.theta[n:]]
-            else:
-                th = cache[near][1].theta
+            done = [q for (q, fl) in cache if fl]
+            if full and done:
+                near = min(done, key=lambda q: abs(q - j))
+                th = cache[(near, True)][1].theta
                 m_part = np.r_[th[:near], np.full(max(j - near, 0), th[near - 1])][:j]
                 start = np.r_[m_part, th[near:]]
-            f = fit(mm, vel, sigma, alpha, pen, start, bounds_of(j))
-            cache[j] = (phi_of(mm, f.theta), f, mm)
+            else:
+                start = np.r_[best.theta[:j], best.theta[n:]]
+            f = fit(mm, vel, sigma, alpha, pen, start, bounds_of(j), max_iterations=400 if full else 60)
+            cache[key] = (phi_of(mm, f.theta), f, mm)
             if progress is not None:
-                progress(f"toe at element {j}: Phi = {cache[j][0]:.6g}")
-        return cache[j][0]
+                progress(f"toe at element {j}{'' if full else ' (coarse)'}: Phi = {cache[key][0]:.6g}")
+        return cache[key][0]
 
     first = max(4, int(0.6 * n_pile))
     coarse = max(1, n_pile // 20)
-    for j in list(range(n, first - 1, -coarse)):
+    for j in range(n, first - 1, -coarse):
+        truncated(j, full=False)
+    jc = min((q for q, fl in cache if not fl), key=lambda q: cache[(q, False)][0])
+    for j in range(max(4, jc - coarse), min(n, jc + coarse) + 1):
         truncated(j)
-    jb = min(cache, key=lambda q: cache[q][0])
-    for j in range(max(4, jb - coarse + 1), min(n, jb + coarse - 1) + 1):
-        truncated(j)
-    for _ in range(4 * n):                        # descend to a local minimum, then close the 90 % interval
-        jb = min(cache, key=lambda q: cache[q][0])
-        pmin = cache[jb][0]
-        left, right = min(cache), max(cache)
+    full_keys = lambda: [q for q, fl in cache if fl]
+    for _ in range(4 * n):                        # on to a local minimum, and until the 90 % interval is closed
+        keys = full_keys()
+        jb = min(keys, key=lambda q: cache[(q, True)][0])
+        pmin = cache[(jb, True)][0]
+        left, right = min(keys), max(keys)
         grow = [j for j, edge in ((left - 1, left), (right + 1, right))
-                if 4 <= j <= n and abs(j - jb) <= max_toe_scan and 2 * (cache[edge][0] - pmin) <= PROFILE_90]
+                if 4 <= j <= n and abs(j - jb) <= max_toe_scan and 2 * (cache[(edge, True)][0] - pmin) <= PROFILE_90]
         if not grow:
             break
         for j in grow:
             truncated(j)
-    jb = min(cache, key=lambda q: cache[q][0])
-    pmin, final, fmodel = cache[jb]
-    inside = [j for j in cache if 2 * (cache[j][0] - pmin) <= PROFILE_90]
+    keys = full_keys()
+    jb = min(keys, key=lambda q: cache[(q, True)][0])
+    pmin, final, fmodel = cache[(jb, True)]
+    inside = [j for j in keys if 2 * (cache[(j, True)][0] - pmin) <= PROFILE_90]
     h = c_w * dt
     toe_depth = jb * h
     toe_band = (min(inside) * h, max(inside) * h)
@@ -712,7 +717,7 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
                    "weight_rule": rule, "alpha": alpha, "noise": sigma, "noise_given": sigma_known,
                    "chi2_per_sample": final.chi2 / K, "elements_model": n, "element_length_m": h,
                    "element_travel_time_s": dt, "impedance_scale": z_ref, "bands": bands,
-                   "toe_candidates": sorted(cache), "window": win, "min_change": min_change,
+                   "toe_candidates": sorted(full_keys()), "window": win, "min_change": min_change,
                    **summary_of(theta, fmodel), **diag_extra,
                    "misfit_definition": "chi2 / K = sum((y_k - d_k) / sigma)^2 / K over the K samples"}
     return IdentificationResult(depth=depth, impedance=Z, lower=lower, upper=upper, anomalies=tuple(anomalies),
