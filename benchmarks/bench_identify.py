@@ -207,7 +207,10 @@ def _mean(values) -> float:
     return float(np.mean(v)) if v else float("nan")
 
 
-def run(piles: int, seed: int = 2024, quick: bool = False, progress: bool = True) -> tuple[list[dict], dict]:
+def run(piles: int, seed: int = 2024, quick: bool = False, progress: bool = True,
+        write_every: Optional[int] = None) -> tuple[list[dict], dict]:
+    """Identify ``piles`` random piles with every method; with ``write_every``, the page is rewritten after every
+    so many piles (a long run that is stopped keeps what it has, with its count)."""
     rng = np.random.default_rng(seed)
     rows = []
     t0 = time.perf_counter()
@@ -227,6 +230,8 @@ def run(piles: int, seed: int = 2024, quick: bool = False, progress: bool = True
                 "toe_cov": None, "z_cov": None, "refused": why}
             rows.append({"pile": i, "method": method, "noise": pile.noise, "colour": pile.colour, "n": pile.n,
                          "seconds": time.perf_counter() - w0, **s})
+        if write_every and (i + 1) % write_every == 0:
+            DOC.write_text(report(summarise(rows), i + 1, seed, time.perf_counter() - t0))
         if progress:
             done = i + 1
             el = time.perf_counter() - t0
@@ -306,7 +311,7 @@ def main(argv: Optional[list[str]] = None) -> None:
         return
     piles = 6 if args.quick else args.piles
     w0 = time.perf_counter()
-    rows, table = run(piles, args.seed, args.quick)
+    rows, table = run(piles, args.seed, args.quick, write_every=3 if args.write else None)
     text = report(table, piles, args.seed, time.perf_counter() - w0)
     print(text)
     if args.write:

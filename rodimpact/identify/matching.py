@@ -602,7 +602,7 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
 
     def truncated(j, full=True):
         """Phi of the model truncated at j, refitted from the extended fit (``full=False``, the coarse scan: at
-        most 60 iterations, an upper bound of the converged Phi)."""
+        most 100 iterations, an upper bound of the converged Phi)."""
         key = (j, full)
         if key not in cache:
             mm = PileModel(dt, j, force, z_ref, toe, backend)
@@ -613,8 +613,16 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
                 m_part = np.r_[th[:near], np.full(max(j - near, 0), th[near - 1])][:j]
                 start = np.r_[m_part, th[near:]]
             else:
+                # the extended fit above j; below j its elements act on the pile as a rod of their impedance, i.e.
+                # (for a long rod) as a dashpot c_t = Z_below: the toe dashpot starts there
                 start = np.r_[best.theta[:j], best.theta[n:]]
-            f = fit(mm, vel, sigma, alpha, pen, start, bounds_of(j), max_iterations=400 if full else 60)
+                if j < n and toe == "spring":
+                    start[j + 3] = float(np.clip(np.mean(np.exp(best.theta[j:n])), 0.0, soil_hi[3]))
+            bnds = bounds_of(j)
+            # the soil first, with the profile held (4 unknowns: a few iterations), then everything
+            soil_first = fit(mm, vel, sigma, alpha, pen, start, [(v, v) for v in start[:j]] + bnds[j:],
+                             max_iterations=100)
+            f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=400 if full else 100)
             cache[key] = (phi_of(mm, f.theta), f, mm)
             if progress is not None:
                 progress(f"toe at element {j}{'' if full else ' (coarse)'}: Phi = {cache[key][0]:.6g}")
