@@ -35,7 +35,7 @@ from .io.results import summarize
 from .io.storage import load, save
 from . import inverse, io
 
-_LAZY_SUBPACKAGES = ("plotting", "reference", "shpb", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
+_LAZY_SUBPACKAGES = ("identify", "plotting", "reference", "shpb", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
 
 
 def __getattr__(name: str):
@@ -64,5 +64,5 @@ __all__ = [
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
     "design", "DesignResult", "MatchObjective", "EfficiencyObjective", "StrikerLimits", "SearchOptions",
     "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
-    "inverse", "io", "plotting", "reference", "shpb", "signals",
+    "identify", "inverse", "io", "plotting", "reference", "shpb", "signals",
 ]

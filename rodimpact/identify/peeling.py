@@ -20,7 +20,7 @@ small (the recursion divides by it: a smooth pulse that starts from zero, like a
 peeled at the sampling resolution; use :func:`rodimpact.identify.identify_by_beta`); lossless rod, no soil
 resistance, no dispersion (the 1D model: docs/identification.md).
 
-Two paths: ``method="schur"`` runs the package's O(n log^2 n) peel (:func:`rodimpact.inverse._schur.peel`, the
+Two paths: ``method="schur"`` runs the package's O(n log^2 n) peel (:func:`rodimpact.inverse.peel_layers`, the
 same recursion written on the waves ``g = d``, ``f = u``); ``method="reference"`` the loops of this module (O(n^2),
 numpy). They agree to rounding (tests/identify/test_peeling.py).
 """
@@ -35,7 +35,7 @@ import numpy as np
 
 from .._validate import caller_stacklevel, positive
 from .._version import __version__
-from ..inverse._schur import peel
+from ..inverse import peel_layers
 from .records import HeadRecord, check_units, split_waves
 from .reflectors import anomalies_of_profile
 from .result import IdentificationResult
@@ -128,7 +128,7 @@ def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float,
     onset_up = float(up[0] / down[0])
     up[0] = 0.0             # causality: nothing has come back at the onset (the first interface answers at s = 1)
     if method == "schur":
-        z, _, kappa, m = peel(down + up, (down - up) / z1)
+        z, _, kappa, m = peel_layers(down + up, (down - up) / z1)
     else:
         z, m = peel_waves(down, up, z1)
         kappa = None

@@ -24,7 +24,7 @@ import numpy as np
 
 from .._validate import finite_array, positive
 
-__all__ = ["HeadRecord", "amplified", "average_blows", "band_limited", "split_waves"]
+__all__ = ["HeadRecord", "amplified", "average_blows", "band_limited", "hammer_record", "split_waves"]
 
 #: Relative spread of the sampling intervals accepted as uniform sampling (rounding of the time column in files).
 UNIFORM_SAMPLING = 1e-6
@@ -86,6 +86,27 @@ class HeadRecord:
         """The record from sample ``onset`` on, time shifted so that the onset is t = 0."""
         return HeadRecord(self.time[onset:] - self.time[onset], self.force[onset:], self.velocity[onset:],
                           self.source)
+
+
+def hammer_record(time: Any, velocity: Any, impedance: float, width: float, start: float = 0.0,
+                  source: str = "") -> HeadRecord:
+    """A low-strain record from the head velocity alone and a parametrised hammer pulse: the force is the
+    half-sine ``N(t) = -A sin(pi (t - start) / width)`` on ``[start, start + width)`` (zero elsewhere; tension
+    positive, so a blow is negative), whose amplitude A follows from the velocity during the pulse. Before any
+    echo returns the head carries the down-going wave alone, ``v = -N / Z``, so A is the least-squares fit of
+    ``Z v`` to the half-sine shape over the pulse, ``A = Z sum(v s) / sum(s^2)`` with ``s`` the unit half-sine.
+    Valid while no echo arrives within the pulse (reflectors deeper than c width / 2)."""
+    t = finite_array("time", time, min_size=2)
+    v = finite_array("velocity", velocity)
+    if v.size != t.size:
+        raise ValueError(f"velocity: must have one sample per time sample ({t.size}), got {v.size}")
+    z = positive("impedance", impedance, "N s/m")
+    w = positive("width", width, "s")
+    shape = np.where((t >= start) & (t < start + w), np.sin(np.pi * (t - start) / w), 0.0)
+    if not np.any(shape > 0):
+        raise ValueError(f"width, start: the pulse [{start:.6g}, {start + w:.6g}) s holds no sample of the record")
+    amplitude = z * float(np.dot(v, shape) / np.dot(shape, shape))
+    return HeadRecord(t, -amplitude * shape, v, source)
 
 
 def average_blows(records: Sequence[HeadRecord]) -> HeadRecord:

@@ -32,7 +32,7 @@ from .._version import __version__
 from .records import HeadRecord, check_units, split_waves
 from .result import Anomaly, IdentificationResult
 
-__all__ = ["BETA_CLASSES", "beta_class", "anomalies_of_profile", "identify_by_beta", "reflectogram"]
+__all__ = ["BETA_CLASSES", "beta_class", "anomalies_of_profile", "first_peak", "identify_by_beta", "reflectogram"]
 
 #: (lower bound of beta, class) from the top; beta > 1 is an "increase" (module docstring for the source).
 BETA_CLASSES = ((1.0, "uniform"), (0.8, "slight damage"), (0.6, "damage"), (0.0, "broken"))
@@ -72,7 +72,7 @@ def reflectogram(record: HeadRecord, impedance: float) -> tuple[np.ndarray, np.n
     arrival of a single reflector's echo it equals that reflector's r (module docstring). Returns the time
     after the down-going peak (s; a reflector at depth x shows at 2 x / c), rho and the peak's sample index."""
     down, up = split_waves(record, impedance)
-    peak = int(np.argmax(np.abs(down)))
+    peak = first_peak(down)
     return record.time - record.time[peak], up / down[peak], peak
 
 
@@ -84,7 +84,8 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     ``impedance``: the head impedance (N s/m); ``wave_speed`` (m/s) turns echo times into depths, x = c t / 2.
     Every extreme of rho(t) beyond ``threshold`` (a share of the down-going peak; the package's choice, not from
     a standard) that stands apart from the previous one by at least the pulse width is a reflector. ``length``
-    (m): the known length; the toe is then the reflector nearest to it (else the deepest reflector).
+    (m): the known length; the toe is then the reflector nearest to it (without it no reflector is taken for the toe:
+    a deep break and a toe look alike).
     ``diameter`` (m): checks the 1D limits (:func:`rodimpact.identify.validity.one_dimensional_warnings`).
     """
     from .validity import one_dimensional_warnings
@@ -117,8 +118,8 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
         passage *= 1.0 - r * r
     reach = 0.5 * c * t[-1]
     toe = None
-    if found:
-        toe = min(found, key=lambda f: abs(f[0] - length))[0] if length is not None else found[-1][0]
+    if found and length is not None:
+        toe = min(found, key=lambda f: abs(f[0] - length))[0]
     anomalies = []
     for i, (x, r, beta) in enumerate(found):
         below = found[i + 1][0] if i + 1 < len(found) else (length if length is not None else reach)
@@ -140,6 +141,16 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     return IdentificationResult(depth=np.array(boundaries), impedance=np.array(profile_z), anomalies=tuple(anomalies),
                                 toe=toe, wave_speed=c, method="beta", diagnostics=diagnostics,
                                 matched={"reflectogram": (t, rho, rho)})
+
+
+def first_peak(down: np.ndarray) -> int:
+    """The sample of the first pulse's peak: from the first sample beyond half the largest |down|, uphill to the
+    local maximum (the head re-reflects echoes as later down-going pulses, which may be as large)."""
+    a = np.abs(down)
+    i = int(np.argmax(a >= 0.5 * a.max()))
+    while i + 1 < a.size and a[i + 1] > a[i]:
+        i += 1
+    return i
 
 
 def _pulse_width(down: np.ndarray, peak: int) -> int:
