@@ -601,8 +601,9 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
     cache: dict[int, tuple[float, Fit, PileModel]] = {}
 
     def truncated(j, full=True):
-        """Phi of the model truncated at j, refitted from the extended fit (``full=False``, the coarse scan: at
-        most 100 iterations, an upper bound of the converged Phi)."""
+        """Phi of the model truncated at j, refitted from the extended fit or the nearest refitted model (at most
+        150 iterations; ``full=False``, the coarse scan: 100 from the extended fit). Upper bounds of the converged
+        Phi; the chosen model is polished afterwards."""
         key = (j, full)
         if key not in cache:
             mm = PileModel(dt, j, force, z_ref, toe, backend)
@@ -622,7 +623,7 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
             # the soil first, with the profile held (4 unknowns: a few iterations), then everything
             soil_first = fit(mm, vel, sigma, alpha, pen, start, [(v, v) for v in start[:j]] + bnds[j:],
                              max_iterations=100)
-            f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=400 if full else 100)
+            f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=150 if full else 100)
             cache[key] = (phi_of(mm, f.theta), f, mm)
             if progress is not None:
                 progress(f"toe at element {j}{'' if full else ' (coarse)'}: Phi = {cache[key][0]:.6g}")
@@ -633,23 +634,28 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
     for j in range(n, first - 1, -coarse):
         truncated(j, full=False)
     jc = min((q for q, fl in cache if not fl), key=lambda q: cache[(q, False)][0])
-    for j in range(max(4, jc - coarse), min(n, jc + coarse) + 1):
-        truncated(j)
     full_keys = lambda: [q for q, fl in cache if fl]
-    for _ in range(4 * n):                        # on to a local minimum, and until the 90 % interval is closed
-        keys = full_keys()
-        jb = min(keys, key=lambda q: cache[(q, True)][0])
+    best_full = lambda: min(full_keys(), key=lambda q: cache[(q, True)][0])
+    step = max(1, coarse // 3)
+    for j in range(max(4, jc - coarse), min(n, jc + coarse) + 1, step):
+        truncated(j)
+    jm = best_full()
+    for j in range(max(4, jm - step + 1), min(n, jm + step - 1) + 1):
+        truncated(j)
+    for _ in range(n):           # walk out from the best to both sides until 2 (Phi - Phi_min) > 2.71
+        jb = best_full()
         pmin = cache[(jb, True)][0]
-        left, right = min(keys), max(keys)
-        grow = [j for j, edge in ((left - 1, left), (right + 1, right))
-                if 4 <= j <= n and abs(j - jb) <= max_toe_scan and 2 * (cache[(edge, True)][0] - pmin) <= PROFILE_90]
-        if not grow:
+        for side in (-1, 1):
+            for d in range(1, max_toe_scan + 1):
+                j = jb + side * d
+                if not 4 <= j <= n or 2 * (truncated(j) - pmin) > PROFILE_90:
+                    break
+        if best_full() == jb:
             break
-        for j in grow:
-            truncated(j)
     keys = full_keys()
     jb = min(keys, key=lambda q: cache[(q, True)][0])
     pmin, final, fmodel = cache[(jb, True)]
+    final = fit(fmodel, vel, sigma, alpha, pen, final.theta, bounds_of(jb))      # polish the chosen model
     inside = [j for j in keys if 2 * (cache[(j, True)][0] - pmin) <= PROFILE_90]
     h = c_w * dt
     toe_depth = jb * h
