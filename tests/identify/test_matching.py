@@ -11,6 +11,8 @@ from rodimpact.identify import HeadRecord
 from rodimpact.identify.matching import (BlockModel, Penalty, PileModel, baseline_noise, blocks_of, choose_weight,
                                          fit, half_sine, identify_by_matching)
 
+from test_match_kernels import _central  # noqa: E402  (the same Richardson central difference)
+
 DT = 2e-5
 N = 24
 STEPS = 120
@@ -24,15 +26,6 @@ def _model(toe="spring", backend="numba"):
 def _theta(seed=0):
     rng = np.random.default_rng(seed)
     return np.r_[rng.normal(0.0, 0.2, N), 0.4, 0.7, 6.0, 0.5]
-
-
-def _central(fun, x, i, h):
-    def diff(step):
-        xp, xm = x.copy(), x.copy()
-        xp[i] += step
-        xm[i] -= step
-        return (fun(xp) - fun(xm)) / (2 * step)
-    return (4.0 * diff(h) - diff(2 * h)) / 3.0
 
 
 @pytest.mark.parametrize("toe", ["spring", "fixed"])
