@@ -121,7 +121,7 @@ def run_method(method: str, record, onset: int, pile: Pile):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if method == "matching":
-            return identify_by_matching(record, C_WAVE, pile.expected_length, impedance=Z_NOMINAL,
+            return identify_by_matching(record, Z_NOMINAL, C_WAVE, length=pile.expected_length,
                                         min_change=THRESHOLD)
         rec = record.from_onset(onset)
         if method == "peeling":
@@ -282,7 +282,7 @@ def timing_section() -> str:
     peel = best_time(lambda: run_method("peeling", record, onset, pile), 3)
     beta = best_time(lambda: run_method("beta", record, onset, pile), 3)
     w0 = time.perf_counter()
-    res = identify_by_matching(record, C_WAVE, pile.expected_length, impedance=Z_NOMINAL, bands="sampling")
+    res = identify_by_matching(record, Z_NOMINAL, C_WAVE, length=pile.expected_length, bands="sampling")
     samp = time.perf_counter() - w0
     d = res.diagnostics
     return ("## Identification (benchmarks/bench_identify.py)\n\n"

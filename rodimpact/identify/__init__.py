@@ -6,6 +6,7 @@ An application layer above the solvers and the measurement layer, below files, f
 (docs/architecture.md). SI units; forces positive in tension, depth from the measured face along the rod.
 """
 
+from .matching import identify, identify_by_matching
 from .peeling import IdentificationWarning, identify_by_peeling, peel_waves
 from .records import HeadRecord, amplified, average_blows, band_limited, hammer_record, split_waves
 from .reflectors import BETA_CLASSES, beta_class, identify_by_beta, reflectogram
@@ -14,5 +15,5 @@ from .two_gauge import separate_waves
 from .result import Anomaly, IdentificationResult
 
 __all__ = ["Anomaly", "BETA_CLASSES", "HeadRecord", "IdentificationResult", "IdentificationWarning", "amplified",
-           "average_blows", "band_limited", "beta_class", "hammer_record", "identify_by_beta", "identify_by_peeling", "peel_waves",
+           "average_blows", "band_limited", "beta_class", "hammer_record", "identify", "identify_by_beta", "identify_by_matching", "identify_by_peeling", "peel_waves",
            "identify_striker", "reflectogram", "separate_waves", "split_waves"]

@@ -456,7 +456,7 @@ def _head_impedance(force: np.ndarray, velocity: np.ndarray) -> Optional[float]:
     return z if z > 0 else None
 
 
-def identify_by_matching(record: Any, wave_speed: float, length: float, *, impedance: Optional[float] = None,
+def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: float, *, length: float,
                          elements: Optional[int] = None, extension: float = 0.25, noise: Optional[float] = None,
                          penalty: str = "tv", weight: Any = "auto", impedance_bounds: tuple[float, float] = (0.02, 3.0),
                          soil: bool = True, toe: str = "spring", bands: str = "laplace", min_change: float = 0.08,
@@ -471,14 +471,14 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
         A :class:`~rodimpact.identify.HeadRecord`: head force (N, tension positive; the hammer force, measured in
         a high-strain test or a :func:`half_sine` for a low-strain one) and velocity (m/s, down), with a
         pre-trigger baseline (samples before the blow) from which the noise level is estimated.
+    impedance:
+        The impedance scale Z_ref (N s/m; the nominal head impedance), the start of the search. ``None``:
+        estimated from the rise of the pulse, Z = -F/V.
     wave_speed:
         c (m/s), constant along the pile: element length = c dt.
     length:
         The expected pile length (m); the model reaches ``(1 + extension) length`` and the toe is identified
         within it. The record must last 2 (1 + extension) length / c after the onset.
-    impedance:
-        The impedance scale Z_ref (N s/m; the nominal head impedance). Default: estimated from the rise of the
-        pulse, Z = -F/V.
     elements:
         Elements over ``length`` (the record is linearly resampled to dt = length / (c elements)); default: one
         element per sample interval.
@@ -738,3 +738,28 @@ def identify_by_matching(record: Any, wave_speed: float, length: float, *, imped
                                 toe=toe_depth, toe_band=toe_band, wave_speed=c_w,
                                 matched={"velocity": (time_, vel, y)}, misfit=final.chi2 / K, method="matching",
                                 diagnostics=diagnostics)
+
+
+METHODS = ("matching", "peeling", "beta")
+
+
+def identify(record: Any, impedance: Optional[float], wave_speed: float, *, method: str = "matching",
+             **options: Any):
+    """The impedance profile below the head by one of the identification methods, as an
+    :class:`~rodimpact.identify.IdentificationResult`: ``"matching"`` (:func:`identify_by_matching`, the default:
+    soil, damping and noise, with bands), ``"peeling"`` (:func:`~rodimpact.identify.identify_by_peeling`: exact
+    for clean lossless records with a sharp onset) or ``"beta"`` (:func:`~rodimpact.identify.identify_by_beta`:
+    reflectors and their integrity factors). ``options`` go to the method (e.g. ``length`` for matching and
+    beta)."""
+    from .peeling import identify_by_peeling
+    from .reflectors import identify_by_beta
+
+    if method == "matching":
+        return identify_by_matching(record, impedance, wave_speed, **options)
+    if impedance is None and method in ("peeling", "beta"):
+        raise ValueError(f"impedance: the {method} method needs the head impedance (N s/m), got None")
+    if method == "peeling":
+        return identify_by_peeling(record, impedance, wave_speed, **options)
+    if method == "beta":
+        return identify_by_beta(record, impedance, wave_speed, **options)
+    raise ValueError(f"method: must be one of {METHODS}, got {method!r}")

@@ -140,7 +140,7 @@ def _synthetic(seed: int, noise: float):
 
 def test_identifies_neck_bulge_and_toe_of_a_finer_lattice_pile():
     record, c, length, z0, h = _synthetic(11, 0.03)
-    res = identify_by_matching(record, c, 1.05 * length, impedance=z0)
+    res = identify_by_matching(record, z0, c, length=1.05 * length)
     assert res.method == "matching"
     assert abs(res.toe - length) <= h + 1e-9
     assert res.toe_band[0] <= res.toe <= res.toe_band[1]
@@ -176,7 +176,7 @@ def test_penalty_weight_follows_the_discrepancy_principle():
 def test_without_baseline_the_l_curve_is_used():
     record, c, length, z0, h = _synthetic(13, 0.03)
     cut = HeadRecord(record.time[38:] - record.time[38], record.force[38:], record.velocity[38:])
-    res = identify_by_matching(cut, c, length, impedance=z0, bands="none")
+    res = identify_by_matching(cut, z0, c, length=length, bands="none")
     assert res.diagnostics["weight_rule"] == "lcurve"
 
 
@@ -195,21 +195,21 @@ def test_without_baseline_the_l_curve_is_used():
 def test_bad_arguments_are_refused_by_name(kwargs, match):
     record, c, length, z0, h = _synthetic(14, 0.01)
     with pytest.raises(ValueError, match=match):
-        identify_by_matching(record, c, length, impedance=z0, **kwargs)
+        identify_by_matching(record, z0, c, length=length, **kwargs)
 
 
 def test_bad_records_are_refused_by_name():
     record, c, length, z0, h = _synthetic(15, 0.01)
     with pytest.raises(ValueError, match="record"):
-        identify_by_matching(HeadRecord(record.time[:80], record.force[:80], record.velocity[:80]), c, length)
+        identify_by_matching(HeadRecord(record.time[:80], record.force[:80], record.velocity[:80]), z0, c, length=length)
     with pytest.raises(ValueError, match="force"):
-        identify_by_matching(HeadRecord(record.time, 0 * record.force, record.velocity), c, length)
+        identify_by_matching(HeadRecord(record.time, 0 * record.force, record.velocity), z0, c, length=length)
     with pytest.raises(TypeError, match="record"):
-        identify_by_matching((record.time, record.force, record.velocity), c, length)
+        identify_by_matching((record.time, record.force, record.velocity), z0, c, length=length)
     with pytest.raises(ValueError, match="wave_speed"):
-        identify_by_matching(record, -c, length)
+        identify_by_matching(record, z0, -c, length=length)
     with pytest.raises(ValueError, match="length"):
-        identify_by_matching(record, c, float("inf"))
+        identify_by_matching(record, z0, c, length=float("inf"))
     bad = record.velocity.copy()
     bad[5] = np.nan
     with pytest.raises(ValueError, match="velocity"):
@@ -225,3 +225,21 @@ def test_pile_model_refuses_bad_parts():
         PileModel(1e-5, 4, np.ones(5), -1.0)
     with pytest.raises(ValueError, match="toe"):
         PileModel(1e-5, 4, np.ones(5), 1.0, toe="free-ish")
+
+
+def test_identify_dispatches_to_the_three_methods():
+    from rodimpact.identify import identify, identify_by_beta, identify_by_peeling
+
+    record, c, length, z0, h = _synthetic(16, 0.0)
+    onset = record.from_onset(40)
+    for method, direct in (("peeling", identify_by_peeling), ("beta", identify_by_beta)):
+        a = identify(onset, z0, c, method=method)
+        b = direct(onset, z0, c)
+        assert a.method == method
+        np.testing.assert_array_equal(a.impedance, b.impedance)
+    m = identify(record, z0, c, length=length, bands="none")
+    assert m.method == "matching" and m.lower is None
+    with pytest.raises(ValueError, match="method"):
+        identify(record, z0, c, method="guess")
+    with pytest.raises(ValueError, match="impedance"):
+        identify(onset, None, c, method="beta")
