@@ -48,6 +48,9 @@ def forward_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us):
     Np = np.empty(n)
     y = np.empty(K)
     h = 0.5 * dt
+    inv_D = np.empty(n)                 # 1 / (Z_a + Z_b + q) of every shaft node: constant during the run
+    for i in range(1, n):
+        inv_D[i] = 1.0 / (Z[i - 1] + Z[i] + c[i] + k[i] * h)
     for s in range(K):
         if store:
             for j in range(n):
@@ -61,7 +64,7 @@ def forward_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us):
             a = i - 1
             q = c[i] + k[i] * h
             num = -q * v[a] - k[i] * u[i] + N[i] - N[a] + Z[i] * (v[i] - v[a])
-            d = num / (Z[a] + Z[i] + q)
+            d = num * inv_D[i]
             V = v[a] + d
             Vn[i] = V
             Np[a] = N[a] + Z[a] * d
@@ -141,6 +144,9 @@ def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
     gct = 0.0
     bV = np.empty(n + 1)
     bNe = np.empty(n)
+    inv_D = np.empty(n)                 # 1 / (Z_a + Z_b + q) of every shaft node, as in the forward run
+    for i in range(1, n):
+        inv_D[i] = 1.0 / (Z[i - 1] + Z[i] + c[i] + k[i] * h)
     for s in range(K - 1, -1, -1):
         # element update: N^- and N^+ of element j both receive bN'_j; node i receives bv' of elements i-1, i
         for j in range(n):
@@ -170,8 +176,8 @@ def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
             vb = vs[s, i]
             ui = us[s, i]
             q = c[i] + k[i] * h
-            D = Z[a] + Z[i] + q
-            d = (-q * va - k[i] * ui + Nb - Na + Z[i] * (vb - va)) / D
+            iD = inv_D[i]
+            d = (-q * va - k[i] * ui + Nb - Na + Z[i] * (vb - va)) * iD
             V = va + d
             g = bNe[i]                      # N^-_b = N_b - Z_b (V - v_b)
             bN[i] += g
@@ -183,8 +189,8 @@ def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
             gZ[a] += d * g
             bd = Z[a] * g + bVi             # V = v_a + d
             bv[a] += bVi
-            bnum = bd / D
-            bD = -bd * d / D
+            bnum = bd * iD
+            bD = -bnum * d
             gZ[a] += bD
             gZ[i] += bD
             bq = bD - va * bnum
@@ -314,6 +320,9 @@ def tangent_numba(Z, c, k, kt, ct, fixed_toe, F, dt, tZ, tc, tk, tkt, tct):
     tNp = np.empty(n)
     y = np.empty(K)
     J = np.empty((K, P))
+    inv_D = np.empty(n)
+    for i in range(1, n):
+        inv_D[i] = 1.0 / (Z[i - 1] + Z[i] + c[i] + k[i] * h)
     for s in range(K):
         # primal
         Vn[0] = v[0] + (N[0] - F[s]) / Z[0]
@@ -321,7 +330,7 @@ def tangent_numba(Z, c, k, kt, ct, fixed_toe, F, dt, tZ, tc, tk, tkt, tct):
         for i in range(1, n):
             a = i - 1
             q = c[i] + k[i] * h
-            d = (-q * v[a] - k[i] * u[i] + N[i] - N[a] + Z[i] * (v[i] - v[a])) / (Z[a] + Z[i] + q)
+            d = (-q * v[a] - k[i] * u[i] + N[i] - N[a] + Z[i] * (v[i] - v[a])) * inv_D[i]
             dd[i] = d
             Vn[i] = v[a] + d
             Np[a] = N[a] + Z[a] * d
@@ -344,11 +353,10 @@ def tangent_numba(Z, c, k, kt, ct, fixed_toe, F, dt, tZ, tc, tk, tkt, tct):
                 a = i - 1
                 q = c[i] + k[i] * h
                 tq = tc[p, i] + h * tk[p, i]
-                D = Z[a] + Z[i] + q
                 tD = tZ[p, a] + tZ[p, i] + tq
                 tnum = (-tq * v[a] - q * tv[p, a] - tk[p, i] * u[i] - k[i] * tu[p, i] + tN[p, i] - tN[p, a]
                         + tZ[p, i] * (v[i] - v[a]) + Z[i] * (tv[p, i] - tv[p, a]))
-                td = (tnum - dd[i] * tD) / D
+                td = (tnum - dd[i] * tD) * inv_D[i]
                 tV[i] = tv[p, a] + td
                 tNp[a] = tN[p, a] + tZ[p, a] * dd[i] + Z[a] * td
                 tNm[i] = tN[p, i] - tZ[p, i] * (Vn[i] - v[i]) - Z[i] * (tV[i] - tv[p, i])

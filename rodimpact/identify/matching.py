@@ -70,6 +70,7 @@ class PileModel:
     z_ref: float
     toe: str = "spring"
     backend: str = "numba"
+    _buffers: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.dt) and self.dt > 0):
@@ -119,7 +120,16 @@ class PileModel:
                                         gkt * self.z_ref / T, gct * self.z_ref]])
 
     def _states(self, steps: int):
-        return np.empty((steps, self.n)), np.empty((steps, self.n)), np.empty((steps, self.n + 1))
+        """Buffers for the states before every step, kept between calls (allocating 3 K n doubles anew for every
+        gradient cost a third of its time in page faults)."""
+        if steps == 0:
+            return np.empty((0, self.n)), np.empty((0, self.n)), np.empty((0, self.n + 1))
+        key = (steps, self.n)
+        if key not in self._buffers:
+            self._buffers.clear()
+            self._buffers[key] = (np.empty((steps, self.n)), np.empty((steps, self.n)),
+                                  np.empty((steps, self.n + 1)))
+        return self._buffers[key]
 
     def simulate(self, theta: np.ndarray) -> np.ndarray:
         """Head velocity y_k (m/s) for k = 0 .. K-1."""
