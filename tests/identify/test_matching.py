@@ -243,3 +243,20 @@ def test_identify_dispatches_to_the_three_methods():
         identify(record, z0, c, method="guess")
     with pytest.raises(ValueError, match="impedance"):
         identify(onset, None, c, method="beta")
+
+
+def test_sampling_bands_converge_and_agree_with_the_laplace_bands():
+    """pCN chains from the Laplace Gaussian of the relaxed refit: they stop converged (R-hat < 1.01, ESS > 400),
+    report progress, and their 90 % band of every element is within a factor 1.5 of the Laplace band's width
+    (the refit's block values are nearly linear in the data, so the two should agree)."""
+    record, c, length, z0, h = _synthetic(17, 0.03)
+    lines = []
+    lap = identify_by_matching(record, z0, c, length=length)
+    smp = identify_by_matching(record, z0, c, length=length, bands="sampling", progress=lines.append)
+    d = smp.diagnostics
+    assert d["sampling_converged"] and d["sampling_rhat"] < 1.01 and d["sampling_ess"] > 400
+    assert any("R-hat" in line for line in lines)
+    np.testing.assert_array_equal(smp.impedance, lap.impedance)
+    w_lap = np.log(lap.upper / lap.lower)
+    w_smp = np.log(smp.upper / smp.lower)
+    assert np.all(w_smp < 1.5 * w_lap) and np.all(w_smp > w_lap / 1.5)
