@@ -156,3 +156,29 @@ def test_tangent_rows_equal_central_differences_and_the_adjoint():
     gZ, gc, gk, gkt, gct = mk.adjoint_numba(Z, c, k, kt, ct, False, F, DT, *st, r)
     ref = np.array([gZ[4] * Z[4], gc[1:N_EL].sum(), gkt])
     np.testing.assert_allclose(J.T @ r, ref, rtol=1e-10)
+
+
+@pytest.mark.skipif(not hasattr(ri, "ShaftResistance"),
+                    reason="the Smith soil (ShaftResistance, branch pile-soil) is not in this tree yet")
+def test_forward_with_shaft_soil_equals_the_general_solvers_linear_smith_soil():
+    """Below yield (R_u far above any soil force) the Smith shaft soil with smith-viscous damping is a spring
+    k = R_u / q and a dashpot c = J_sv R_u at every interior node, its spring taken as the exact mean over the step's
+    path = the midpoint rule for a linear spring. Lumping (docs/soil.md): each interior node takes the half elements
+    on both sides, the end half elements go to the nearest interior node (nodes 1 and n-1: 1.5 elements)."""
+    Z, _, _, F = _pile(6)
+    c_wave = 4000.0
+    h = c_wave * DT
+    unit = 1e9 / h                                  # R_u = 1e9 N per element length
+    quake, j_sv = 50.0, 1e-6                        # k = 2e7 N/m, c = 1e3 N s/m per element length
+    share = np.r_[0.0, 1.5, np.ones(N_EL - 3), 1.5, 0.0]
+    k = share * 1e9 / quake
+    c = share * 1e9 * j_sv
+    t = (np.arange(STEPS) + 0.5) * DT
+    rod = ri.Rod.from_impedance(list(Z), dt=DT, wave_speed=c_wave)
+    shaft = ri.ShaftResistance(0, depths=[0.0, N_EL * h], unit_resistance=[unit], quake=quake, damping=j_sv,
+                               damping_kind="smith-viscous")
+    system = ri.System([rod], [0.0], left=ri.ForceEnd(force=(t, F)), right="free", loads=[shaft])
+    head = ri.simulate(system, steps=STEPS, dt=DT).end_velocity["left"]
+    y = _run(Z, c, k, 0.0, 0.0, False, F)
+    assert np.abs(y - _run(Z, 0 * c, 0 * k, 0.0, 0.0, False, F)).max() > 0.05 * np.abs(y).max()   # soil matters
+    np.testing.assert_allclose(y, head, rtol=0, atol=1e-12 * np.abs(head).max())
