@@ -432,6 +432,25 @@ def summary_of(theta: np.ndarray, model: PileModel) -> dict[str, Any]:
 PROFILE_90 = 2.705543454095404
 
 
+def toe_candidates(m: np.ndarray, first: int, window: int, count: int = 2) -> list[int]:
+    """The ``count`` element boundaries j in [first, n - window] with the largest |mean(m[j:j+window]) -
+    mean(m[j-window:j])| (a two-sided step detector on ln Z), at least 2 windows apart, largest first."""
+    n = m.size
+    cs = np.r_[0.0, np.cumsum(m)]
+    js = np.arange(max(first, window), n - window + 1)
+    if js.size == 0:
+        return [n]
+    score = np.abs((cs[js + window] - cs[js]) - (cs[js] - cs[js - window])) / window
+    out: list[int] = []
+    for i in np.argsort(-score, kind="stable"):
+        j = int(js[i])
+        if all(abs(j - q) >= 2 * window for q in out):
+            out.append(j)
+        if len(out) == count:
+            break
+    return out
+
+
 def half_sine(time: np.ndarray, amplitude: float, duration: float, start: float = 0.0) -> np.ndarray:
     """A hammer pulse: F(t) = -amplitude sin(pi (t - start) / duration) for start <= t < start + duration, else
     0 (N, compression negative; ``amplitude`` > 0 N, ``duration`` > 0 s). For a low-strain record, whose force is
@@ -597,11 +616,13 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         rule = "given"
     alpha = best.alpha
     # the toe: read off the extended model, then profile likelihood over truncated models ending there
-    # the toe: the profile likelihood Phi(j) of models truncated at element j (a spring-dashpot toe there): a
-    # coarse scan from 0.6 of the expected length to the end of the model, then single steps down to the best
-    # and on until the 90 % interval 2 (Phi(j) - Phi_min) <= 2.71 is closed on both sides. The soil below the toe
-    # can look like an impedance fall (soft toe) or rise (stiff toe) in the extended model, so the truncated
-    # models, not the extended profile, decide.
+    # the toe: the soil below it makes the extended profile fall (soft toe) or rise (stiff toe), often as a ramp;
+    # the two largest such changes of the mean of ln Z (toe_candidates) are candidates, and the profile
+    # likelihood Phi(j) of models truncated at element j (a spring-dashpot toe there) decides around them: steps of
+    # w/3 over +-w, single steps around the best, and on until the 90 % interval 2 (Phi(j) - Phi_min) <= 2.71 is
+    # closed on both sides. Elements below the toe imitate any toe better than its spring-dashpot does, so a
+    # deeper truncation always fits a little better: every element is charged ln(K) / 2, Schwarz's (1978) BIC
+    # price of a parameter, and the criterion compared is Phi(j) + j ln(K) / 2.
     weight_vec = np.full(vel.size, 1.0 / sigma ** 2)
 
     def phi_of(m_model, theta):
@@ -610,17 +631,15 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
 
     cache: dict[int, tuple[float, Fit, PileModel]] = {}
 
-    def truncated(j, full=True):
-        """Phi of the model truncated at j, refitted from the extended fit or the nearest refitted model (at most
-        150 iterations; ``full=False``, the coarse scan: 100 from the extended fit). Upper bounds of the converged
-        Phi; the chosen model is polished afterwards."""
-        key = (j, full)
+    def truncated(j):
+        """Phi + j ln(K)/2 of the model truncated at j, refitted from the extended fit or the nearest refitted
+        model (at most 150 iterations: an upper bound of the converged Phi; the chosen model is polished)."""
+        key = j
         if key not in cache:
             mm = PileModel(dt, j, force, z_ref, toe, backend)
-            done = [q for (q, fl) in cache if fl]
-            if full and done:
-                near = min(done, key=lambda q: abs(q - j))
-                th = cache[(near, True)][1].theta
+            near = min(cache, key=lambda q: abs(q - j)) if cache else None
+            if near is not None and abs(near - j) <= w:
+                th = cache[near][1].theta
                 m_part = np.r_[th[:near], np.full(max(j - near, 0), th[near - 1])][:j]
                 start = np.r_[m_part, th[near:]]
             else:
@@ -633,28 +652,25 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             # the soil first, with the profile held (4 unknowns: a few iterations), then everything
             soil_first = fit(mm, vel, sigma, alpha, pen, start, [(v, v) for v in start[:j]] + bnds[j:],
                              max_iterations=100)
-            f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=150 if full else 100)
-            cache[key] = (phi_of(mm, f.theta), f, mm)
+            f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=150)
+            cache[key] = (phi_of(mm, f.theta) + per_element * j, f, mm)
             if progress is not None:
-                progress(f"toe at element {j}{'' if full else ' (coarse)'}: Phi = {cache[key][0]:.6g}")
+                progress(f"toe at element {j}: Phi = {cache[key][0]:.6g}")
         return cache[key][0]
 
-    first = max(4, int(0.6 * n_pile))
-    coarse = max(1, n_pile // 20)
-    for j in range(n, first - 1, -coarse):
-        truncated(j, full=False)
-    jc = min((q for q, fl in cache if not fl), key=lambda q: cache[(q, False)][0])
-    full_keys = lambda: [q for q, fl in cache if fl]
-    best_full = lambda: min(full_keys(), key=lambda q: cache[(q, True)][0])
-    step = max(1, coarse // 3)
-    for j in range(max(4, jc - coarse), min(n, jc + coarse) + 1, step):
-        truncated(j)
+    per_element = 0.5 * np.log(vel.size)
+    w = max(3, n_pile // 20)
+    best_full = lambda: min(cache, key=lambda q: cache[q][0])
+    step = max(1, w // 3)
+    for j0 in toe_candidates(best.theta[:n], max(4, int(0.6 * n_pile)), w):
+        for j in range(max(4, j0 - w), min(n, j0 + w) + 1, step):
+            truncated(j)
     jm = best_full()
     for j in range(max(4, jm - step + 1), min(n, jm + step - 1) + 1):
         truncated(j)
     for _ in range(n):           # walk out from the best to both sides until 2 (Phi - Phi_min) > 2.71
         jb = best_full()
-        pmin = cache[(jb, True)][0]
+        pmin = cache[jb][0]
         for side in (-1, 1):
             for d in range(1, max_toe_scan + 1):
                 j = jb + side * d
@@ -662,11 +678,11 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
                     break
         if best_full() == jb:
             break
-    keys = full_keys()
-    jb = min(keys, key=lambda q: cache[(q, True)][0])
-    pmin, final, fmodel = cache[(jb, True)]
+    keys = list(cache)
+    jb = best_full()
+    pmin, final, fmodel = cache[jb]
     final = fit(fmodel, vel, sigma, alpha, pen, final.theta, bounds_of(jb))      # polish the chosen model
-    inside = [j for j in keys if 2 * (cache[(j, True)][0] - pmin) <= PROFILE_90]
+    inside = [j for j in keys if 2 * (cache[j][0] - pmin) <= PROFILE_90]
     h = c_w * dt
     toe_depth = jb * h
     toe_band = (min(inside) * h, max(inside) * h)
@@ -741,7 +757,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
                    "weight_rule": rule, "alpha": alpha, "noise": sigma, "noise_given": sigma_known,
                    "chi2_per_sample": final.chi2 / K, "elements_model": n, "element_length_m": h,
                    "element_travel_time_s": dt, "impedance_scale": z_ref, "bands": bands,
-                   "toe_candidates": sorted(full_keys()), "window": win, "min_change": min_change,
+                   "toe_candidates": sorted(cache), "window": win, "min_change": min_change,
                    **summary_of(theta, fmodel), **diag_extra,
                    "misfit_definition": "chi2 / K = sum((y_k - d_k) / sigma)^2 / K over the K samples"}
     return IdentificationResult(depth=depth, impedance=Z, lower=lower, upper=upper, anomalies=tuple(anomalies),
