@@ -531,7 +531,8 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Write a fully commented template model (simulate), synthesis spec "
                                    "(synthesize), design spec (design) or Kolsky-bar spec (shpb) that runs as it "
                                    "is.")
-    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default), synthesize, design, shpb or identify")
+    i.add_argument("kind", nargs="?", default="simulate",
+                   help="simulate (default), synthesize, design, shpb or identify")
     i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml; "
                                                           "an existing folder or a name ending in / means "
                                                           "that file inside it)")

@@ -7,13 +7,17 @@ An application layer above the solvers and the measurement layer, below files, f
 """
 
 from .matching import identify, identify_by_matching
-from .peeling import IdentificationWarning, identify_by_peeling, peel_waves
-from .records import HeadRecord, amplified, average_blows, band_limited, hammer_record, split_waves
+from .peeling import identify_by_peeling, peel_waves
+from .records import (HeadRecord, amplified, average_blows, band_limited, hammer_record, split_waves,
+                      waves_record)
 from .reflectors import BETA_CLASSES, beta_class, identify_by_beta, reflectogram
 from .striker import identify_striker
 from .two_gauge import separate_waves
+from .validity import IdentificationWarning, one_dimensional_warnings
 from .result import Anomaly, IdentificationResult
 
 __all__ = ["Anomaly", "BETA_CLASSES", "HeadRecord", "IdentificationResult", "IdentificationWarning", "amplified",
-           "average_blows", "band_limited", "beta_class", "hammer_record", "identify", "identify_by_beta", "identify_by_matching", "identify_by_peeling", "peel_waves",
-           "identify_striker", "reflectogram", "separate_waves", "split_waves"]
+           "average_blows", "band_limited", "beta_class", "hammer_record", "identify", "identify_by_beta", "identify_by_matching",
+           "identify_by_peeling",
+           "identify_striker", "one_dimensional_warnings", "peel_waves", "reflectogram", "separate_waves",
+           "split_waves", "waves_record"]

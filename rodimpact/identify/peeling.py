@@ -33,25 +33,27 @@ from typing import Optional
 
 import numpy as np
 
-from .._validate import caller_stacklevel, positive
+from .._validate import caller_stacklevel, integer, positive
 from .._version import __version__
 from ..inverse import peel_layers
 from .records import HeadRecord, check_units, split_waves
 from .reflectors import anomalies_of_profile
 from .result import IdentificationResult
+from .validity import IdentificationWarning, resolution_warnings
 
-__all__ = ["IdentificationWarning", "identify_by_peeling", "peel_waves"]
+__all__ = ["identify_by_peeling", "peel_waves"]
 
 #: A first down-wave sample below this share of the down wave's peak is refused (the recursion divides by it).
 ONSET_SHARE = 1e-3
+#: An up-going wave at the onset beyond this share of the down-going one is reported (causality makes it 0; a
+#: record that starts early or late shows it, noise of the record's size does not).
+ONSET_UP_SHARE = 0.01
 #: A peeled impedance below this share of the head impedance is taken as the (free) toe: r = -1 in exact
 #: arithmetic, -1 + O(eps kappa) after rounding.
 TOE_SHARE = 1e-6
 METHODS = ("schur", "reference")
-
-
-class IdentificationWarning(UserWarning):
-    """An identification ran outside the conditions its method assumes (docs/identification.md)."""
+#: Quantiles of the 90 % band.
+BAND = (0.05, 0.95)
 
 
 def peel_waves(down: np.ndarray, up: np.ndarray, impedance: float) -> tuple[np.ndarray, int]:
@@ -79,8 +81,9 @@ def peel_waves(down: np.ndarray, up: np.ndarray, impedance: float) -> tuple[np.n
 
 
 def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float, *,
-                        depth: Optional[float] = None, method: str = "schur",
-                        threshold: float = 0.05) -> IdentificationResult:
+                        depth: Optional[float] = None, method: str = "schur", threshold: float = 0.05,
+                        noise: Optional[float] = None, resamples: int = 100, seed: int = 0,
+                        diameter: Optional[float] = None) -> IdentificationResult:
     """The impedance profile below the head from a clean, lossless force and velocity record (module docstring).
 
     Parameters
@@ -99,6 +102,14 @@ def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float,
     threshold:
         A run of elements whose impedance differs from the one above it by more than this share is reported as
         an anomaly (a choice of this package, not from a standard; docs/identification.md).
+    noise, resamples, seed:
+        90 % bands by resampling: ``noise`` (N) is the standard deviation of the force record's noise (the
+        velocity's is ``noise / Z``); ``resamples`` copies with independent normal noise of that size are peeled
+        and the 5 % and 95 % quantiles of each element form the band. Noise grows along the recursion: the
+        profile is cut where more than 10 % of the copies stop (|r| >= 1), with a warning. ``None``: no bands.
+    diameter:
+        The rod's diameter (m) for the 1D-validity warnings
+        (:func:`rodimpact.identify.validity.resolution_warnings`); ``None``: no check.
     """
     wall0 = _time.perf_counter()
     if not isinstance(record, HeadRecord):
@@ -127,21 +138,38 @@ def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float,
                          f"with a sharp front (a mass impact), or use identify_by_beta for a smooth pulse")
     onset_up = float(up[0] / down[0])
     up[0] = 0.0             # causality: nothing has come back at the onset (the first interface answers at s = 1)
-    if method == "schur":
-        z, _, kappa, m = peel_layers(down + up, (down - up) / z1)
-    else:
-        z, m = peel_waves(down, up, z1)
-        kappa = None
-    z = z[:m]
-    low = np.flatnonzero(z < TOE_SHARE * z1)
-    stop = int(low[0]) if low.size else m
-    z = z[:stop]
+    z, stop, kappa = _profile(down, up, z1, method)
     ends = stop < n
-    depths = element * np.arange(stop + 1)
     warn_list = []
-    if abs(onset_up) > 1e-6:
+    lower = upper = None
+    if noise is not None:
+        noise = positive("noise", noise, "N")
+        resamples = integer("resamples", resamples, 2, "noisy copies for the bands")
+        rng = np.random.default_rng(seed)
+        copies = np.full((resamples, stop), np.nan)
+        for i in range(resamples):
+            noisy = HeadRecord(record.time[:n], record.force[:n] + rng.normal(0.0, noise, n),
+                               record.velocity[:n] + rng.normal(0.0, noise / z1, n))
+            d, u = split_waves(noisy, z1)
+            u[0] = 0.0
+            zi, reach, _ = _profile(d, u, z1, method)
+            k = min(reach, stop)
+            copies[i, :k] = zi[:k]
+        reached = np.mean(np.isfinite(copies), axis=0)
+        cut = int(np.argmax(reached < 0.9)) if np.any(reached < 0.9) else stop
+        if cut < stop:
+            warn_list.append(f"with noise {noise:.3g} N, more than 10 % of the {resamples} noisy copies stop before "
+                             f"element {cut + 1} ({cut * element:.4g} m): the profile is cut there")
+            z, stop, ends = z[:cut], cut, False
+        lower, upper = np.nanquantile(copies[:, :stop], BAND, axis=0)
+        lower, upper = np.minimum(lower, z), np.maximum(upper, z)
+    depths = element * np.arange(stop + 1)
+    anomalies = anomalies_of_profile(depths, z, threshold)
+    warn_list += resolution_warnings(diameter, element, [a.depth for a in anomalies])
+    if abs(onset_up) > ONSET_UP_SHARE:
         warn_list.append(f"the up-going wave at the onset is {onset_up:.3g} of the down-going one (0 for a record "
-                         "that starts at the onset of the blow); it was set to 0")
+                         "that starts at the onset of the blow); it was set to 0: does the record start before or "
+                         "after the onset?")
     for w in warn_list:
         warnings.warn(w, IdentificationWarning, stacklevel=caller_stacklevel())
     diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0, "peeling": method,
@@ -150,6 +178,21 @@ def identify_by_peeling(record: HeadRecord, impedance: float, wave_speed: float,
                    "misfit_definition": "none: peeling reproduces the record exactly by construction"}
     if kappa is not None:
         diagnostics["max_amplitude_growth"] = float(np.max(kappa[:max(stop, 1)]))
+    if noise is not None:
+        diagnostics.update(noise_N=noise, resamples=resamples, seed=int(seed))
     return IdentificationResult(
-        depth=depths, impedance=z, anomalies=anomalies_of_profile(depths, z, threshold),
+        depth=depths, impedance=z, lower=lower, upper=upper, anomalies=anomalies,
         toe=float(depths[-1]) if ends else None, wave_speed=c, method="peeling", diagnostics=diagnostics)
+
+
+def _profile(down: np.ndarray, up: np.ndarray, z1: float, method: str) -> tuple[np.ndarray, int, Optional[np.ndarray]]:
+    """Peel (module docstring) and cut at the toe: the impedances, their number and the amplitude growth (schur
+    path only)."""
+    if method == "schur":
+        z, _, kappa, m = peel_layers(down + up, (down - up) / z1)
+    else:
+        z, m = peel_waves(down, up, z1)
+        kappa = None
+    low = np.flatnonzero(z[:m] < TOE_SHARE * z1)
+    stop = int(low[0]) if low.size else m
+    return z[:stop], stop, kappa

@@ -24,7 +24,8 @@ import numpy as np
 
 from .._validate import finite_array, positive
 
-__all__ = ["HeadRecord", "amplified", "average_blows", "band_limited", "hammer_record", "split_waves"]
+__all__ = ["HeadRecord", "amplified", "average_blows", "band_limited", "hammer_record", "split_waves",
+           "waves_record"]
 
 #: Relative spread of the sampling intervals accepted as uniform sampling (rounding of the time column in files).
 UNIFORM_SAMPLING = 1e-6
@@ -32,6 +33,32 @@ UNIFORM_SAMPLING = 1e-6
 #: force in kN or a velocity in mm/s is off by a factor of 1000 (high-strain practice checks that F and Z v
 #: agree at impact within a few per cent, so a factor 10 is far outside what a real record shows).
 UNIT_RATIO_LIMIT = 10.0
+
+
+def time_series(time: Any, values: Any, name: str, min_size: int = 2) -> tuple[np.ndarray, np.ndarray]:
+    """``time`` and the samples ``values`` of the quantity ``name`` as float arrays, finite, of one length (at
+    least ``min_size``); an error names the argument."""
+    t = finite_array("time", time, min_size=min_size)
+    x = finite_array(name, values)
+    if x.size != t.size:
+        raise ValueError(f"{name}: must have one sample per time sample ({t.size}), got {x.size}")
+    return t, x
+
+
+def check_uniform(t: np.ndarray, name: str = "time") -> float:
+    """The sampling interval (s) of the time axis ``t``, which must increase strictly and uniformly (to
+    :data:`UNIFORM_SAMPLING`); an error names ``name``."""
+    steps = np.diff(t)
+    if not np.all(steps > 0):
+        i = int(np.flatnonzero(steps <= 0)[0]) + 1
+        raise ValueError(f"{name}: must be strictly increasing; sample {i} (t = {t[i]!r} s) is not after "
+                         f"sample {i - 1}")
+    spread = float((steps.max() - steps.min()) / steps.mean())
+    if spread > UNIFORM_SAMPLING:
+        raise ValueError(f"{name}: must be uniformly sampled (intervals from {steps.min():.6g} to "
+                         f"{steps.max():.6g} s, spread {spread:.3g} > {UNIFORM_SAMPLING:g}); resample the "
+                         f"record first")
+    return float((t[-1] - t[0]) / (t.size - 1))
 
 
 @dataclass(frozen=True)
@@ -58,16 +85,7 @@ class HeadRecord:
             if arrays[name].size != t.size:
                 raise ValueError(f"{name}{where}: must have one sample per time sample ({t.size}), got "
                                  f"{arrays[name].size}; the force and velocity records have different lengths")
-        steps = np.diff(t)
-        if not np.all(steps > 0):
-            i = int(np.flatnonzero(steps <= 0)[0]) + 1
-            raise ValueError(f"time{where}: must be strictly increasing; sample {i} (t = {t[i]!r} s) is not after "
-                             f"sample {i - 1}")
-        spread = float((steps.max() - steps.min()) / steps.mean())
-        if spread > UNIFORM_SAMPLING:
-            raise ValueError(f"time{where}: must be uniformly sampled (intervals from {steps.min():.6g} to "
-                             f"{steps.max():.6g} s, spread {spread:.3g} > {UNIFORM_SAMPLING:g}); resample the "
-                             f"record first")
+        check_uniform(t, f"time{where}")
         for name, value in arrays.items():
             value.setflags(write=False)
             object.__setattr__(self, name, value)
@@ -96,10 +114,7 @@ def hammer_record(time: Any, velocity: Any, impedance: float, width: float, star
     echo returns the head carries the down-going wave alone, ``v = -N / Z``, so A is the least-squares fit of
     ``Z v`` to the half-sine shape over the pulse, ``A = Z sum(v s) / sum(s^2)`` with ``s`` the unit half-sine.
     Valid while no echo arrives within the pulse (reflectors deeper than c width / 2)."""
-    t = finite_array("time", time, min_size=2)
-    v = finite_array("velocity", velocity)
-    if v.size != t.size:
-        raise ValueError(f"velocity: must have one sample per time sample ({t.size}), got {v.size}")
+    t, v = time_series(time, velocity, "velocity")
     z = positive("impedance", impedance, "N s/m")
     w = positive("width", width, "s")
     shape = np.where((t >= start) & (t < start + w), np.sin(np.pi * (t - start) / w), 0.0)
@@ -107,6 +122,16 @@ def hammer_record(time: Any, velocity: Any, impedance: float, width: float, star
         raise ValueError(f"width, start: the pulse [{start:.6g}, {start + w:.6g}) s holds no sample of the record")
     amplitude = z * float(np.dot(v, shape) / np.dot(shape, shape))
     return HeadRecord(t, -amplitude * shape, v, source)
+
+
+def waves_record(time: Any, down: Any, up: Any, impedance: float, source: str = "") -> HeadRecord:
+    """A record at a measuring section from its separated force waves (N, tension positive): ``down`` travelling
+    along +x, ``up`` along -x (e.g. :func:`rodimpact.identify.separate_waves` times E A): ``N = down + up``,
+    ``v = (up - down) / Z`` (module docstring), so that the identifications see the section as a head."""
+    t, d = time_series(time, down, "down")
+    _, u = time_series(time, up, "up")
+    z = positive("impedance", impedance, "N s/m")
+    return HeadRecord(t, d + u, (u - d) / z, source)
 
 
 def average_blows(records: Sequence[HeadRecord]) -> HeadRecord:
@@ -155,10 +180,7 @@ def amplified(time: Any, values: Any, rate: float, start: float = 0.0) -> np.nda
     """``values * exp(rate (t - start))`` for t >= start (unchanged before): the exponential amplification of
     pile-integrity reflectograms, which offsets the decay of the reflections by shaft friction and material
     damping for display (a display aid, not a correction: it also amplifies the noise). ``rate`` in 1/s (>= 0)."""
-    t = finite_array("time", time)
-    x = finite_array("values", values)
-    if x.size != t.size:
-        raise ValueError(f"values: must have one value per time sample ({t.size}), got {x.size}")
+    t, x = time_series(time, values, "values", min_size=1)
     rate = float(rate)
     if not (np.isfinite(rate) and rate >= 0.0):
         raise ValueError(f"rate: must be a finite amplification rate >= 0 1/s, got {rate!r}")

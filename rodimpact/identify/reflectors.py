@@ -31,6 +31,7 @@ from .._validate import caller_stacklevel, positive
 from .._version import __version__
 from .records import HeadRecord, check_units, split_waves
 from .result import Anomaly, IdentificationResult
+from .validity import IdentificationWarning, one_dimensional_warnings
 
 __all__ = ["BETA_CLASSES", "beta_class", "anomalies_of_profile", "first_peak", "identify_by_beta", "reflectogram"]
 
@@ -84,12 +85,10 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     ``impedance``: the head impedance (N s/m); ``wave_speed`` (m/s) turns echo times into depths, x = c t / 2.
     Every extreme of rho(t) beyond ``threshold`` (a share of the down-going peak; the package's choice, not from
     a standard) that stands apart from the previous one by at least the pulse width is a reflector. ``length``
-    (m): the known length; the toe is then the reflector nearest to it (without it no reflector is taken for the toe:
-    a deep break and a toe look alike).
+    (m): the known length; the toe is then the reflector nearest to it, and echoes from below it are multiples
+    and dropped (without it no reflector is taken for the toe: a deep break and a toe look alike).
     ``diameter`` (m): checks the 1D limits (:func:`rodimpact.identify.validity.one_dimensional_warnings`).
     """
-    from .validity import one_dimensional_warnings
-
     wall0 = _time.perf_counter()
     if not isinstance(record, HeadRecord):
         raise TypeError(f"record: must be a HeadRecord, got {type(record).__name__}")
@@ -112,7 +111,7 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     found = []
     for k in picks:
         r = float(rho[k]) / passage
-        r = min(max(r, -1.0 + 1e-12), 1.0 - 1e-12)
+        r = min(max(r, -1.0 + 1e-12), 1.0 - 1e-12)     # a free (fixed) end: r = -1 (+1); noise may pass it
         beta = (1.0 + r) / (1.0 - r)
         found.append((0.5 * c * t[k], r, beta))
         passage *= 1.0 - r * r
@@ -120,6 +119,7 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
     toe = None
     if found and length is not None:
         toe = min(found, key=lambda f: abs(f[0] - length))[0]
+        found = [f for f in found if f[0] <= toe]       # deeper echoes: multiples (the rod ends at the toe)
     anomalies = []
     for i, (x, r, beta) in enumerate(found):
         below = found[i + 1][0] if i + 1 < len(found) else (length if length is not None else reach)
@@ -130,17 +130,32 @@ def identify_by_beta(record: HeadRecord, impedance: float, wave_speed: float, *,
         anomalies.append(Anomaly(x, max(float(below) - x, 0.0), beta - 1.0, beta, beta_class(beta)))
     end = toe if toe is not None else reach
     boundaries.append(max(end, boundaries[-1] + 0.5 * c * record.interval))
+    fitted = _primaries(down / down[peak], [k - peak for k in picks], [float(rho[k]) for k in picks])
+    after = slice(peak, None)
+    misfit = float(np.sqrt(np.mean((rho[after] - fitted[after]) ** 2)) / max(np.max(np.abs(rho[after])), 1e-300))
     warn_list = one_dimensional_warnings(diameter, c * width, [a.depth for a in anomalies], length)
     for w in warn_list:
-        warnings.warn(w, UserWarning, stacklevel=caller_stacklevel())
+        warnings.warn(w, IdentificationWarning, stacklevel=caller_stacklevel())
     diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0, "threshold": threshold,
                    "pulse_width_s": width, "reflection_coefficients": [f[1] for f in found],
                    "depth_resolution_m": 0.25 * c * record.interval, "source": record.source,
                    "warnings": warn_list,
-                   "misfit_definition": "none: beta is read from the record, nothing is fitted"}
+                   "misfit_definition": "rms(rho - primaries) / max|rho| after the down-going peak: rho the "
+                                        "reflectogram, primaries the echoes of the reflectors found (each r_k "
+                                        "times its passage times the down-going pulse, delayed by 2 x_k / c)"}
     return IdentificationResult(depth=np.array(boundaries), impedance=np.array(profile_z), anomalies=tuple(anomalies),
                                 toe=toe, wave_speed=c, method="beta", diagnostics=diagnostics,
-                                matched={"reflectogram": (t, rho, rho)})
+                                matched={"reflectogram": (t, rho, fitted)}, misfit=misfit)
+
+
+def _primaries(pulse: np.ndarray, lags: list[int], heights: list[float]) -> np.ndarray:
+    """The reflectogram the reflectors alone would give: each echo is the down-going ``pulse`` (over its peak)
+    delayed by its lag (samples) and scaled by its height (r_k times its passage), the primaries of a lossless rod
+    whose echoes are not sent down again."""
+    out = np.zeros(pulse.size)
+    for lag, h in zip(lags, heights):
+        out[lag:] += h * pulse[:pulse.size - lag]
+    return out
 
 
 def first_peak(down: np.ndarray) -> int:

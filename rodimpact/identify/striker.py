@@ -21,7 +21,9 @@ striker's pulse lasts its two-way travel time). The profile is synthesized over 
 in them; their length defaults to the rise time, so that the ringing of a measured plateau (Pochhammer-Chree
 dispersion between the impact face and the gauge) is averaged over and the first window is close to the plateau:
 a window much shorter than the rise asks the striker's tip for a force growth that its waves cannot give
-(existence, thesis eq. 4.20), since a 1D striker cannot make a finite rise time other than by a soft tip. Bands: the pre-trigger baseline's standard deviation sigma is the
+(existence, thesis eq. 4.20), since a 1D striker cannot make a finite rise time other than by a soft tip.
+
+Bands: the pre-trigger baseline's standard deviation sigma is the
 noise level; ``resamples`` copies of the pulse with independent normal noise of that sigma added go through the
 whole identification, and the 5 % and 95 % quantiles of each number are its 90 % band (white noise: it does not
 know the correlation of the real noise, docs/identification.md).
@@ -31,15 +33,18 @@ from __future__ import annotations
 
 import time as _time
 import warnings
+from dataclasses import dataclass
 from typing import Any, Optional
 
 import numpy as np
 
-from .._validate import finite_array, positive
+from .._validate import caller_stacklevel, integer, positive
 from .._version import __version__
 from ..inverse.recursive import SynthesisWarning, synthesize
 from ..rods.rod import Rod
 from ..signals.pulses import pulse_features
+from .records import check_uniform, time_series
+from .validity import IdentificationWarning
 from .result import IdentificationResult
 
 __all__ = ["StrikerEstimate", "estimate_striker", "identify_striker"]
@@ -50,15 +55,16 @@ EDGE_SHARE = 0.1
 BAND = (0.05, 0.95)
 
 
+@dataclass(frozen=True)
 class StrikerEstimate:
-    """The numbers of one identification: profile (N s/m from the impact face), v0 (m/s), length (m)."""
+    """The numbers of one identification: profile (N s/m from the impact face), v0 (m/s), length (m), the
+    synthesis that gave the profile and its element travel time dt (s)."""
 
-    def __init__(self, impedance: np.ndarray, velocity: float, length: float, synthesis: Any, dt: float) -> None:
-        self.impedance = impedance
-        self.dt = dt
-        self.velocity = velocity
-        self.length = length
-        self.synthesis = synthesis
+    impedance: np.ndarray
+    velocity: float
+    length: float
+    synthesis: Any
+    dt: float
 
 
 def estimate_striker(time: np.ndarray, force: np.ndarray, bar_impedance: float, striker_wave_speed: float,
@@ -104,10 +110,11 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     duration, ``diagnostics`` holds v0 (``striker_velocity_m_per_s``) and its band.
     """
     wall0 = _time.perf_counter()
-    t = finite_array("time", time, min_size=8)
-    f = finite_array("force", force)
-    if f.size != t.size:
-        raise ValueError(f"force: must have one sample per time sample ({t.size}), got {f.size}")
+    t, f = time_series(time, force, "force", min_size=8)
+    check_uniform(t)
+    resamples = integer("resamples", resamples, 0, "noisy copies for the bands")
+    if window is not None:
+        window = integer("window", window, 1, "samples per force window")
     zb = positive("bar_impedance", bar_impedance, "N s/m")
     cs = positive("striker_wave_speed", striker_wave_speed, "m/s")
     if velocity is not None:
@@ -128,9 +135,12 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     if not np.max(-f) > 0:
         raise ValueError("force: no compressive pulse (tension positive: an incident pulse is negative)")
     point = estimate_striker(t, f, zb, cs, velocity, striker_impedance, window)
+    if point.synthesis.failure is not None:
+        warnings.warn(f"the pulse implies a striker only for the first {point.impedance.size} force windows: "
+                      f"{point.synthesis.failure.message}", IdentificationWarning, stacklevel=caller_stacklevel())
     rng = np.random.default_rng(seed)
     samples = []
-    for _ in range(int(resamples)):
+    for _ in range(resamples):
         try:
             samples.append(estimate_striker(t, f + rng.normal(0.0, sigma, f.size), zb, cs, velocity,
                                             striker_impedance, int(round(2 * point.dt / (t[1] - t[0])))))
@@ -152,9 +162,10 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     matched = {"face force": (report.time, report.target, report.achieved)}
     diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0,
                    "striker_velocity_m_per_s": point.velocity, "striker_velocity_band": bands.get("velocity"),
-                   "length_m": point.length, "noise_sigma_N": sigma, "resamples": int(resamples),
+                   "length_m": point.length, "noise_sigma_N": sigma, "resamples": resamples,
                    "resamples_used": len(samples), "velocity_given": velocity is not None,
-                   "elements_synthesized": m, "element_travel_time_s": point.dt, "synthesis_failure": None if point.synthesis.failure is None
+                   "elements_synthesized": m, "element_travel_time_s": point.dt,
+                   "synthesis_failure": None if point.synthesis.failure is None
                    else point.synthesis.failure.message,
                    "misfit_definition": "max |simulated - target face force| / max |target| over the windows "
                                         "(the identified striker re-simulated against the bar)"}

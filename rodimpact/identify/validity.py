@@ -18,11 +18,29 @@ from __future__ import annotations
 
 from typing import Optional, Sequence
 
-__all__ = ["NEAR_FIELD_DIAMETERS", "PULSE_DIAMETERS", "TOE_SLENDERNESS", "one_dimensional_warnings"]
+__all__ = ["IdentificationWarning", "NEAR_FIELD_DIAMETERS", "PULSE_DIAMETERS", "TOE_SLENDERNESS",
+           "one_dimensional_warnings", "resolution_warnings"]
+
+class IdentificationWarning(UserWarning):
+    """An identification ran outside the conditions its method assumes (docs/identification.md)."""
+
 
 PULSE_DIAMETERS = 4.0
 NEAR_FIELD_DIAMETERS = 4.0
 TOE_SLENDERNESS = 30.0
+
+
+def resolution_warnings(diameter: Optional[float], element_length: float, depths: Sequence[float]) -> list[str]:
+    """Messages for a peeled profile (module docstring): elements (c T / 2 long) shorter than
+    :data:`PULSE_DIAMETERS` diameters resolve features the 1D model does not describe (the record's shortest
+    wavelengths are about two elements), and reflectors within :data:`NEAR_FIELD_DIAMETERS` diameters of the
+    head. ``diameter`` None: no check."""
+    out = one_dimensional_warnings(diameter, float("inf"), depths, None)
+    if diameter is not None and element_length < PULSE_DIAMETERS * float(diameter):
+        out.insert(0, f"the elements are {element_length:.4g} m long (c T / 2), shorter than {PULSE_DIAMETERS:g} "
+                      f"diameters ({PULSE_DIAMETERS * float(diameter):.4g} m): the profile resolves features the 1D "
+                      f"model does not describe; low-pass the record and resample it coarser")
+    return out
 
 
 def one_dimensional_warnings(diameter: Optional[float], pulse_length: float, depths: Sequence[float],

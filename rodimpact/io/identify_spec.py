@@ -2,8 +2,10 @@
 (docs/identification.md, ``rodimpact docs identify``).
 
 A record is a plain CSV table of time, force and velocity at the head (:func:`rodimpact.io.identification.
-read_head_csv`; several files are blows, averaged) or, for ``method = "striker"``, a LANL ``.raw`` shot (its sheet
-gives the bar and gauge, the spec the bridge). :func:`load_spec` reads and validates the spec (errors name the
+read_head_csv`; several files are blows, averaged), a recording with named channels in a format the package reads
+(a CSV table with a time column, TDMS, Tektronix CSV files; ``record.force_channel`` and ``velocity_channel``) or,
+for ``method = "striker"``, a LANL ``.raw`` shot (its sheet gives the bar and gauge, the spec the bridge).
+:func:`load_spec` reads and validates the spec (errors name the
 key path), :func:`run` identifies, :func:`summarize` and :func:`format_summary` report, :func:`write_files` writes
 the data files (figures: :func:`rodimpact.output_folders.write_identification`).
 """
@@ -16,13 +18,13 @@ from typing import Any, Mapping, Optional, Sequence
 
 import numpy as np
 
-from ..identify import (IdentificationResult, average_blows, band_limited, identify_by_beta, identify_by_peeling,
-                        identify_striker)
+from ..identify import (HeadRecord, IdentificationResult, average_blows, band_limited, identify_by_beta,
+                        identify_by_peeling, identify_striker)
 from .identification import read_head_csv, save_identification_csv
 from .model import parse_toml, read_text_file
 from .overrides import spec_with_overrides
-from .quantities import ModelError
-from .recordings import hoppybar_bar, read_lanl_raw
+from .quantities import ModelError, parse_quantity
+from .recordings import hoppybar_bar, read_csv_recording, read_lanl_raw, read_tdms, read_tektronix_csv
 from .schema import Field, Table, _q, _table_md, validate_table
 
 METHODS = ("peeling", "beta", "striker")
@@ -41,6 +43,12 @@ RECORD = Table("record", "The measured record. Files given on the command line t
        required=False),
     _q("low_pass", "rate", "Corner of a zero-phase low-pass filter (4th-order Butterworth) applied first.",
        required=False),
+    Field("format", "string", "With `force_channel`: the recording's format (default from the extension: "
+                              "`.csv` a plain table with a time column, `.tdms` tdms; `tektronix-csv`: one file per "
+                              "channel).", choices=("csv", "tdms", "tektronix-csv")),
+    Field("force_channel", "string", "Read a recording with named channels instead of a head CSV table: the force "
+                                     "channel (its unit from the file, else N)."),
+    Field("velocity_channel", "string", "The velocity channel (its unit from the file, else m/s)."),
     Field("bridge", "string", "LANL shot: bridge circuit of the incident bar's gauge (the sheet does not record "
                               "it)."),
     Field("polarity", "integer", "LANL shot: -1 if compression was recorded as positive voltage.", default=1),
@@ -51,7 +59,7 @@ ROD = Table("rod", "The rod below the measured face (the bar, for method striker
                                  "bar's from the sheet)", required=False),
     _q("wave_speed", "velocity", "Wave speed c: turns travel time into depth (default for a LANL shot: the "
                                  "sheet's calibrated speed).", required=False),
-    _q("diameter", "length", "Diameter, for the 1D-validity checks (method beta).", required=False),
+    _q("diameter", "length", "Diameter, for the 1D-validity checks (methods peeling and beta).", required=False),
     _q("length", "length", "Known length (method beta: the toe is the echo nearest to it).", required=False),
 ), '[rod]\nimpedance = "1.2 MN s/m"\nwave_speed = "4000 m/s"\ndiameter = "0.4 m"\nlength = "12 m"')
 
@@ -62,13 +70,16 @@ SETTINGS = Table("identify", "The method and its settings.", (
     _q("threshold", "dimensionless", "Reflectors: the smallest relative change reported.", default=0.05,
        required=False),
     _q("depth", "length", "Peeling: identify down to this depth.", required=False),
+    _q("noise", "force", "Peeling: standard deviation of the force record's noise, for 90 % bands by "
+                         "resampling (the velocity's: noise / Z).", required=False),
     _q("amplification", "rate", "Reflectogram plot: exponential amplification rate.", sign="non_negative",
        default=0.0, required=False),
     _q("striker_wave_speed", "velocity", "Striker: its wave speed (default: the bar's).", required=False),
     _q("striker_impedance", "impedance", "Striker: its impedance, for the velocity (default: the bar's).",
        required=False),
     _q("striker_velocity", "velocity", "Striker: its impact velocity if known.", required=False),
-    Field("resamples", "integer", "Striker: noisy copies for the 90 % bands.", default=100),
+    Field("resamples", "integer", "Striker, and peeling with `noise`: noisy copies for the 90 % bands.",
+          default=100),
 ), '[identify]\nmethod = "beta"\nthreshold = 0.05')
 
 OUTPUT = Table("output", "What to write.", (Field("plots", "boolean", "Write the plots.", default=True),))
@@ -167,8 +178,11 @@ def run(spec: IdentifySpec, files: Sequence[str | Path] = ()) -> IdentificationR
         raise ModelError("record.files: no record given; name the file(s) on the command line")
     if paths[0].suffix.lower() == ".raw":
         return _striker_from_lanl(paths, spec)
-    blows = [read_head_csv(p, compression_positive=rec["force_sign"] == "compression") for p in paths]
-    record = average_blows(blows) if len(blows) > 1 else blows[0]
+    if rec["force_channel"] is not None or rec["velocity_channel"] is not None:
+        record = _from_channels(paths, rec)
+    else:
+        blows = [read_head_csv(p, compression_positive=rec["force_sign"] == "compression") for p in paths]
+        record = average_blows(blows) if len(blows) > 1 else blows[0]
     keep = np.ones(record.time.size, dtype=bool)
     if rec["start"] is not None:
         keep &= record.time >= rec["start"]
@@ -176,20 +190,48 @@ def run(spec: IdentifySpec, files: Sequence[str | Path] = ()) -> IdentificationR
         keep &= record.time <= rec["end"]
     if np.count_nonzero(keep) < 2:
         raise ModelError("record.start, record.end: keep fewer than 2 samples of the record")
-    record = type(record)(record.time[keep] - record.time[keep][0], record.force[keep], record.velocity[keep],
-                          record.source)
+    record = HeadRecord(record.time[keep] - record.time[keep][0], record.force[keep], record.velocity[keep],
+                        record.source)
     if rec["low_pass"] is not None:
         record = band_limited(record, rec["low_pass"])
     z, c = _required(rod, "impedance"), _required(rod, "wave_speed")
     method = settings["method"]
     if method == "peeling":
-        return identify_by_peeling(record, z, c, depth=settings["depth"], threshold=settings["threshold"])
+        return identify_by_peeling(record, z, c, depth=settings["depth"], threshold=settings["threshold"],
+                                   noise=settings["noise"], resamples=max(settings["resamples"], 2),
+                                   diameter=rod["diameter"])
     if method == "beta":
         return identify_by_beta(record, z, c, threshold=settings["threshold"], length=rod["length"],
                                 diameter=rod["diameter"])
     return identify_striker(record.time, record.force, z, settings["striker_wave_speed"] or c,
                             velocity=settings["striker_velocity"], striker_impedance=settings["striker_impedance"],
                             resamples=settings["resamples"])
+
+
+def _from_channels(paths: list[Path], rec: dict) -> HeadRecord:
+    """A head record from a recording with named channels (``record.force_channel``, ``record.velocity_channel``),
+    each converted from the unit the file gives it to SI (a unit of another dimension is an error naming the
+    key)."""
+    if rec["force_channel"] is None or rec["velocity_channel"] is None:
+        missing = "force_channel" if rec["force_channel"] is None else "velocity_channel"
+        raise ModelError(f"record.{missing}: missing; a recording with channels needs force_channel and "
+                         f"velocity_channel")
+    fmt = rec["format"] or {".tdms": "tdms"}.get(paths[0].suffix.lower(), "csv")
+    if fmt != "tektronix-csv" and len(paths) != 1:
+        raise ModelError(f"record.files: a {fmt} recording is one file, got {len(paths)}")
+    recording = (read_tektronix_csv(paths) if fmt == "tektronix-csv"
+                 else {"csv": read_csv_recording, "tdms": read_tdms}[fmt](paths[0]))
+    values = {}
+    for key, dimension in (("force_channel", "force"), ("velocity_channel", "velocity")):
+        name = rec[key]
+        if name not in recording.channel_names:
+            raise ModelError(f"record.{key}: no channel {name!r} in {paths[0].name}; channels: "
+                             f"{', '.join(recording.channel_names)}")
+        unit = recording.units.get(name, "")
+        factor = parse_quantity(f"1 {unit}", dimension, f"record.{key} ({name} [{unit}])") if unit else 1.0
+        values[dimension] = np.asarray(recording[name], dtype=float) * factor
+    force = -values["force"] if rec["force_sign"] == "compression" else values["force"]
+    return HeadRecord(recording.time, force, values["velocity"], str(paths[0]))
 
 
 def _required(table: dict, key: str) -> float:

@@ -20,19 +20,35 @@ def _check(result: Any) -> None:
         raise TypeError(f"result: must be an IdentificationResult, got {type(result).__name__}")
 
 
-def plot_reflectogram(record: Any, impedance: float, wave_speed: float, *, amplification: float = 0.0,
-                      ax: Optional[Any] = None):
+def plot_reflectogram(source: Any, impedance: Optional[float] = None, wave_speed: Optional[float] = None, *,
+                      amplification: float = 0.0, ax: Optional[Any] = None):
     """The up-going wave over the peak of the down-going one (the reflection coefficient of a reflector at its
     echo; :func:`rodimpact.identify.reflectogram`) against depth ``c t / 2`` below the head, multiplied by
-    ``exp(amplification t)`` (1/s; a display aid that offsets the decay of deep echoes)."""
+    ``exp(amplification t)`` (1/s; a display aid that offsets the decay of deep echoes). ``source``: a
+    :class:`~rodimpact.identify.HeadRecord` (with ``impedance`` and ``wave_speed``) or the result of
+    :func:`rodimpact.identify.identify_by_beta` (its reflectogram and the primaries of the reflectors it found,
+    dashed)."""
     from ..identify.records import amplified
     from ..identify.reflectors import reflectogram
+    from ..identify.result import IdentificationResult
 
-    t, rho, peak = reflectogram(record, impedance)
+    if isinstance(source, IdentificationResult):
+        if "reflectogram" not in source.matched:
+            raise ValueError(f"source: a {source.method!r} result holds no reflectogram (identify_by_beta's does)")
+        t, rho, fitted = source.matched["reflectogram"]
+        wave_speed = source.wave_speed
+    else:
+        if impedance is None or wave_speed is None:
+            raise ValueError("impedance, wave_speed: needed to draw the reflectogram of a record")
+        t, rho, _ = reflectogram(source, impedance)
+        fitted = None
     after = t >= 0.0
-    shown = amplified(t[after], rho[after], amplification)
     _, ax = new_axes(ax)
-    ax.plot(0.5 * wave_speed * t[after], shown, lw=1)
+    depth = 0.5 * wave_speed * t[after]
+    ax.plot(depth, amplified(t[after], rho[after], amplification), lw=1, label="measured")
+    if fitted is not None:
+        ax.plot(depth, amplified(t[after], fitted[after], amplification), "--", lw=1, label="primaries")
+        ax.legend(fontsize=8)
     ax.axhline(0.0, color="0.7", lw=0.5)
     ax.set_xlabel("depth below the head c t / 2 [m]")
     ax.set_ylabel("up / down peak [-]" + (f" x exp({amplification:g} t)" if amplification else ""))

@@ -45,16 +45,19 @@ def test_neck_gives_both_betas_exactly(simulated_head):
 
 
 def test_toe_is_the_reflector_nearest_the_known_length(simulated_head):
-    """A free toe (r = -1): with the length given, its echo is the toe, not an anomaly."""
+    """A free toe (r = -1): with the length given, its echo is the toe, not an anomaly; recorded over 400 steps,
+    the toe echo comes back twice more (sent down again by the head, whose force is zero after the blow), at
+    twice and three times its depth: multiples, not reflectors of the rod."""
     z = np.full(60, 4.0e5)
-    record, rod = simulated_head(z, DT, hammer, 200, right="free", every=1)
+    record, rod = simulated_head(z, DT, hammer, 400, right="free", every=1)
     c = float(np.sqrt(rod.segments[0].material.youngs_modulus / rod.segments[0].material.density))
     out = identify_by_beta(record, z[0], c, length=60 * c * DT)
     assert out.anomalies == () and out.toe == pytest.approx(60 * c * DT, rel=1e-12)
 
 
 @pytest.mark.parametrize("beta, name", [(1.0, "uniform"), (0.95, "slight damage"), (0.8, "slight damage"),
-                                        (0.7, "damage"), (0.6, "damage"), (0.59, "broken"), (1.2, "increase")])
+                                        (0.79, "damage"), (0.7, "damage"), (0.6, "damage"), (0.59, "broken"),
+                                        (1.2, "increase")])
 def test_classes(beta, name):
     """The class table of docs/identification.md (bounds as quoted after Rausche and Goble 1979)."""
     assert beta_class(beta) == name
@@ -74,3 +77,16 @@ def test_velocity_only_record_with_a_parametrised_hammer(simulated_head):
     (step,) = identify_by_beta(low, z[0], c).anomalies
     assert step.beta == pytest.approx(0.7, rel=1e-12)
     assert isinstance(low, HeadRecord)
+
+
+def test_primaries_fit_the_reflectogram_until_the_first_multiple(simulated_head):
+    """The fitted reflectogram (the echoes of the reflectors found, each the down-going pulse delayed and
+    scaled) equals the measured one wherever the record holds primaries only: the neck's record up to 200 steps
+    (test_neck_gives_both_betas_exactly). The head holds its force at zero after the blow, so the down-going
+    wave there is the blow alone; the misfit is rounding."""
+    z = np.r_[np.full(50, 4.0e5), np.full(30, 0.7 * 4.0e5), np.full(120, 4.0e5)]
+    record, _ = simulated_head(z, DT, hammer, 200, every=1)
+    out = identify_by_beta(record, z[0], 5175.5)
+    t, measured, fitted = out.matched["reflectogram"]
+    assert out.misfit < 1e-12
+    assert np.max(np.abs(measured[t >= 0] - fitted[t >= 0])) < 1e-12

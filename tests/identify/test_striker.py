@@ -67,3 +67,27 @@ def test_lanl_copper_striker_length():
     lo, hi = out.toe_band
     assert lo <= out.toe <= hi
     assert out.misfit < 1e-10                    # the identified striker re-simulated reproduces its windows
+
+
+def test_refuses_uneven_sampling_and_bad_windows():
+    t = np.arange(50) * DT
+    f = np.r_[np.zeros(10), np.full(40, -1.0e3)]
+    uneven = t.copy()
+    uneven[20] += 0.5 * DT
+    with pytest.raises(ValueError, match="time: must be uniformly sampled"):
+        identify_striker(uneven, f, ZB, 5000.0)
+    with pytest.raises(ValueError, match="window: must be an integer >= 1"):
+        identify_striker(t, f, ZB, 5000.0, window=0)
+
+
+def test_warns_when_the_pulse_outruns_the_striker():
+    """At v0 = 1 m/s against Z_b = 4e5 N s/m no striker pushes harder than a rigid one, Z_b v0 = 4e5 N. A pulse
+    of 3e5 N for 10 windows, then 5e5 N: the striker exists for the first 10 windows only (thesis eq. 4.20),
+    which an IdentificationWarning says."""
+    from rodimpact.identify import IdentificationWarning
+
+    t = np.arange(60) * DT
+    f = np.r_[np.zeros(20), np.full(10, -3.0e5), np.full(20, -5.0e5), np.zeros(10)]
+    with pytest.warns(IdentificationWarning, match="implies a striker only for the first 10 force windows"):
+        out = identify_striker(t, f, ZB, 5000.0, velocity=1.0, window=1, resamples=0)
+    assert out.impedance.size == 10

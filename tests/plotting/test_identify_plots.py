@@ -13,9 +13,9 @@ def test_profile_steps_and_band():
     r = IdentificationResult(np.array([0.0, 1.0, 3.0]), z, 0.9 * z, 1.1 * z,
                              anomalies=(Anomaly(1.0, 2.0, -0.3, 0.7, "damage"),), method="beta")
     ax = plot_identified_profile(r)
-    step = ax.patches[0]
-    assert np.allclose(step.get_path().vertices[:, 0].min(), 0.0) and np.isclose(step.get_path().vertices[:, 0].max(), 3.0)
-    assert np.isclose(step.get_path().vertices[:, 1].max(), 400.0)          # kN s/m
+    corners = ax.patches[0].get_path().vertices
+    assert np.isclose(corners[:, 0].min(), 0.0) and np.isclose(corners[:, 0].max(), 3.0)
+    assert np.isclose(corners[:, 1].max(), 400.0)                            # kN s/m
     assert len(ax.patches) == 2                                              # the profile and its band
 
 
@@ -33,3 +33,16 @@ def test_matched_refuses_an_unknown_name():
     r = IdentificationResult(np.array([0.0, 1.0]), np.array([1.0]), matched={"v": (np.arange(3.0),) * 3})
     with pytest.raises(ValueError, match="name: one of v, got 'x'"):
         plot_matched(r, "x")
+
+
+def test_reflectogram_of_a_beta_result_is_amplified():
+    """From a result: its reflectogram and primaries, each times exp(rate t) (t >= 0)."""
+    t = np.arange(4) * 1e-3
+    r = IdentificationResult(np.array([0.0, 1.0]), np.array([1.0]), wave_speed=2000.0, method="beta",
+                             matched={"reflectogram": (t, np.ones(4), np.full(4, 0.5))})
+    ax = plot_reflectogram(r, amplification=100.0)
+    x, y = ax.lines[0].get_data()
+    assert np.allclose(x, 1000.0 * t) and np.allclose(y, np.exp(100.0 * t), rtol=1e-14)
+    assert np.allclose(ax.lines[1].get_data()[1], 0.5 * np.exp(100.0 * t), rtol=1e-14)
+    with pytest.raises(ValueError, match="source: a 'striker' result holds no reflectogram"):
+        plot_reflectogram(IdentificationResult(np.array([0.0, 1.0]), np.array([1.0]), method="striker"))
