@@ -6,6 +6,7 @@ An application layer above the solvers and the measurement layer, below files, f
 (docs/architecture.md). SI units; forces positive in tension, depth from the measured face along the rod.
 """
 
+from .matching import identify, identify_by_matching
 from .peeling import identify_by_peeling, peel_waves
 from .records import (HeadRecord, amplified, average_blows, band_limited, hammer_record, split_waves,
                       waves_record)
@@ -16,6 +17,7 @@ from .validity import IdentificationWarning, one_dimensional_warnings
 from .result import Anomaly, IdentificationResult
 
 __all__ = ["Anomaly", "BETA_CLASSES", "HeadRecord", "IdentificationResult", "IdentificationWarning", "amplified",
-           "average_blows", "band_limited", "beta_class", "hammer_record", "identify_by_beta", "identify_by_peeling",
+           "average_blows", "band_limited", "beta_class", "hammer_record", "identify", "identify_by_beta", "identify_by_matching",
+           "identify_by_peeling",
            "identify_striker", "one_dimensional_warnings", "peel_waves", "reflectogram", "separate_waves",
            "split_waves", "waves_record"]

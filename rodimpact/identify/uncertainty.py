@@ -1,0 +1,253 @@
+"""Uncertainty of a matched profile: the Laplace (Gauss-Newton) covariance, 90 % bands, sampling by the
+preconditioned Crank-Nicolson method, and the reading of anomalies and the toe from a profile or its samples
+(docs/identification.md).
+
+* **Laplace**: at the optimum theta* of Phi = 1/2 chi2 + alpha R (:mod:`rodimpact.identify.matching`), the
+  posterior exp(-Phi) is approximated by the Gaussian N(theta*, H^-1) with the Gauss-Newton Hessian
+  H = J^T J / sigma^2 + alpha nabla^2 R (Vogel 2002, ch. 3.4; Kaipio and Somersalo 2005, ch. 3), J_kp = dy_k /
+  dtheta_p from the forward sensitivities. Parameters on an active bound are held fixed (their rows dropped).
+  The 90 % band of ln Z_j is m_j +- 1.645 sqrt(C_jj), mapped to Z by exp.
+* **Sampling** (:func:`sample`): the pCN proposal theta' = mu + sqrt(1 - b^2) (theta - mu) + b xi, xi ~ N(0, C)
+  (Cotter, Roberts, Stuart and White 2013, "MCMC methods for functions", Stat. Sci. 28) with mu = theta* and C
+  the Laplace covariance; the proposal is reversible with respect to N(mu, C), so the Metropolis-Hastings ratio
+  for the target exp(-Phi) is exp(-Phi(theta') + Phi(theta)) N(theta; mu, C) / N(theta'; mu, C) (the
+  "generalised" pCN; Rudolf and Sprungk 2018). Several chains, b adapted towards 25 % acceptance during the
+  burn-in (Roberts and Rosenthal 2001), stopped when the split R-hat (Gelman et al. 2013, BDA3 ch. 11.4) of every
+  watched quantity is below 1.01 and its effective sample size (Geyer's initial positive sequence) exceeds a
+  target.
+* **Anomalies** (:func:`find_anomalies`): contiguous elements where the profile departs from the local baseline
+  (running median) by more than ``min_change`` and the 90 % band excludes the baseline.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+import numpy as np
+
+Z90 = 1.6448536269514722      # standard normal quantile of 0.95: a two-sided 90 % band
+
+
+# ------------------------------------------------------------------------------------------------ Laplace
+def laplace_covariance(J: np.ndarray, sigma: float, penalty_hessian: np.ndarray, alpha: float,
+                       free: np.ndarray) -> np.ndarray:
+    """The covariance H^-1 (full size, zero rows and columns for the parameters not ``free``) with
+    H = J^T J / sigma^2 + alpha P, P the penalty Hessian padded to the size of theta."""
+    P = J.shape[1]
+    H = J.T @ J / sigma ** 2
+    m = penalty_hessian.shape[0]
+    H[:m, :m] += alpha * penalty_hessian
+    idx = np.flatnonzero(free)
+    Hf = H[np.ix_(idx, idx)]
+    # symmetric inverse through the Cholesky factor; a tiny ridge only if rounding makes Hf indefinite
+    scale = np.sqrt(np.maximum(np.diag(Hf), 1e-300))
+    Hs = Hf / scale[:, None] / scale[None, :]
+    try:
+        L = np.linalg.cholesky(Hs)
+    except np.linalg.LinAlgError:
+        L = np.linalg.cholesky(Hs + 1e-10 * np.eye(idx.size))
+    Li = np.linalg.inv(L)
+    Cf = (Li.T @ Li) / scale[:, None] / scale[None, :]
+    C = np.zeros((P, P))
+    C[np.ix_(idx, idx)] = Cf
+    return C
+
+
+def log_bands(m: np.ndarray, C: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """90 % bands (lower, upper) of exp(m_j) from the covariance of m."""
+    sd = np.sqrt(np.maximum(np.diag(C)[:m.size], 0.0))
+    return np.exp(m - Z90 * sd), np.exp(m + Z90 * sd)
+
+
+# ------------------------------------------------------------------------------------------------ features
+@dataclass(frozen=True)
+class Feature:
+    """An anomaly read off a profile: elements [start, stop), ``change`` = extreme Z / baseline - 1."""
+
+    start: int
+    stop: int
+    change: float
+
+
+def local_baseline(Z: np.ndarray, window: int) -> np.ndarray:
+    """The running median of Z over ``window`` elements (odd, reflected at the ends): the level a local anomaly
+    departs from (a slow drift of the whole profile, which shaft resistance and impedance trade, is not an
+    anomaly)."""
+    w = max(3, int(window) | 1)
+    pad = np.pad(Z, w // 2, mode="reflect")
+    view = np.lib.stride_tricks.sliding_window_view(pad, w)
+    return np.median(view, axis=1)
+
+
+def find_anomalies(Z: np.ndarray, lower: Optional[np.ndarray], upper: Optional[np.ndarray], *, window: int,
+                   min_change: float = 0.08, min_elements: int = 2) -> list[Feature]:
+    """Contiguous runs of elements where |Z / b - 1| > ``min_change`` with one sign and, when bands are given,
+    the band excludes the baseline b (lower > b for a bulge, upper < b for a neck); runs shorter than
+    ``min_elements`` are dropped."""
+    b = local_baseline(Z, window)
+    rel = Z / b - 1.0
+    up = rel > min_change
+    down = rel < -min_change
+    if lower is not None:
+        up &= lower > b
+        down &= upper < b
+    out: list[Feature] = []
+    for mask, sign in ((up, 1.0), (down, -1.0)):
+        j = 0
+        n = Z.size
+        while j < n:
+            if mask[j]:
+                s = j
+                while j < n and mask[j]:
+                    j += 1
+                if j - s >= min_elements:
+                    seg = rel[s:j]
+                    out.append(Feature(s, j, float(seg.max() if sign > 0 else seg.min())))
+            else:
+                j += 1
+    return sorted(out, key=lambda f: f.start)
+
+
+def match_feature(features: list[Feature], ref: Feature) -> Optional[Feature]:
+    """The feature of ``features`` of the same sign overlapping ``ref`` most (None if none overlaps)."""
+    best, over = None, 0
+    for f in features:
+        if np.sign(f.change) != np.sign(ref.change):
+            continue
+        o = min(f.stop, ref.stop) - max(f.start, ref.start)
+        if o > over:
+            best, over = f, o
+    return best
+
+
+# ------------------------------------------------------------------------------------------------ sampling
+def split_rhat(chains: np.ndarray) -> np.ndarray:
+    """Split R-hat (BDA3 eq. 11.4) of each column of ``chains`` (n_chains, n_draws, n_quantities)."""
+    c, d, q = chains.shape
+    h = d // 2
+    x = np.concatenate([chains[:, :h], chains[:, h:2 * h]], axis=0)      # 2c chains of h draws
+    means = x.mean(axis=1)
+    W = x.var(axis=1, ddof=1).mean(axis=0)
+    B = h * means.var(axis=0, ddof=1)
+    var = (h - 1) / h * W + B / h
+    return np.sqrt(var / np.maximum(W, 1e-300))
+
+
+def effective_sample_size(chains: np.ndarray) -> np.ndarray:
+    """ESS of each quantity: c d / (1 + 2 sum rho_t), the autocorrelations averaged over the chains and summed
+    in pairs while positive (Geyer 1992, initial positive sequence)."""
+    c, d, q = chains.shape
+    x = chains - chains.mean(axis=1, keepdims=True)
+    f = np.fft.rfft(x, n=2 * d, axis=1)
+    ac = np.fft.irfft(f * np.conj(f), axis=1)[:, :d] / d
+    ac = ac.mean(axis=0)
+    rho = ac / np.maximum(ac[0], 1e-300)
+    ess = np.empty(q)
+    for i in range(q):
+        s = 0.0
+        t = 1
+        while t + 1 < d:
+            pair = rho[t, i] + rho[t + 1, i]
+            if pair <= 0:
+                break
+            s += pair
+            t += 2
+        ess[i] = c * d / (1.0 + 2.0 * s)
+    return ess
+
+
+@dataclass
+class Samples:
+    """Draws of theta after burn-in (n_chains, n_draws, P), acceptance rate, R-hat and ESS of the watched
+    quantities, and whether the stopping rule was met."""
+
+    draws: np.ndarray
+    acceptance: float
+    rhat: float
+    ess: float
+    converged: bool
+    evaluations: int
+
+
+def sample(phi: Callable[[np.ndarray], float], mu: np.ndarray, C: np.ndarray, lower: np.ndarray,
+           upper: np.ndarray, *, chains: int = 4, target_ess: float = 400.0, max_rhat: float = 1.01,
+           check_every: int = 250, burn_in: int = 250, max_draws: int = 20000, seed: int = 0,
+           watch: Optional[Callable[[np.ndarray], np.ndarray]] = None,
+           progress: Optional[Callable[[str], None]] = None) -> Samples:
+    """Generalised pCN chains for exp(-phi(theta)) started at draws of N(mu, C) (see the module docstring).
+
+    ``watch(theta)`` gives the quantities whose R-hat and ESS decide convergence (default: theta itself).
+    Proposals outside [lower, upper] are rejected (the target is zero there)."""
+    rng = np.random.default_rng(seed)
+    P = mu.size
+    idx = np.flatnonzero(np.diag(C) > 0)
+    Cf = C[np.ix_(idx, idx)]
+    L = np.linalg.cholesky(Cf + 1e-14 * np.max(np.diag(Cf)) * np.eye(idx.size))
+    Linv = np.linalg.inv(L)
+
+    def gauss(theta):          # -log N(theta; mu, C) up to a constant
+        z = Linv @ (theta[idx] - mu[idx])
+        return 0.5 * float(z @ z)
+
+    def draw():
+        return L @ rng.standard_normal(idx.size)
+
+    watch = watch or (lambda t: t)
+    b = 0.3
+    cur = []
+    for _ in range(chains):
+        for _try in range(100):
+            t = mu.copy()
+            t[idx] += draw()
+            if np.all(t >= lower) and np.all(t <= upper):
+                break
+        else:
+            t = mu.copy()
+        cur.append(t)
+    cur_phi = np.array([phi(t) for t in cur])
+    cur_g = np.array([gauss(t) for t in cur])
+    kept: list[list[np.ndarray]] = [[] for _ in range(chains)]
+    accepted = 0
+    proposed = 0
+    evaluations = chains
+    step = 0
+    rhat = ess = np.nan
+    converged = False
+    window_acc = 0
+    while True:
+        step += 1
+        for ci in range(chains):
+            prop = cur[ci].copy()
+            prop[idx] = mu[idx] + np.sqrt(1.0 - b * b) * (cur[ci][idx] - mu[idx]) + b * draw()
+            proposed += 1
+            if np.all(prop >= lower) and np.all(prop <= upper):
+                p_phi = phi(prop)
+                evaluations += 1
+                p_g = gauss(prop)
+                if np.log(rng.uniform()) < -(p_phi - cur_phi[ci]) + (p_g - cur_g[ci]):
+                    cur[ci], cur_phi[ci], cur_g[ci] = prop, p_phi, p_g
+                    accepted += 1
+                    window_acc += 1
+            if step > burn_in:
+                kept[ci].append(cur[ci].copy())
+        if step <= burn_in and step % 25 == 0:          # adapt b towards 25 % acceptance
+            rate = window_acc / (25 * chains)
+            b = float(np.clip(b * np.exp(rate - 0.25), 1e-3, 1.0))
+            window_acc = 0
+        if step == burn_in:
+            accepted = proposed = 0
+        d = step - burn_in
+        if d > 0 and d % check_every == 0:
+            arr = np.array(kept)
+            w = np.array([[watch(t) for t in ch] for ch in arr])
+            rh = split_rhat(w)
+            es = effective_sample_size(w)
+            rhat, ess = float(np.max(rh)), float(np.min(es))
+            converged = rhat < max_rhat and ess > target_ess
+            if progress is not None:
+                progress(f"draws {d * chains}: R-hat {rhat:.3f}, ESS {ess:.0f}, acceptance "
+                         f"{accepted / max(proposed, 1):.2f}, pCN b {b:.3g}")
+            if converged or d * chains >= max_draws:
+                break
+    return Samples(np.array(kept), accepted / max(proposed, 1), rhat, ess, converged, evaluations)

@@ -1,0 +1,127 @@
+"""Uncertainty (rodimpact.identify.uncertainty): the Laplace covariance against a direct inverse and its coverage
+on a linear Gaussian problem, the pCN sampler against exact moments, R-hat and ESS against known cases, and the
+reading of anomalies off a profile."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rodimpact.identify import uncertainty as unc
+
+
+def test_laplace_covariance_is_the_inverse_gauss_newton_hessian():
+    rng = np.random.default_rng(0)
+    J = rng.normal(size=(40, 6))
+    P = np.diag([1.0, 2.0, 0.5, 0.0])[:4, :4]
+    free = np.array([True, True, False, True, True, True])
+    C = unc.laplace_covariance(J, 0.3, P, 2.0, free)
+    H = J.T @ J / 0.09
+    H[:4, :4] += 2.0 * P
+    idx = np.flatnonzero(free)
+    ref = np.linalg.inv(H[np.ix_(idx, idx)])
+    np.testing.assert_allclose(C[np.ix_(idx, idx)], ref, rtol=1e-10, atol=1e-14)
+    assert np.all(C[2] == 0) and np.all(C[:, 2] == 0)
+
+
+def test_laplace_bands_cover_90_percent_on_a_linear_gaussian_problem():
+    """y = J theta + e, e ~ N(0, sigma^2), flat prior: the band theta_hat +- 1.645 sqrt(C_jj) holds the truth in 90 %
+    of repetitions (binomial: 2000 x 8 trials, 3 sigma = 0.7 %)."""
+    rng = np.random.default_rng(1)
+    J = rng.normal(size=(30, 8))
+    sigma = 0.2
+    theta = rng.normal(size=8)
+    C = unc.laplace_covariance(J, sigma, np.zeros((8, 8)), 0.0, np.ones(8, dtype=bool))
+    hits = 0
+    for _ in range(2000):
+        y = J @ theta + sigma * rng.normal(size=30)
+        est = np.linalg.lstsq(J, y, rcond=None)[0]
+        lo, up = unc.log_bands(est, C)
+        hits += np.sum((lo <= np.exp(theta)) & (np.exp(theta) <= up))
+    assert abs(hits / 16000 - 0.90) < 0.007
+
+
+def test_rhat_and_ess_on_known_chains():
+    rng = np.random.default_rng(2)
+    iid = rng.normal(size=(4, 2000, 2))
+    assert np.all(np.abs(unc.split_rhat(iid) - 1) < 0.01)
+    assert np.all(np.abs(unc.effective_sample_size(iid) / 8000 - 1) < 0.15)
+    shifted = iid + np.array([0.0, 0.0, 0.0, 3.0])[:, None, None]
+    assert np.all(unc.split_rhat(shifted) > 1.3)
+    # AR(1) with rho = 0.8: ESS = N (1 - rho) / (1 + rho)
+    rho = 0.8
+    x = np.empty((4, 20000, 1))
+    x[:, 0] = rng.normal(size=(4, 1))
+    for t in range(1, 20000):
+        x[:, t] = rho * x[:, t - 1] + np.sqrt(1 - rho ** 2) * rng.normal(size=(4, 1))
+    assert abs(unc.effective_sample_size(x)[0] / (80000 * (1 - rho) / (1 + rho)) - 1) < 0.15
+
+
+def test_pcn_samples_a_gaussian_target_with_a_wrong_reference():
+    """Target N(m, A^-1), reference (proposal) covariance 2 A^-1 and mean shifted: the generalised pCN ratio
+    corrects both; sample mean and covariance match the target within Monte-Carlo error."""
+    rng = np.random.default_rng(3)
+    M = rng.normal(size=(3, 3))
+    A = M @ M.T + 3 * np.eye(3)
+    m = np.array([0.5, -1.0, 2.0])
+    cov = np.linalg.inv(A)
+    phi = lambda t: 0.5 * (t - m) @ A @ (t - m)
+    res = unc.sample(phi, m + 0.3 * np.sqrt(np.diag(cov)), 2 * cov, np.full(3, -50.0), np.full(3, 50.0),
+                     target_ess=1500, max_draws=200000, seed=4)
+    assert res.converged and res.rhat < 1.01 and res.ess > 1500
+    d = res.draws.reshape(-1, 3)
+    se = np.sqrt(np.diag(cov) / res.ess)
+    assert np.all(np.abs(d.mean(axis=0) - m) < 4 * se)
+    np.testing.assert_allclose(np.cov(d.T), cov, rtol=0.12, atol=0.12 * np.max(np.diag(cov)))
+
+
+def test_pcn_respects_bounds_and_matches_a_non_gaussian_target():
+    """phi = theta^4 on [0, 2] (a half of exp(-theta^4)): E theta = Gamma(1/2) / Gamma(1/4) by quadrature."""
+    phi = lambda t: float(t[0] ** 4)
+    res = unc.sample(phi, np.array([0.5]), np.array([[0.1]]), np.array([0.0]), np.array([2.0]),
+                     target_ess=2000, max_draws=400000, seed=5)
+    d = res.draws.reshape(-1)
+    assert d.min() >= 0.0 and d.max() <= 2.0
+    x = np.linspace(0, 2, 200001)
+    w = np.exp(-x ** 4)
+    mean = np.trapezoid(x * w, x) / np.trapezoid(w, x)
+    sd = np.sqrt(np.trapezoid((x - mean) ** 2 * w, x) / np.trapezoid(w, x))
+    assert abs(d.mean() - mean) < 4 * sd / np.sqrt(res.ess)
+
+
+def test_sampler_reports_progress_and_stops_at_max_draws_when_not_converged():
+    lines = []
+    res = unc.sample(lambda t: 0.5 * float(t @ t), np.zeros(2), np.eye(2), np.full(2, -9.0), np.full(2, 9.0),
+                     target_ess=1e9, max_draws=4000, check_every=100, seed=6, progress=lines.append)
+    assert not res.converged
+    assert res.draws.shape[0] * res.draws.shape[1] >= 4000
+    assert lines and "R-hat" in lines[-1] and "ESS" in lines[-1]
+
+
+def test_find_anomalies_reads_runs_off_a_profile():
+    Z = np.ones(60)
+    Z[10:15] = 0.7          # neck
+    Z[30:33] = 1.3          # bulge
+    Z[45] = 0.8             # a single element: shorter than min_elements
+    f = unc.find_anomalies(Z, None, None, window=21, min_change=0.08, min_elements=2)
+    assert [(a.start, a.stop) for a in f] == [(10, 15), (30, 33)]
+    assert f[0].change == pytest.approx(-0.3) and f[1].change == pytest.approx(0.3)
+    # a band that holds the baseline vetoes the run
+    lower, upper = Z * 0.9, Z * 1.1
+    upper[10:15] = 1.05
+    f = unc.find_anomalies(Z, lower, upper, window=21)
+    assert [(a.start, a.stop) for a in f] == [(30, 33)]
+
+
+def test_local_baseline_follows_a_drift_but_not_an_anomaly():
+    Z = np.linspace(1.0, 1.3, 80)
+    Z[40:44] *= 0.6
+    b = unc.local_baseline(Z, 21)
+    np.testing.assert_allclose(b[40:44], np.linspace(1.0, 1.3, 80)[40:44], rtol=0.02)
+
+
+def test_match_feature_prefers_the_largest_overlap_of_the_same_sign():
+    ref = unc.Feature(10, 16, -0.3)
+    cands = [unc.Feature(8, 11, -0.2), unc.Feature(11, 17, -0.25), unc.Feature(10, 16, 0.3)]
+    assert unc.match_feature(cands, ref) is cands[1]
+    assert unc.match_feature([unc.Feature(20, 25, -0.3)], ref) is None
