@@ -258,10 +258,7 @@ class ImpactProblem:
         args = (tape["checkpoints"], _state_store(0, Z.size, self._arrays["junction_code"].size), segment,
                 np.empty(Z.size), np.empty(Z.size), Z, R, self._touch,
                 self._arrays["rod_start"], *buffers, self.dt, self.steps, seed, lf, lg, les, dZ, dR, jt)
-        if self.backend == "numba":
-            K.sweep_numba(K.advance_numba, K.reverse_numba, *args)
-        else:
-            K.sweep_numpy(K.advance_numpy, K.reverse_numpy, *args)
+        (K.sweep_numba if self.backend == "numba" else K.sweep_numpy)(*args)
         # initial waves f = (N0 - Z v0)/2, g = (N0 + Z v0)/2; the striker's v0 is the velocity
         dZ += 0.5 * v0 * (lg - lf)
         dv += float(np.sum(0.5 * Z[:n] * (lg[:n] - lf[:n])))

@@ -545,33 +545,49 @@ def reverse_numpy(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_va
         lg[:] = mg
 
 
-def _sweep(advance, reverse, checkpoints, no_checkpoints, segment, f, g, Z, R, touch, rod_start, ends, junctions,
-           specials, probes, outputs, acc, rod_nodes, dt, steps, seed, lf, lg, les, dZ, dR, jt):
+def _restore_segment(i, stride, steps, checkpoints, f, g, ends, junctions, jt):
+    """Restore the state of checkpoint ``i`` (waves, end state, junction state, gap, joint states); returns the
+    segment's steps (k0, k1)."""
+    f[:] = checkpoints[0][i]
+    g[:] = checkpoints[1][i]
+    ends[2][:] = checkpoints[2][i]
+    junctions[1][:] = checkpoints[3][i]
+    junctions[2][:] = checkpoints[4][i]
+    joint_restore(jt, i, junctions[6])
+    k0 = i * stride
+    return k0, min(steps, k0 + stride)
+
+
+_restore_segment_nb = njit(inline="always", error_model="numpy", cache=True)(_restore_segment)
+
+
+@njit(cache=True, error_model="numpy", nogil=True)
+def sweep_numba(checkpoints, no_checkpoints, segment, f, g, Z, R, touch, rod_start, ends, junctions, specials,
+                probes, outputs, acc, rod_nodes, dt, steps, seed, lf, lg, les, dZ, dR, jt):
     """The whole reverse pass: for the segments between checkpoints, last first, recompute the segment forward
     from its checkpoint (recording every step into ``segment``), then transpose its steps. On return lf, lg
     hold dJ/d(initial waves); dZ, dR are accumulated. ``no_checkpoints``: empty checkpoint stores. ``jt``: the
-    joint tape (None without law joints), whose adjoint of the joint states runs along."""
-    ck_f, ck_g, ck_es, ck_js, ck_gap = checkpoints
+    joint tape (None without law joints), whose adjoint of the joint states runs along.
+
+    The compiled step and transpose are named here, not passed in (as :func:`sweep_numpy` takes its pair): numba
+    keys its on-disk cache by the argument types, and the type of a dispatcher argument carries the function's
+    address, so a sweep that took them as arguments was compiled again in every process (30-60 s)."""
     stride = segment[0].shape[0]
-    n_seg = ck_f.shape[0]
-    end_state = ends[2]
-    junction_state = junctions[1]
-    gap = junctions[2]
-    for i in range(n_seg - 1, -1, -1):
-        k0 = i * stride
-        k1 = min(steps, k0 + stride)
-        f[:] = ck_f[i]
-        g[:] = ck_g[i]
-        end_state[:] = ck_es[i]
-        junction_state[:] = ck_js[i]
-        gap[:] = ck_gap[i]
-        joint_restore(jt, i, junctions[6])
-        advance(k0, k1, 1, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-                rod_nodes, dt, no_checkpoints, True, segment, jt)
-        reverse(k0, k1, segment, touch, Z, R, rod_start, ends[0], ends[1], ends[3],
-                outputs[1], specials[0], specials[1], specials[2], probes[0], probes[1], probes[2], seed, lf, lg,
-                les, dZ, dR, dt, jt)
+    for i in range(checkpoints[0].shape[0] - 1, -1, -1):
+        k0, k1 = _restore_segment_nb(i, stride, steps, checkpoints, f, g, ends, junctions, jt)
+        advance_numba(k0, k1, 1, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
+                      rod_nodes, dt, no_checkpoints, True, segment, jt)
+        reverse_numba(k0, k1, segment, touch, Z, R, rod_start, ends[0], ends[1], ends[3], outputs[1], specials[0],
+                      specials[1], specials[2], probes[0], probes[1], probes[2], seed, lf, lg, les, dZ, dR, dt, jt)
 
 
-sweep_numba = njit(cache=True, error_model="numpy", nogil=True)(_sweep)
-sweep_numpy = _sweep
+def sweep_numpy(checkpoints, no_checkpoints, segment, f, g, Z, R, touch, rod_start, ends, junctions, specials,
+                probes, outputs, acc, rod_nodes, dt, steps, seed, lf, lg, les, dZ, dR, jt):
+    """Readable reference of :func:`sweep_numba` with :func:`advance_numpy` and :func:`reverse_numpy`."""
+    stride = segment[0].shape[0]
+    for i in range(checkpoints[0].shape[0] - 1, -1, -1):
+        k0, k1 = _restore_segment(i, stride, steps, checkpoints, f, g, ends, junctions, jt)
+        advance_numpy(k0, k1, 1, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
+                      rod_nodes, dt, no_checkpoints, True, segment, jt)
+        reverse_numpy(k0, k1, segment, touch, Z, R, rod_start, ends[0], ends[1], ends[3], outputs[1], specials[0],
+                      specials[1], specials[2], probes[0], probes[1], probes[2], seed, lf, lg, les, dZ, dR, dt, jt)
