@@ -9,7 +9,10 @@ scalar J of the outputs, given the seeds dJ/d(output). The derivation is in docs
 The forward run is the lattice of :func:`rodimpact.simulate` (same arrays, same boundary code, same operation
 order) on the system ``with_striker(struck, Rod.from_impedance(Z[::-1], dt=dt), velocity)``: its outputs are
 bit-identical to ``simulate``'s. The gradient is exact for the branches taken (contact or separated, friction
-stick or slip, bit-rock loading, unloading or released): the responses are piecewise smooth in (Z, v).
+stick or slip, bit-rock loading, unloading or released, a law joint's elastic or plastic branch, loading or
+unloading, carrying or lifted off): the responses are piecewise smooth in (Z, v). Law joints (specimens, pulse
+shapers) are differentiated through their implicit per-step root (:mod:`rodimpact.design._joint_adjoint`);
+tabulated laws and spring-dashpot junctions are refused.
 """
 
 from __future__ import annotations
@@ -44,7 +47,9 @@ class Forward:
     ``striker_mass`` = dt sum Z (kg), ``impedance`` (Z_1 at the face) and ``velocity`` the striker that was run.
     ``shortening`` (junctions x steps, m; None without law joints): the shortening delta of each junction after
     each step (compression positive; for a law joint the body's shortening, whose rate over step k is
-    (delta_k - delta_k-1) / dt, delta_-1 = 0).
+    (delta_k - delta_k-1) / dt, delta_-1 = 0); ``junction_force`` (junctions x steps, N, tension positive; None
+    without law joints): the force at every junction in every step (0 where a compression-only joint has lifted
+    off).
     ``_tape`` holds what :meth:`ImpactProblem.gradient` needs (lattice impedances, checkpoints).
     """
 
@@ -58,6 +63,7 @@ class Forward:
     velocity: float
     _tape: dict = field(repr=False)
     shortening: Optional[np.ndarray] = None
+    junction_force: Optional[np.ndarray] = None
 
 
 class ImpactProblem:
@@ -175,7 +181,8 @@ class ImpactProblem:
         tape = {"Z": Z, "R": R, "v0": v0, "checkpoints": ck, "probe_velocity": pv, "problem": self,
                 "joint_checkpoints": None if jt is None else jt[K.JT_CK_Q]}
         return Forward(face, observed, en[1], ev[1], jc[0].astype(bool), float(self.dt * zq.sum()), zq.copy(),
-                       v_striker, tape, None if jt is None else jt[K.JT_SHORTENING].copy())
+                       v_striker, tape, None if jt is None else jt[K.JT_SHORTENING].copy(),
+                       None if jt is None else jn.copy())
 
     def _joint_tape(self, checkpoints: int, segment: int, junction_force: np.ndarray,
                     ck_q: Optional[np.ndarray] = None) -> Optional[tuple]:

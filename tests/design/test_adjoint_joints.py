@@ -17,7 +17,8 @@ from rodimpact.direct.joints import law_stress
 DT = 0.5e-6
 Z_BAR = 1.5e4
 L0, D0 = 3e-3, 6e-3
-H = 1e-6            # relative finite-difference step
+H = 1e-5            # relative finite-difference step (as test_adjoint_gradient.py; the Cowper-Symonds forward's
+                    # rounding noise needs it: its FD error grows as 1/H below, 1.4e-6 at H = 1e-6)
 LAWS = {
     "elastic": ri.LinearElastic(117e9),
     "plastic": ri.ElasticPlastic(117e9, 90e6, 500e6),
@@ -89,19 +90,23 @@ def check(pb, v, seed=0):
     return fw
 
 
+def lifted_off(fw):
+    """Steps after the specimen's first load in which the compression-only joint carries exactly nothing."""
+    force = fw.junction_force[1]
+    return int(np.sum(force[np.flatnonzero(force < 0.0)[0]:] == 0.0))
+
+
 @pytest.mark.parametrize("name", ["plastic", "johnson-cook", "cowper-symonds", "elastic"])
 @pytest.mark.parametrize("measure", ["true", "engineering"])
 def test_plastic_regime_and_lift_off(name, measure):
     """Large strains (plastic flow for the plastic laws), then the pulse passes and the compression-only
-    specimen lifts off (its shortening falls below the largest reached by more than the elastic recovery)."""
+    specimen lifts off (steps with no force after the load: 32 to 92 of the 200 in these runs)."""
     law = LAWS[name]
-    fw = check(problem(law, 120, measure), PLASTIC_V)
-    d = fw.shortening[1]
+    fw = check(problem(law, 200, measure), PLASTIC_V)
     if name != "elastic":
         yield_strain = law.yield_stress / law.youngs_modulus if name != "johnson-cook" else law.a / law.youngs_modulus
-        assert d.max() / L0 > 10 * yield_strain                     # well into the plastic regime
-    # the joint carries no force for a while after the pulse: its rate there is the free faces' (N = 0)
-    assert d[-1] < d.max()
+        assert fw.shortening[1].max() / L0 > 10 * yield_strain     # well into the plastic regime
+    assert lifted_off(fw) > 10
 
 
 @pytest.mark.parametrize("name", ["plastic", "johnson-cook", "cowper-symonds"])
@@ -110,19 +115,20 @@ def test_elastic_regime(name):
     fw = check(problem(law, 90), ELASTIC_V)
     y = law.yield_stress if name != "johnson-cook" else law.a
     assert 0.0 < fw.shortening[1].max() / L0 < 0.9 * y / law.youngs_modulus
+    assert lifted_off(fw) == 0                                      # loaded throughout this short run
 
 
 def test_frew_shaper_loading_and_unloading():
     """A Frew shaper: loading to several % strain, unloading along the steeper of E and the tangent, lift-off."""
-    fw = check(problem(LAWS["frew"], 120), PLASTIC_V)
+    fw = check(problem(LAWS["frew"], 200), PLASTIC_V)
     d = fw.shortening[1]
-    assert d.max() / L0 > 0.02 and d[-1] < d.max()
+    assert d.max() / L0 > 0.02 and d[-1] < d.max() and lifted_off(fw) > 10
 
 
 def test_lift_off_branch_is_taken():
     """An elastic compression-only specimen whose faces open after the pulse (shortening < 0: no force)."""
     fw = check(problem(LAWS["elastic"], 160, "engineering", n=6), PLASTIC_V)
-    assert fw.shortening[1].min() < 0.0
+    assert fw.shortening[1].min() < 0.0 and lifted_off(fw) > 10
 
 
 @pytest.mark.parametrize("code_name,eps,rate,q", [
