@@ -222,3 +222,64 @@ def test_shortening_seed_needs_a_law_joint():
     assert fw.shortening is None
     with pytest.raises(ValueError, match="shortening: the system has no law joint"):
         pb.gradient(fw, shortening=np.zeros((0, 20)))
+
+
+def one_step(par, x, dt=DT):
+    """One law-joint step as rodimpact.direct.boundary.boundaries takes it, from x = (f_a, g_a, f_b, g_b, Z_a,
+    Z_b, delta, ep, alpha, em): y = (N, V_a, V_b, delta', ep', alpha', em')."""
+    from rodimpact.direct.joints import joint_solve
+
+    fa, ga, fb, gb, za, zb, delta = x[:7]
+    va_free = (ga - fa) / za - (fa + ga) / za
+    vb_free = (gb - fb) / zb + (fb + gb) / zb
+    q = np.array([*x[7:10], 0.0, 0.0])
+    n = joint_solve(par, q, 1.0 / za + 1.0 / zb, va_free - vb_free, delta, dt)
+    va, vb = va_free + n / za, vb_free - n / zb
+    return np.array([n, va, vb, delta + (va - vb) * dt, q[0], q[1], q[2]])
+
+
+def joint_par(law, measure="true"):
+    pb = problem(law, 4, "engineering" if isinstance(law, ri.FrewShaper) else measure, n=2)
+    return np.ascontiguousarray(pb._arrays["junction_par"][1])
+
+
+@pytest.mark.parametrize("name,measure,speed,ep,em,branch", [
+    ("plastic", "true", 10.0, 0.025, 0.03, "flow"),
+    ("plastic", "engineering", -3.0, 0.0297, 0.03, "elastic"),   # unloading inside the yield surface
+    ("johnson-cook", "true", 10.0, 0.025, 0.03, "flow"),
+    ("johnson-cook", "engineering", 10.0, 0.025, 0.03, "flow"),
+    ("johnson-cook", "true", -3.0, 0.0297, 0.03, "elastic"),
+    ("cowper-symonds", "true", 10.0, 0.025, 0.03, "flow"),
+    ("elastic", "true", 10.0, 0.0, 0.0, "elastic"),
+    ("frew", "engineering", 10.0, 0.0, 0.03, "loading"),         # beyond the largest strain
+    ("frew", "engineering", -3.0, 0.0, 0.0305, "elastic"),       # unloading
+    ("plastic", "true", -30.0, 0.029, 0.03, "lifted"),           # the faces open
+])
+def test_one_joint_step_transpose_equals_finite_differences(name, measure, speed, ep, em, branch):
+    """joint_vjp is the transpose of one joint step's Jacobian, all inputs (waves, both bar impedances,
+    shortening, state) against central differences of the step, for a random adjoint of its outputs (the bar
+    impedances do not enter a striker's gradient, so only this test sees their terms)."""
+    from rodimpact.design._joint_adjoint import joint_vjp, scratch_array
+
+    par = joint_par(LAWS[name], measure)
+    z = Z_BAR
+    # a compressive wave f_a arriving from the incident side (free face velocity `speed`), some g_a and f_b
+    x = np.array([-0.5 * z * speed, 123.0, -77.0, 40.0, z, 1.3 * z, 0.03 * L0, ep, ep, em])
+    y = one_step(par, x)
+    lam = np.random.default_rng(7).uniform(-1.0, 1.0, 7) * np.array([1e-3, 1e2, 1e2, 1e6, 1.0, 1.0, 1.0])
+    lstate = lam[3:].copy()
+    dfa, dgb, dza, dzb = joint_vjp(par, np.array([*x[7:], 0.0, 0.0]), y[0], *x[:7], DT, lam[0], lam[1], lam[2],
+                                   lstate, scratch_array())
+    adjoint = np.array([dfa, 0.0, 0.0, dgb, dza, dzb, *lstate])     # g_a and f_b cancel from the free velocities
+    fd = np.empty(10)
+    for j in range(10):
+        h = 1e-6 * max(abs(x[j]), 1e-3 if j >= 7 else 1e-6 * L0 if j == 6 else 1.0)
+        xp, xm = x.copy(), x.copy()
+        xp[j] += h
+        xm[j] -= h
+        fd[j] = lam @ (one_step(par, xp) - one_step(par, xm)) / (2 * h)
+    scale = np.abs(fd * np.maximum(np.abs(x), 1e-12)).max()         # compare d(J)/d(log x): one scale for all
+    assert np.all(np.abs((adjoint - fd) * np.maximum(np.abs(x), 1e-12)) <= 1e-6 * scale), (adjoint, fd)
+    flows = y[4] != x[7]                                             # eps_p changed
+    assert (branch == "lifted") == (y[0] == 0.0) and flows == (branch == "flow")
+    assert (y[6] != x[9]) == (branch == "loading")                   # a new largest strain (Frew)
