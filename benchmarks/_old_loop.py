@@ -31,7 +31,7 @@ def _grouped(end_code, end_par, end_state, end_value, junction_code, junction_st
     """The arrays :func:`boundaries` needs, grouped into tuples (ends, junctions, specials, probes, outputs,
     rod-end nodes); few arguments let the compiler inline :func:`boundaries` into the step loop."""
     return ((end_code, end_par, end_state, end_value), (junction_code, junction_state, gap, gap_tol, u_end),
-            (sp_elem, sp_cap, sp_force, sp_F, sp_V), (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp),
+            (sp_elem, sp_cap, sp_force, sp_F, sp_V, None), (pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp),
             (junction_N, junction_contact, end_N, end_V), (rod_NL, rod_VL, rod_NR, rod_VR))
 
 
@@ -185,7 +185,8 @@ def old_simulate(system, steps: int, dt: float, probes=(), snapshot_every=None, 
     events = sorted(set(energy_steps) | set(snap_steps) | set(range(0, n_steps, _MAX_CHUNK)))
     e_rec: dict[str, list] = {k: [] for k in ("t", "kin", "pot", "mom", "acc")}
     snaps: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
-    static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key not in ("step_inputs", "sp_loaded")}
+    static = {key: val for key, val in arrays.items() if key not in _HISTORIES and key not in ("step_inputs", "sp_loaded")
+              and "soil" not in key}
     static["junction_q"] = law_state(arrays["junction_code"], arrays["junction_q"])
     k = 0
     for target in events:

@@ -16,6 +16,7 @@ from .rods.conditions import (BitRockEnd, Bonded, Contact, EndCondition, FixedEn
                               NonReflectingEnd, PulseShaper, Specimen, SpringDashpot, SpringEnd, VelocityEnd)
 from .rods.laws import CowperSymonds, ElasticPlastic, FrewShaper, JohnsonCook, LinearElastic, TabulatedLaw
 from .rods.loads import Bearings, NodalForce
+from .rods.soil import ShaftResistance, SmithSoil, SoilToe
 from .rods.system import InitialState, System
 from .lattice.lattice import Lattice, build_lattice
 from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents, Probe,
@@ -23,6 +24,7 @@ from .direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, Joint
 from .direct.recording import Outputs
 from .direct.problem import Problem, TimeGrid
 from .direct.simulate import simulate
+from .direct.soil_result import SoilOutcome, next_blow
 from .direct.sweep import drilling_metrics, sweep
 from .direct.batch import BatchOutputs, BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
@@ -35,7 +37,7 @@ from .io.results import summarize
 from .io.storage import load, save
 from . import inverse, io
 
-_LAZY_SUBPACKAGES = ("plotting", "reference", "shpb", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
+_LAZY_SUBPACKAGES = ("identify", "plotting", "reference", "shpb", "signals", "testrig")   # matplotlib, scipy.optimize and scipy.signal are slow to import: load on use
 
 
 def __getattr__(name: str):
@@ -54,6 +56,7 @@ __all__ = [
     "EndCondition", "FreeEnd", "FixedEnd", "ForceEnd", "VelocityEnd", "NonReflectingEnd", "SpringEnd",
     "BitRockEnd", "Junction", "Contact", "Bonded", "SpringDashpot", "Specimen", "PulseShaper",
     "LinearElastic", "ElasticPlastic", "JohnsonCook", "CowperSymonds", "FrewShaper", "TabulatedLaw", "NodalForce", "Bearings",
+    "SmithSoil", "ShaftResistance", "SoilToe", "SoilOutcome", "next_blow",
     "Lattice", "build_lattice",
     "Problem", "TimeGrid", "simulate", "Outputs", "sweep", "drilling_metrics", "simulate_batch", "BatchOutputs",
     "BatchResult", "SimulationResult", "Probe", "ProbeHistory",
@@ -65,5 +68,5 @@ __all__ = [
     "design", "DesignResult", "MatchObjective", "EfficiencyObjective", "StrainRateObjective", "StrikerLimits",
     "SearchOptions",
     "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
-    "inverse", "io", "plotting", "reference", "shpb", "signals",
+    "identify", "inverse", "io", "plotting", "reference", "shpb", "signals",
 ]

@@ -60,6 +60,8 @@ DIMENSIONS: dict[str, Dimension] = {d.name: d for d in (
     Dimension("temperature", "K", "K", "293.15 K"),
     Dimension("voltage", "V", "V", "10 V"),
     Dimension("dimensionless", "dimensionless", "-", "0.3"),
+    # after "stiffness" (the same unit): a unit string of N/m is still named "a stiffness" in messages
+    Dimension("force per length", "N/m", "N/m", "60 kN/m"),
 )}
 
 

@@ -1,9 +1,9 @@
 """The ``rodimpact`` command line: thin wrappers around the Python API (output folders with figures:
 :mod:`rodimpact.output_folders`).
 
-Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design|shpb]``,
+Commands: ``simulate MODEL.toml``, ``sweep MODEL.toml``, ``init [simulate|synthesize|design|shpb|identify]``,
 ``examples [list|run|show|copy]``, ``synthesize SPEC.toml``, ``design SPEC.toml``, ``shpb predict SPEC.toml``,
-``shpb reduce RECORDING...``,
+``shpb reduce RECORDING...``, ``identify RECORD... --spec SPEC.toml``,
 ``docs [TOPIC]`` and ``--version``; see docs/cli.md.
 
 Python warnings raised while a command runs are printed once each, as ``warning: <message>`` on stderr (never with
@@ -223,7 +223,8 @@ def cmd_init(args: argparse.Namespace) -> int:
     path = _file_target(args.output, default)
     _write_file(path, text, args.force, "model file" if kind == "simulate" else "spec file")
     if not args.quiet:
-        cmd = {"synthesize": "synthesize", "design": "design", "shpb": "shpb predict"}.get(kind, "simulate")
+        cmd = {"synthesize": "synthesize", "design": "design", "shpb": "shpb predict",
+               "identify": "identify RECORD.csv --spec"}.get(kind, "simulate")
         print(f"wrote {path}; edit it, then run:  rodimpact {cmd} {path}")
     return EXIT_OK
 
@@ -232,10 +233,11 @@ def _templates() -> dict[str, tuple[str, str]]:
     from .io import synthesis_spec
     from .io.templates import TEMPLATES
 
-    from .io import design_spec, shpb_spec
+    from .io import design_spec, identify_spec, shpb_spec
 
     return {**TEMPLATES, "synthesize": (synthesis_spec.TEMPLATE, "synthesis.toml"),
-            "design": (design_spec.TEMPLATE, "design.toml"), "shpb": (shpb_spec.TEMPLATE, "shpb.toml")}
+            "design": (design_spec.TEMPLATE, "design.toml"), "shpb": (shpb_spec.TEMPLATE, "shpb.toml"),
+            "identify": (identify_spec.TEMPLATE, "identify.toml")}
 
 
 # ============================================================================================ examples
@@ -417,18 +419,42 @@ def _add_shpb_parser(sub: Any, output_flags: Callable[..., None], set_flag: Call
     r.set_defaults(func=cmd_shpb_reduce)
 
 
+# ============================================================================================ identify
+def cmd_identify(args: argparse.Namespace) -> int:
+    from .io import identify_spec as spec_io
+    from .output_folders import write_identification
+
+    named = args.record[0] if args.record else args.spec
+    out = _output(args, f"{Path(named).stem if named else 'record'}-identify")
+    with _claim_out(out, args.force):
+        spec = _input_phase(lambda: spec_io.load_spec(args.spec, _overrides(args)))
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            result = _input_phase(lambda: spec_io.run(spec, args.record))
+        files = list(args.record) or [str(spec.base / f) for f in spec.values["record"]["files"] or ()]
+        summary = spec_io.summarize(result, spec, files)
+        summary["warnings"] = list(dict.fromkeys(summary["warnings"] + [str(w.message) for w in caught]))
+        if out is not None:
+            write_identification(result, spec, summary, out, overwrite=args.force, plots=not args.no_plots)
+    _report(summary, spec_io.format_summary(summary), args, f"results written to {out}" if out else "",
+            summary["warnings"])
+    return EXIT_OK
+
+
 # ============================================================================================ docs
 def _doc_topics() -> dict[str, tuple[str, Callable[[], str]]]:
     """Topic -> (description, function generating the page): the pages are generated from the schemas the
     files are validated with, so the installed package always has them, matching its own code."""
-    from .io import design_spec, schema, shpb_reduction_spec, shpb_spec, synthesis_spec
+    from .io import design_spec, identify_spec, schema, shpb_reduction_spec, shpb_spec, synthesis_spec
 
     return {"model": ("every key of a model file (docs/model-reference.md)", schema.reference_markdown),
             "synthesis": ("every key of a synthesis spec (docs/cli.md)", synthesis_spec.spec_reference_markdown),
             "design": ("every key of a design spec (docs/cli.md)", design_spec.spec_reference_markdown),
             "shpb": ("every key of a Kolsky-bar spec (docs/cli.md)", shpb_spec.spec_reference_markdown),
             "shpb-reduce": ("every key of a split-Hopkinson-bar reduction spec (docs/cli.md)",
-                            shpb_reduction_spec.spec_reference_markdown)}
+                            shpb_reduction_spec.spec_reference_markdown),
+            "identify": ("every key of an identification spec (docs/identification.md)",
+                         identify_spec.spec_reference_markdown)}
 
 
 def cmd_docs(args: argparse.Namespace) -> int:
@@ -505,7 +531,8 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Write a fully commented template model (simulate), synthesis spec "
                                    "(synthesize), design spec (design) or Kolsky-bar spec (shpb) that runs as it "
                                    "is.")
-    i.add_argument("kind", nargs="?", default="simulate", help="simulate (default), synthesize, design or shpb")
+    i.add_argument("kind", nargs="?", default="simulate",
+                   help="simulate (default), synthesize, design, shpb or identify")
     i.add_argument("-o", "--output", metavar="FILE", help="file to write (default: model.toml / synthesis.toml; "
                                                           "an existing folder or a name ending in / means "
                                                           "that file inside it)")
@@ -546,11 +573,24 @@ def build_parser() -> argparse.ArgumentParser:
     g.set_defaults(func=cmd_design)
 
     _add_shpb_parser(sub, output_flags, set_flag)
+    n = sub.add_parser("identify", help="identify the impedance profile of a pile, rod or striker from a record",
+                       description="Identify the impedance profile below the measured face from a head record "
+                                   "(CSV of time, force, velocity; several files are blows, averaged) or a striker "
+                                   "from a LANL shot's incident pulse: layer peeling, beta reflectors or striker "
+                                   "identification (docs/identification.md; keys: rodimpact docs identify; "
+                                   "rodimpact init identify writes a template). Writes profile.csv, "
+                                   "identification.nc, plots and summary.json to OUTDIR.")
+    n.add_argument("record", nargs="*", metavar="RECORD", help="CSV head record(s) or one LANL .raw shot; or name "
+                                                               "them in the spec (record.files)")
+    n.add_argument("--spec", metavar="SPEC.toml", help="method, rod and record settings")
+    output_flags(n, "RECORD-identify")
+    set_flag(n, "spec")
+    n.set_defaults(func=cmd_identify)
 
     d = sub.add_parser("docs", help="print reference pages of this installation (model-file keys, ...)",
                        description="Print a reference page as Markdown, generated by the installed rodimpact from "
                                    "the schema it validates files with; without TOPIC, list the topics.")
-    d.add_argument("topic", nargs="?", help="model, synthesis, design, shpb or shpb-reduce")
+    d.add_argument("topic", nargs="?", help="model, synthesis, design, shpb, shpb-reduce or identify")
     d.set_defaults(func=cmd_docs)
     return p
 

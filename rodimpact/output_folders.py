@@ -165,3 +165,28 @@ def _draw(folder: Path, jobs: list[Job]) -> list[str]:
         fig.savefig(folder / name, dpi=DPI)
         written.append(name)
     return written
+
+
+def write_identification(result: Any, spec: Any, summary: dict[str, Any], outdir: str | Path, *,
+                         overwrite: bool = False, plots: bool = True) -> dict[str, Any]:
+    """Write the output folder of ``rodimpact identify``: the data files
+    (:func:`rodimpact.io.identify_spec.write_files`: ``profile.csv``, ``identification.nc``, ``spec.toml``),
+    ``plots/profile.png`` and ``plots/reflectogram.png`` (beta: with the spec's exponential amplification) or
+    ``plots/matched.png`` (:mod:`rodimpact.plotting.identify`; not with ``plots=False`` or ``plots = false`` in
+    the spec) and ``summary.json``. Returns the summary."""
+    from .io import identify_spec
+    from .plotting import identify as identify_plots
+
+    with AtomicFolder(outdir, overwrite) as tmp:
+        files = identify_spec.write_files(result, spec, tmp)
+        if plots and spec.plots:
+            jobs: list[Job] = [("profile.png", lambda ax: identify_plots.plot_identified_profile(result, ax=ax))]
+            if "reflectogram" in result.matched:
+                rate = spec.values["identify"]["amplification"]
+                jobs.append(("reflectogram.png", lambda ax: identify_plots.plot_reflectogram(
+                    result, amplification=rate, ax=ax)))
+            elif result.matched:
+                jobs.append(("matched.png", lambda ax: identify_plots.plot_matched(result, ax=ax)))
+            files += [f"plots/{name}" for name in _draw(tmp / "plots", jobs)]
+        summary["files"] = files + ["summary.json"]
+        return write_summary(tmp, summary)

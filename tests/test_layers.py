@@ -2,7 +2,8 @@
 so that there is no import circle (results know nothing about files or figures).
 
 Bottom to top: rods, lattice, direct, inverse, design, signals, testrig, shpb (the split-Hopkinson-bar
-application), then plotting and io side by side (io writes data files only; neither imports the other),
+application) and identify (identification: peeling, beta, strikers; beside shpb), then plotting and io side by
+side (io writes data files only; neither imports the other),
 output_folders (puts io's files and plotting's figures into one output folder for the command line and the
 examples), examples, cli (signals, the measurement layer, does not import the solvers: the test rig that simulates
 sits above them); ``reference`` is independent of lattice and direct so that it can check them (inverse uses its closed form of eq. 4.26 as the
@@ -33,16 +34,21 @@ BELOW = {
     "testrig": {"rods", "lattice", "direct", "signals"},
     # the split-Hopkinson-bar application: composes the solvers and the measurement layer, below files and figures
     "shpb": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
+    # identification (peeling, beta, striker identification): composes the solvers and the measurement layer
+    # like shpb, beside it (neither needs the other), below files and figures
+    "identify": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig"},
     # plotting draws and io reads and writes files: side by side, neither imports the other
-    "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb"},
-    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb"},
+    "plotting": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
+                 "identify"},
+    "io": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
+           "identify"},
     # output folders with figures: io's data files and plotting's figures, put together
     "output_folders": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
-                       "plotting", "io"},
+                       "identify", "plotting", "io"},
     "examples": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb",
-                 "plotting", "io", "output_folders"},
-    "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "plotting",
-            "io", "output_folders", "examples"},
+                 "identify", "plotting", "io", "output_folders"},
+    "cli": {"rods", "lattice", "direct", "inverse", "design", "reference", "signals", "testrig", "shpb", "identify",
+            "plotting", "io", "output_folders", "examples"},
 }
 
 

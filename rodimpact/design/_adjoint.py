@@ -29,6 +29,7 @@ from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
 from ..rods.conditions import Bonded, Contact, DeformableJoint
 from ..rods.rod import Rod
+from ..rods.soil import ShaftResistance, SoilToe
 from ..rods.system import System
 from ..inverse.struck import Location, as_struck_system, position_probe, with_striker
 from . import _adjoint_kernels as K
@@ -110,6 +111,11 @@ class ImpactProblem:
                 raise ValueError(f"struck.junctions[{i}]: design's exact gradients cover bonded and contact "
                                  f"junctions and law joints (Specimen, PulseShaper), got {type(j).__name__}; "
                                  "simulate or synthesize take it")
+        soil = [f"struck.loads[{i}]" for i, ld in enumerate(struck.loads) if isinstance(ld, ShaftResistance)]
+        soil += [f"struck.{side}" for side in ("left", "right") if isinstance(getattr(struck, side), SoilToe)]
+        if soil:
+            raise ValueError(f"{soil[0]}: design's exact gradients do not cover Smith soil (ShaftResistance, "
+                             f"SoilToe); simulate takes it")
         self.n = _count("n", n, "striker elements")
         self.steps = _count("steps", steps, "time steps")
         if quantity not in QUANTITIES:
@@ -211,7 +217,7 @@ class ImpactProblem:
         junctions = (a["junction_code"], np.zeros(n_j, dtype=np.int64), a["gap"].copy(), a["gap_tol"],
                      np.zeros((n_rods, 2)), a["junction_par"],
                      law_state(a["junction_code"], np.zeros_like(a["junction_q"])))
-        specials = (a["sp_elem"], a["sp_cap"], self._sp_force, np.zeros(n_sp), np.zeros(n_sp))
+        specials = (a["sp_elem"], a["sp_cap"], self._sp_force, np.zeros(n_sp), np.zeros(n_sp), None)   # no soil
         probes = (a["pr_rod"], a["pr_local"], a["pr_sp"], np.zeros((n_p, steps)), np.zeros((n_p, steps)),
                   np.zeros((n_p, steps)), np.zeros(n_p))
         outputs = (np.zeros((n_j, steps)), np.zeros((n_j, steps)), np.zeros((2, steps)), np.zeros((2, steps)))

@@ -142,7 +142,7 @@ def _design(d, n_steps, stride, quiet, Zs, vel, z0, N0, v0, rod_start, touch, en
     ends = (end_code, end_par[d].copy(), end_state, end_value)
     junctions = (junction_code, np.zeros(n_j, dtype=np.int64), gap0.copy(), gap_tol[d], np.zeros((n_rods, 2)),
                  junction_par, fresh_law_state(law_q))
-    specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V)
+    specials = (sp_elem, sp_cap, sp_force, sp_F, sp_V, None)     # no soil in a batch (batch.slot_problem)
     probes = (no_int, no_int, no_int, pr_N, pr_N, pr_N, np.empty(0))
     outputs = (junction_N, junction_contact, end_N, end_V)
     rod_nodes = (rod_NL, np.empty(n_rods), rod_NR, np.empty(n_rods))

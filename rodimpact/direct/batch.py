@@ -27,6 +27,7 @@ from ..lattice.discretize import discretize_rod
 from ..rods.conditions import NonReflectingEnd
 from ..rods.material import STEEL
 from ..rods.rod import Rod
+from ..rods.soil import ShaftResistance, SoilToe
 from ..rods.system import System
 from . import _batch_kernels as BK
 from . import boundary as B
@@ -335,6 +336,10 @@ def slot_problem(system: System) -> str:
     if any(ld.rod == 0 for ld in system.loads):
         return ("system.loads: rod 0 is the striker slot, which is replaced per design; loads on it are not "
                 "supported in a batch (use simulate)")
+    if any(isinstance(ld, ShaftResistance) for ld in system.loads) or any(
+            isinstance(e, SoilToe) for e in (system.left, system.right)):
+        return ("system: simulate_batch does not support Smith soil (ShaftResistance, SoilToe) yet; run the "
+                "designs one by one with simulate")
     if system.initial[0] is not None:
         return ("system.initial[0]: the striker slot starts force-free with velocities[d]; give None for rod 0 "
                 "(use simulate for a non-uniform initial state)")

@@ -14,14 +14,17 @@ import numpy as np
 from numba import njit
 
 from .joints import joint_solve
+from .soil import SOIL_TOE, shaft_soil, toe_soil
 
 #: end-law codes (``end_code``) and junction codes (``junction_code``) of the kernel arrays
-FREE, FIXED, FORCE, VELOCITY, NONREFLECTING, SPRING, BITROCK = 0, 1, 2, 3, 4, 5, 6
+FREE, FIXED, FORCE, VELOCITY, NONREFLECTING, SPRING, BITROCK = 0, 1, 2, 3, 4, 5, 6   # SOIL_TOE = 8: .soil
 BONDED, CONTACT, SPRING_DASHPOT, LAW_JOINT = 0, 1, 2, 3
 
 #: slots of the work and impulse accumulator ``acc``: [W_left, W_right, W_loads, W_friction, I_left, I_right,
-#: I_loads, I_friction, W_joints] (J and N s); joint forces act on both faces and carry no net impulse
-ACC_SLOTS = 9
+#: I_loads, I_friction, W_joints, W_soil, I_soil] (J and N s); joint forces act on both faces and carry no net
+#: impulse. W_soil and I_soil are those of the shaft soil (rodimpact.direct.soil); a soil toe's work and impulse
+#: are those of its end (W_right or W_left), like every end law's
+ACC_SLOTS = 11
 
 
 @njit(inline="always", error_model="numpy", cache=True)
@@ -44,7 +47,9 @@ def end_solve(code, a, z, value, p0, p1, delta, delta_max, dt):
     i.e. the largest penetration of the (piecewise-linear) path.
     """
     h = 0.5 * dt
-    if code == FREE or code == FORCE:
+    if code == SOIL_TOE:        # solved by toe_soil after this (the soil arrays are not end parameters)
+        w, n = 0.0, 0.0
+    elif code == FREE or code == FORCE:
         n = value
         w = (n - a) / z
     elif code == FIXED:
@@ -141,7 +146,7 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
     step loop."""
     end_code, end_par, end_state, end_value = ends
     junction_code, junction_state, gap, gap_tol, u_end, junction_par, junction_q = junctions
-    sp_elem, sp_cap, sp_force, sp_F, sp_V = specials
+    sp_elem, sp_cap, sp_force, sp_F, sp_V, soil = specials
     pr_rod, pr_local, pr_sp, pr_N, pr_V, pr_u, pr_disp = probes
     junction_N, junction_contact, end_N, end_V = outputs
     rod_NL, rod_VL, rod_NR, rod_VR = rod_nodes
@@ -150,6 +155,7 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
     # ---- left end of rod 0: element side N^- = N_0 + Z_0 v_0 - Z_0 V, outward w = -V
     w, nn, dm = end_solve(end_code[0], N[0] + Z[0] * v[0], Z[0], end_value[0, out], end_par[0, 0],
                           end_par[0, 1], end_state[0, 0], end_state[0, 1], dt)
+    w, nn = toe_soil(soil, end_code[0], sp_elem.size, N[0] + Z[0] * v[0], Z[0], dt, w, nn)
     end_state[0, 0] += w * dt
     end_state[0, 1] = dm
     rod_NL[0] = nn
@@ -162,6 +168,7 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
     e = n_el - 1
     w, nn, dm = end_solve(end_code[1], N[e] - Z[e] * v[e], Z[e], end_value[1, out], end_par[1, 0],
                           end_par[1, 1], end_state[1, 0], end_state[1, 1], dt)
+    w, nn = toe_soil(soil, end_code[1], sp_elem.size + 1, N[e] - Z[e] * v[e], Z[e], dt, w, nn)
     end_state[1, 0] += w * dt
     end_state[1, 1] = dm
     rod_NR[n_rods - 1] = nn
@@ -227,7 +234,8 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
                 junction_N[r, out] = 0.0
             junction_contact[r, out] = 1.0 if touching else 0.0
         gap[r] += (rod_VL[r + 1] - rod_VR[r]) * dt
-    # ---- loaded and frictional interior nodes (Coulomb law solved exactly: stick if the driving force fits)
+    # ---- loaded, frictional and soil interior nodes (Coulomb law solved exactly: stick if the driving force
+    #      fits; the Smith soil by a bracketed root, rodimpact.direct.soil)
     for i in range(sp_elem.size):
         a = sp_elem[i]
         zs = Z[a] + Z[a + 1]
@@ -243,7 +251,9 @@ def boundaries(out, dt, N, v, Z, rod_start, ends, junctions, specials, probes, o
             else:
                 f_fric = -cap if v0 > 0.0 else cap
                 vn = v0 + f_fric / zs
-        sp_F[i] = f_load + f_fric
+        f_node = f_load + f_fric
+        f_node, vn = shaft_soil(soil, i, f_node, vn, zs, dt, acc)   # Smith soil (no-op without soil)
+        sp_F[i] = f_node
         sp_V[i] = vn
         acc[2] += f_load * vn * dt
         acc[3] += f_fric * vn * dt

@@ -17,7 +17,9 @@ lattice (``impedance``, ``element_length``, ``rod_start``, ``rod_*``), the final
 (``force_field``, ``velocity_field`` (element, snapshot_time), ``displacement_field`` (node, snapshot_time)); the
 contact events; with deformable joints their outcomes (``joint_*`` along ``joint``); with a bit-rock end, its
 outcome (``bit_rock_*`` along ``bit_rock``, whose coordinate names the
-end: :class:`~rodimpact.direct.result.BitRockOutcome`; absent in files written before it). Every variable has a
+end: :class:`~rodimpact.direct.result.BitRockOutcome`; absent in files written before it); with soil, the
+:class:`~rodimpact.direct.soil_result.SoilOutcome` (``soil_*`` along ``soil_node``, ``soil_toe_*`` along
+``soil_toe``). Every variable has a
 ``units`` attribute. Written so that every NetCDF flavour can hold it: integers as int32/int8, no variables
 along empty dimensions (a single rod has no junction), the diagnostics as a JSON attribute. The column names of
 :meth:`SimulationResult.to_dataframe` are these variables per coordinate (``contact_force``, ``<probe>_force``,
@@ -32,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from .._version import __version__
+from .soil_result import soil_variables
 
 #: Version of the layout (``format_version`` attribute of ``result.nc``). 1: histories only; 2: recording stride,
 #: steps and contact events; 3: ``probe``, ``junction``, ``end``, ``rod`` and time coordinates (probe names were a
@@ -97,7 +100,7 @@ def result_dataset(result: Any, fields: bool = True):
     data["kinetic_energy"] = (("rod", "energy_time"), e.kinetic, {"units": "J"})
     data["strain_energy"] = (("rod", "energy_time"), e.strain, {"units": "J"})
     data["momentum"] = (("rod", "energy_time"), e.momentum, {"units": "N s"})
-    for name in ("work_left", "work_right", "work_loads", "work_friction", "work_joints"):
+    for name in ("work_left", "work_right", "work_loads", "work_friction", "work_joints", "work_soil"):
         data[name] = (("energy_time",), getattr(e, name), {"units": "J"})
     data["impulse"] = (("energy_time",), e.impulse, {"units": "N s"})
     data["impedance"] = (("element",), lat.impedance, {"units": "N s/m"})
@@ -142,6 +145,9 @@ def result_dataset(result: Any, fields: bool = True):
             values = np.array([getattr(o, name) for o in result.joints])
             data[f"joint_{name}"] = (("joint",), values.astype(np.int32) if name == "junction" else values,
                                      {"units": unit} if unit else {})
+    soil_data, soil_coords = soil_variables(getattr(result, "soil", None))
+    data.update(soil_data)
+    coords.update(soil_coords)
     attrs = {"title": "rodimpact simulation result", "rodimpact_version": __version__,
              "format_version": FORMAT_VERSION, "dt": float(result.dt), "steps": int(result.n_steps),
              "record_every": int(result.record_every),

@@ -24,8 +24,10 @@ from ..rods.conditions import (BitRockEnd, EndCondition, FixedEnd, ForceEnd, Fre
 from ..rods.laws import N_PARAMS
 from ..rods.loads import Bearings, NodalForce
 from ..rods.rod import Rod
+from ..rods.soil import ShaftResistance, SmithSoil, SoilToe
 from ..rods.system import InitialState, System
 from . import boundary as B
+from . import soil as S
 from .joints import HEADER_COLUMNS, STATE_COLUMNS
 from .recording import Outputs, check_probes
 from .result import Probe
@@ -306,6 +308,9 @@ def _end_setup(cond: EndCondition, side: int, N: np.ndarray, v: np.ndarray, z: n
     elif isinstance(cond, BitRockEnd):
         code = B.BITROCK
         par = (cond.loading_stiffness, cond.unloading_stiffness)
+    elif isinstance(cond, SoilToe):
+        code = B.SOIL_TOE           # its law is a row of the soil arrays (soil_rows); p1: its start R_s
+        par = (0.0, cond.resistance)
     else:  # pragma: no cover - System validates
         raise TypeError(f"unknown end condition {cond!r}")
     return code, par, values
@@ -346,7 +351,7 @@ def kernel_arrays(system: System, lat: Lattice, N: np.ndarray, v: np.ndarray, pr
             a = int(lat.rod_start[ld.rod] + m - 1)
             sp.setdefault(a, [0.0])
             node_loads.setdefault(a, []).append(ld.force)
-        else:
+        elif isinstance(ld, Bearings):
             s = lat.rod_start[ld.rod]
             x_nodes = np.cumsum(lat.element_length[s:lat.rod_start[ld.rod + 1]])[:-1]   # interior nodes 1..n-1
             inside = np.zeros(x_nodes.size, dtype=bool)
@@ -361,8 +366,10 @@ def kernel_arrays(system: System, lat: Lattice, N: np.ndarray, v: np.ndarray, pr
             for m in np.flatnonzero(inside):
                 a = int(s + m)
                 sp.setdefault(a, [0.0])[0] += total / n_hat
+    soil_nodes = _shaft_soil_nodes(system, lat, sp)
     sp_elem = np.array(sorted(sp), dtype=np.int64)
     sp_cap = np.array([sp[a][0] for a in sp_elem], dtype=float)
+    soil_par, soil_state = soil_rows(system, z, sp_elem, soil_nodes)
     loaded = [(i, node_loads[a]) for i, a in enumerate(sp_elem) if a in node_loads]
 
     def step_inputs(first: int, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -401,12 +408,83 @@ def kernel_arrays(system: System, lat: Lattice, N: np.ndarray, v: np.ndarray, pr
         junction_code=junction_code, junction_state=np.zeros(n_j, dtype=np.int64), gap=gap,
         gap_tol=gap_tol, junction_par=junction_par, junction_q=np.zeros((len(system.junctions), STATE_COLUMNS)),
         u_end=np.zeros((n_rods, 2)), sp_elem=sp_elem, sp_cap=sp_cap,
-        sp_loaded=np.array([a in node_loads for a in sp_elem], dtype=bool),
+        sp_loaded=np.array([a in node_loads for a in sp_elem], dtype=bool)
+        | (soil_state[:sp_elem.size, S.R_S] != 0.0),       # a soil node that starts loaded may move by itself
+        soil_par=soil_par, soil_state=soil_state,
+        has_soil=bool(soil_nodes) or isinstance(system.left, SoilToe) or isinstance(system.right, SoilToe),
         pr_rod=np.array(pr_rod, dtype=np.int64), pr_local=np.array(pr_local, dtype=np.int64),
         pr_sp=np.array(pr_sp, dtype=np.int64), pr_disp=np.zeros(n_p), acc=np.zeros(B.ACC_SLOTS),
         # per-step histories: shapes only (rows); the steps are written through _History's buffers
         pr_N=np.zeros((n_p, 0)), pr_V=np.zeros((n_p, 0)), pr_u=np.zeros((n_p, 0)), junction_N=np.zeros((n_j, 0)),
         junction_contact=np.zeros((n_j, 0)), end_N=np.zeros((2, 0)), end_V=np.zeros((2, 0)))
+
+
+# ---------------------------------------------------------------------------------------------- soil
+def _shaft_soil_nodes(system: System, lat: Lattice, sp: dict[int, list[float]]) -> dict[int, tuple[SmithSoil,
+                                                                                                 float, float]]:
+    """The interior nodes that carry shaft soil (element left of the node -> (law, R_s, u_p at the start)),
+    added to the special nodes ``sp`` (without friction: a node with bearing friction and soil is refused)."""
+    z = lat.impedance
+    nodes: dict[int, tuple[SmithSoil, float, float]] = {}
+    for i, ld in enumerate(system.loads):
+        if not isinstance(ld, ShaftResistance):
+            continue
+        s, e = int(lat.rod_start[ld.rod]), int(lat.rod_start[ld.rod + 1])
+        if e - s < 2:
+            raise ValueError(f"loads[{i}]: rod {ld.rod} has a single element and no interior node; use a smaller dt")
+        x_nodes = np.cumsum(lat.element_length[s:e])[:-1]
+        length = float(lat.element_length[s:e].sum())
+        r_u = ld.node_resistance(x_nodes, length)
+        z_node = 0.5 * (z[s:e - 1] + z[s + 1:e])
+        for name in ("resistance", "plastic_set"):
+            if getattr(ld, name) and len(getattr(ld, name)) != r_u.size:
+                raise ValueError(f"loads[{i}].{name}: needs one value per interior node of rod {ld.rod} "
+                                 f"({r_u.size} at this dt), got {len(getattr(ld, name))}")
+        total_case = float(np.sum(r_u))
+        for m in np.flatnonzero(r_u > 0.0):
+            a = s + int(m)
+            if a in nodes or (a in sp and sp[a][0] > 0.0):
+                raise ValueError(f"loads[{i}]: the node at {x_nodes[m]:.6g} m of rod {ld.rod} already carries "
+                                 f"{'soil' if a in nodes else 'bearing friction'}; give one soil profile per rod "
+                                 f"and no bearings where there is soil")
+            # Case damping: the shaft's J_c Z shared in proportion to R_u (rodimpact.rods.soil)
+            z_case = z_node[m] * r_u[m] / total_case
+            law = SmithSoil(float(r_u[m]), ld.quake, ld.unloading_quake, ld.damping, ld.damping_kind, False,
+                            float(z_case))
+            r0 = float(ld.resistance[m]) if ld.resistance else 0.0
+            if abs(r0) > law.ultimate:
+                raise ValueError(f"loads[{i}].resistance[{m}]: must lie in [-R_u, R_u] = +-{law.ultimate:.6g} N "
+                                 f"(that node's ultimate resistance), got {r0:.6g} N")
+            nodes[a] = (law, r0, float(ld.plastic_set[m]) if ld.plastic_set else 0.0)
+            sp.setdefault(a, [0.0])
+    return nodes
+
+
+def _soil_row(law: SmithSoil) -> list[float]:
+    """The kernel parameters of one soil node (rodimpact.direct.soil: active, R_u, k, k_u, lo, J, c)."""
+    smith = law.damping_kind == "smith"
+    c = 0.0 if smith else law.damping * (law.ultimate if law.damping_kind == "smith-viscous" else law.impedance)
+    return [1.0, law.ultimate, law.loading_stiffness, law.unloading_stiffness,
+            0.0 if law.compression_only else -law.ultimate, law.damping if smith else 0.0, c]
+
+
+def soil_rows(system: System, z: np.ndarray, sp_elem: np.ndarray,
+              soil_nodes: dict[int, tuple[SmithSoil, float, float]]) -> tuple[np.ndarray, np.ndarray]:
+    """``soil_par`` and ``soil_state`` (:mod:`rodimpact.direct.soil`): one row per special node, then the left
+    and the right end; rows without soil stay zero (inactive)."""
+    n_sp = sp_elem.size
+    par = np.zeros((n_sp + 2, S.PAR_COLUMNS))
+    state = np.zeros((n_sp + 2, S.STATE_COLUMNS))
+    for row, a in enumerate(sp_elem.tolist()):
+        if a in soil_nodes:
+            law, r0, up = soil_nodes[a]
+            par[row] = _soil_row(law)
+            state[row, S.R_S], state[row, S.U_P] = r0, up
+    for side, cond in enumerate((system.left, system.right)):
+        if isinstance(cond, SoilToe):
+            par[n_sp + side] = _soil_row(cond.law(float(z[0] if side == 0 else z[-1])))
+            state[n_sp + side, S.R_S], state[n_sp + side, S.U_P] = cond.resistance, cond.plastic_set
+    return par, state
 
 
 def wave_arrays(lat: Lattice, arrays: dict) -> tuple[np.ndarray, np.ndarray]:

@@ -190,8 +190,11 @@ class Recorder:
         steps, _, _, kin, pot, mom, acc = self.samples[:7]
         return EnergyHistory(time=steps * dt, kinetic=kin.T, strain=pot.T, momentum=mom.T, work_left=acc[:, 0],
                              work_right=acc[:, 1], work_loads=acc[:, 2], work_friction=acc[:, 3],
-                             work_joints=acc[:, 8],
-                             impulse=functools.reduce(np.add, acc[:, 4:8].T))    # I_left + I_right + ...
+                             work_joints=acc[:, 8], work_soil=acc[:, 9],
+                             # I_left + I_right + ... (+ the shaft soil's, if any: the sums of runs without
+                             # soil are those they always were)
+                             impulse=functools.reduce(np.add, acc[:, 4:8].T) + acc[:, 10] if acc[:, 10].any()
+                             else functools.reduce(np.add, acc[:, 4:8].T))
 
     def snapshots(self, lattice: Lattice) -> Optional[FieldSnapshots]:
         """The field snapshots (``None`` if none were requested)."""

@@ -74,7 +74,9 @@ class EnergyHistory:
 
     ``work_*`` is the cumulative work done on the rods since t = 0 by each outer end, the prescribed nodal
     loads and the bearing friction (J; friction work is <= 0). ``impulse_*`` likewise in N s. Without
-    losses, ``total - total[0] - exchanged`` vanishes to rounding.
+    losses, ``total - total[0] - exchanged`` vanishes to rounding. ``work_soil`` is the work of the shaft soil
+    (:class:`~rodimpact.rods.soil.ShaftResistance`, <= 0); a soil toe's work is that of its end
+    (``work_right`` or ``work_left``), like every end law's. Without soil it is zero.
     """
 
     time: np.ndarray
@@ -87,6 +89,11 @@ class EnergyHistory:
     work_friction: np.ndarray
     work_joints: np.ndarray   # (m,) work done on the rods by the joints between them (<= 0 if passive)
     impulse: np.ndarray       # (m,) total external impulse, N s
+    work_soil: Optional[np.ndarray] = None   # (m,) work of the shaft soil on the rods (<= 0); None: zero
+
+    def __post_init__(self) -> None:
+        if self.work_soil is None:
+            object.__setattr__(self, "work_soil", np.zeros_like(self.work_friction))
 
     def __repr__(self) -> str:
         return (f"EnergyHistory({self.time.size} samples, total {self.total[0]:.6g} J -> {self.total[-1]:.6g} J, "
@@ -100,8 +107,9 @@ class EnergyHistory:
 
     @property
     def exchanged(self) -> np.ndarray:
-        """Cumulative work done on the rods by ends, loads, friction and joints, J."""
-        return self.work_left + self.work_right + self.work_loads + self.work_friction + self.work_joints
+        """Cumulative work done on the rods by ends, loads, friction, joints and the shaft soil, J."""
+        return (self.work_left + self.work_right + self.work_loads + self.work_friction + self.work_joints
+                + self.work_soil)
 
     @property
     def balance_error(self) -> float:
@@ -404,6 +412,7 @@ class SimulationResult(SimulationTables):
     junction_events: Optional[tuple[JunctionEvents, ...]] = None   # default: from the histories
     bit_rock: tuple[BitRockOutcome, ...] = ()   # one per outer end with a BitRockEnd (left first)
     joints: tuple[JointOutcome, ...] = ()       # one per deformable joint (Specimen, PulseShaper), left first
+    soil: Any = None        # the soil's final state, a rodimpact.direct.soil_result.SoilOutcome (None: no soil)
 
     def __post_init__(self) -> None:
         if isinstance(self.record_every, bool) or not isinstance(self.record_every, (int, np.integer)) \

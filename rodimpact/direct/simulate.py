@@ -18,6 +18,8 @@ from . import boundary as B
 from . import guards
 from .problem import Problem, wave_arrays
 from .recording import Recorder, Outputs
+from .soil import soil_arrays
+from .soil_result import soil_outcome
 from .result import Probe, ProbeHistory, SimulationResult, bit_rock_outcomes, joint_outcomes
 
 Backend = Literal["numba", "numpy"]
@@ -132,6 +134,7 @@ def _solve(problem: Problem, backend: Backend, progress: Optional[bool],
     # the compiled loop writes the steps straight into the histories when it keeps every step (no step columns)
     columns = 0 if backend == "numba" and record.record_every == 1 else capacity
     recorder = Recorder(record, lattice, arrays, state["N"].copy(), n_steps, columns)
+    soil_start = arrays["soil_state"].copy()
     _advance(backend, n_steps, capacity, lattice, arrays, state, recorder, bar)
     wall = _time.perf_counter() - wall0
 
@@ -152,7 +155,8 @@ def _solve(problem: Problem, backend: Backend, progress: Optional[bool],
         record_every=recorder.stride, n_steps=n_steps, junction_events=recorder.junction_events(),
         bit_rock=bit_rock_outcomes(system, arrays["end_state"], energy.work_left[-1], energy.work_right[-1],
                                    energy.kinetic[:, 0] + energy.strain[:, 0]),
-        joints=joint_outcomes(system, arrays["gap"], arrays["junction_q"]))
+        joints=joint_outcomes(system, arrays["gap"], arrays["junction_q"]),
+        soil=soil_outcome(system, lattice, arrays, soil_start))
 
 
 def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays: dict, state: dict,
@@ -175,6 +179,7 @@ def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays
     junctions = (*(arrays[key] for key in ("junction_code", "junction_state", "gap", "gap_tol", "u_end",
                                           "junction_par")), B.law_state(arrays["junction_code"], arrays["junction_q"]))
     n_sp = arrays["sp_elem"].size
+    soil = soil_arrays(arrays)   # None without soil: no soil code compiled
     scratch = (np.zeros(n_sp), np.zeros(n_sp))      # resolved force and velocity of each special node
     chunk = recorder.chunk
     probes = (arrays["pr_rod"], arrays["pr_local"], arrays["pr_sp"], *chunk[4:], arrays["pr_disp"])
@@ -183,7 +188,7 @@ def _advance(backend: Backend, n_steps: int, capacity: int, lat: Lattice, arrays
         n = min(capacity, n_steps - k)
         end_value, sp_force = arrays["step_inputs"](k, n)
         ends = (arrays["end_code"], arrays["end_par"], arrays["end_state"], end_value)
-        specials = (arrays["sp_elem"], arrays["sp_cap"], sp_force, *scratch)
+        specials = (arrays["sp_elem"], arrays["sp_cap"], sp_force, *scratch, soil)
         done = run(k, n, wave_state, lattice, lat.dt, ends, junctions, specials, probes, chunk[:4], arrays["acc"],
                    recorder.record)
         if done < n:
@@ -212,7 +217,8 @@ def passive_right(arrays: dict) -> bool:
     """The right end cannot start a wave by itself: fixed, free, a spring or bit-rock law, or a non-reflecting
     end whose continuation is at rest (prescribed forces and velocities may act at any step)."""
     code, par = int(arrays["end_code"][1]), arrays["end_par"][1]
-    return code in (B.FREE, B.FIXED, B.SPRING, B.BITROCK) or (code == B.NONREFLECTING and par[1] == 0.0)
+    return (code in (B.FREE, B.FIXED, B.SPRING, B.BITROCK) or (code == B.NONREFLECTING and par[1] == 0.0)
+            or (code == B.SOIL_TOE and par[1] == 0.0))     # a soil toe that starts unloaded
 
 
 def _probe_histories(system: System, lat: Lattice, probes: list[Probe], arrays: dict) -> dict[str, ProbeHistory]:

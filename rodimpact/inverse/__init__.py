@@ -4,7 +4,10 @@
   position inside the struck system, with the existence check of eq. 4.20 at every element;
 * :func:`transform_force` -- the transformation of a force at a position into the impact force (Sec. 4.1.2);
 * :class:`StrikerShape` / :func:`impedance_to_shape` -- diameters, length and mass for a material;
-* targets: :class:`ForceTarget` and the thesis's force histories.
+* targets: :class:`ForceTarget` and the thesis's force histories;
+* :func:`peel_layers` -- the layer peeling of a face's force and velocity history (eqs. 4.4-4.9; O(n^2) or the
+  superfast Schur recursion by size), which :func:`synthesize` runs and :mod:`rodimpact.identify` uses on
+  measured records.
 """
 
 from .recursive import SynthesisWarning, synthesize
@@ -15,6 +18,7 @@ from .targets import (ExponentialDecay, ExponentialGrowth, ForceTarget, LinearRa
                       lundberg_lesser_impedance)
 from .transform import ForceTransformation, transform_force
 from .examples import SynthesisProblem, academic_example, percussion_drilling_example
+from ._schur import peel as peel_layers
 
 __all__ = [
     "synthesize", "SynthesisResult", "ExistenceFailure", "VerificationReport", "SynthesisWarning",
@@ -22,5 +26,5 @@ __all__ = [
     "StrikerShape", "impedance_to_shape",
     "ForceTarget", "as_target", "ExponentialDecay", "LinearRamp", "ExponentialGrowth", "lundberg_lesser_impedance",
     "synthesize_by_resimulation", "ReferenceSynthesis",
-    "SynthesisProblem", "academic_example", "percussion_drilling_example",
+    "SynthesisProblem", "academic_example", "percussion_drilling_example", "peel_layers",
 ]

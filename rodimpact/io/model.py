@@ -889,6 +889,9 @@ class _Writer:
                 d[f.name] = self.rod_ref[value]
             elif decl.kind == "spans":
                 d[f.name] = [[float(a), float(b)] for a, b in value]
+            elif decl.kind == "quantities":
+                if value != f.default:
+                    d[f.name] = [float(x) for x in value]
             elif decl.kind == "part":
                 d[f.name] = self.element(value, f"{path}.{f.name}", inline=True)
             elif decl.kind == "path" and value is None and hasattr(e, "plastic_strain"):

@@ -56,6 +56,7 @@ from .._validate import caller_stacklevel
 from ..direct.dataset import BIT_ROCK_FIELDS, FORMAT_VERSION, JOINT_FIELDS, json_default, result_dataset
 from ..direct.result import (BitRockOutcome, EnergyHistory, FieldSnapshots, JointOutcome, JunctionEvents, Probe,
                              ProbeHistory, SimulationResult, first_within_rounding)
+from ..direct.soil_result import soil_from_variables
 from ..lattice.discretize import RodDiscretization
 from ..lattice.lattice import Lattice
 from ._files import write_text_atomic  # noqa: F401  (public here: the CLI writes single files with it)
@@ -489,7 +490,7 @@ def summarize(result: SimulationResult) -> dict[str, Any]:
     out["total_energy_J"] = {"initial": float(e.total[0]), "final": float(e.total[-1])}
     out["work_done_on_rods_J"] = {"ends": float(e.work_left[-1] + e.work_right[-1]),
                                   "loads": float(e.work_loads[-1]), "friction": float(e.work_friction[-1]),
-                                  "joints": float(e.work_joints[-1])}
+                                  "joints": float(e.work_joints[-1]), "soil": float(e.work_soil[-1])}
     out["energy_balance_error"] = float(e.balance_error)
     out["bit_rock"] = [{"end": o.end, "energy_into_rock_J": o.energy, "efficiency": o.efficiency,
                         "striker": _rod_label(result, o.striker), "striker_initial_energy_J": o.striker_energy,
@@ -620,8 +621,9 @@ def energy_columns(result: SimulationResult) -> tuple[list[str], list[np.ndarray
         header += [f"{label}.kinetic_energy [J]", f"{label}.strain_energy [J]", f"{label}.momentum [N s]"]
         cols += [e.kinetic[i], e.strain[i], e.momentum[i]]
     header += ["total_energy [J]", "work_left_end [J]", "work_right_end [J]", "work_loads [J]",
-               "work_friction [J]", "work_joints [J]", "external_impulse [N s]"]
-    cols += [e.total, e.work_left, e.work_right, e.work_loads, e.work_friction, e.work_joints, e.impulse]
+               "work_friction [J]", "work_joints [J]", "work_soil [J]", "external_impulse [N s]"]
+    cols += [e.total, e.work_left, e.work_right, e.work_loads, e.work_friction, e.work_joints, e.work_soil,
+             e.impulse]
     return header, cols
 
 
@@ -788,6 +790,7 @@ def _from_dataset(ds: Any, nc: Path) -> SimulationResult:
                            work_loads=v["work_loads"], work_friction=v["work_friction"],
                            # files written before joints existed have no joint work: zero
                            work_joints=v["work_joints"] if "work_joints" in v else np.zeros_like(v["work_friction"]),
+                           work_soil=v["work_soil"] if "work_soil" in v else None,   # files before soil: zero
                            impulse=v["impulse"])
     diagnostics = json.loads(ds.attrs["diagnostics"])
     if system is not None and system.n_rods != n_rods:
@@ -808,4 +811,5 @@ def _from_dataset(ds: Any, nc: Path) -> SimulationResult:
         end_velocity={"left": v["end_velocity"][0].copy(), "right": v["end_velocity"][1].copy()},
         probes=probes, snapshots=snapshots, energy=energy, final_force=v["final_force"],
         final_velocity=v["final_velocity"], diagnostics=diagnostics, record_every=record_every,
-        n_steps=int(ds.attrs.get("steps", n_steps)), junction_events=events, bit_rock=bit_rock, joints=joints)
+        n_steps=int(ds.attrs.get("steps", n_steps)), junction_events=events, bit_rock=bit_rock, joints=joints,
+        soil=soil_from_variables(v, ds.coords))

@@ -12,6 +12,10 @@ sweep         one netCDF file (the ``xarray.Dataset`` of        that ``xarray.Da
               :func:`rodimpact.sweep`)
 shpb          one netCDF file (:meth:`ShpbReduction             the :class:`~rodimpact.shpb.ShpbReduction`
 reduction     .to_xarray`: a split-Hopkinson-bar reduction)
+identifi-     one netCDF file (:meth:`IdentificationResult      the :class:`~rodimpact.identify.
+cation        .to_xarray`), or with a ``.csv`` path the         IdentificationResult` (from a CSV: without the
+              profile table (:mod:`rodimpact.io.                matched signals)
+              identification`)
 ============  ===============================================  ================================================
 
 This module owns the reading and writing; the result classes own their layout (``to_xarray`` and
@@ -37,18 +41,20 @@ from .results import RESULT_FILE, save_simulation, simulation_from_dataset
 if TYPE_CHECKING:
     import xarray
 
+    from ..identify.result import IdentificationResult
     from ..shpb.result import ShpbReduction
 
-Result = Union[SimulationResult, SynthesisResult, DesignResult, "ShpbReduction", "xarray.Dataset"]
+Result = Union[SimulationResult, SynthesisResult, DesignResult, "ShpbReduction", "IdentificationResult",
+               "xarray.Dataset"]
 """What :func:`save` takes and :func:`load` returns (the ``xarray.Dataset`` of a sweep)."""
 
 #: The file that holds each kind of result in an output folder.
 FOLDER_FILES = {"simulation": RESULT_FILE, "synthesis": "synthesis.nc", "design": "design.nc", "sweep": "sweep.nc",
-                "shpb reduction": "reduction.nc"}
+                "shpb reduction": "reduction.nc", "identification": "identification.nc"}
 #: The attributes by which :func:`load` recognises the kind of a netCDF file (every file rodimpact wrote has them).
 KIND_ATTRIBUTES = {"simulation": ("format_version", "rod_methods"), "synthesis": ("n_requested", "impact_force_n0"),
                    "design": ("objective", "constraint_report"), "sweep": ("points", "runner"),
-                   "shpb reduction": ("specimen_length", "pass_limit")}
+                   "shpb reduction": ("specimen_length", "pass_limit"), "identification": ("anomalies", "toe_band")}
 #: What :func:`save` no longer takes, and where it went: io writes data files only (docs/architecture.md, layers).
 FIGURES_MOVED = {
     "plots": "plots: rodimpact.save writes the data files only; the folder with figures, as the command line "
@@ -79,6 +85,12 @@ def save(result: Result, path: str | Path, *, overwrite: bool = False, engine: O
         return save_simulation(result, path, model=model, overwrite=overwrite, csv=True if csv is None else csv,
                                fields=True if fields is None else fields, engine=engine)
     given = [name for name, value in (("model", model), ("csv", csv), ("fields", fields)) if value is not None]
+    if Path(path).suffix.lower() == ".csv":
+        from .identification import save_identification_csv
+
+        if given:
+            raise TypeError(f"{given[0]}: an option of a simulation's results folder, not of a CSV table")
+        return save_identification_csv(result, path, overwrite=overwrite)
     ds = _dataset(result)
     if given:
         raise TypeError(f"{given[0]}: an option of a simulation's results folder; a {kind_of(ds.attrs)} result is "
@@ -100,6 +112,10 @@ def load(path: str | Path) -> Result:
                                 f"written by rodimpact (simulate, synthesize, design, sweep, shpb reduce) or rodimpact.save?")
     if not p.exists():
         raise FileNotFoundError(f"{p}: no such file or folder")
+    if p.suffix.lower() == ".csv":
+        from .identification import read_identification_csv
+
+        return read_identification_csv(p)
     return _from_file(p)
 
 
@@ -115,8 +131,8 @@ def _from_file(p: Path, kind: Optional[str] = None) -> Result:
     found = kind_of(ds.attrs)
     kind = kind or found
     if kind is None:
-        raise ValueError(f"{p}: a netCDF file, but no rodimpact result (simulation, synthesis, design, sweep or "
-                         f"shpb reduction); "
+        raise ValueError(f"{p}: a netCDF file, but no rodimpact result (simulation, synthesis, design, sweep, "
+                         f"shpb reduction or identification); "
                          f"it was not written by rodimpact.save")
     if kind == "simulation":            # also the files of formats 1 and 2, with their own checks
         return simulation_from_dataset(ds, p)
@@ -139,6 +155,10 @@ def _result_class(kind: str) -> Any:
         from ..shpb.result import ShpbReduction
 
         return ShpbReduction
+    if kind == "identification":
+        from ..identify.result import IdentificationResult
+
+        return IdentificationResult
     return SynthesisResult if kind == "synthesis" else DesignResult
 
 
@@ -161,7 +181,12 @@ def _dataset(result: Any) -> "xarray.Dataset":
 
     if isinstance(result, ShpbReduction):
         return result.to_xarray()
+    from ..identify.result import IdentificationResult
+
+    if isinstance(result, IdentificationResult):
+        return result.to_xarray()
     what = ("an xarray.Dataset that rodimpact.sweep did not make (save it with its to_netcdf)"
             if isinstance(result, xr.Dataset) else type(result).__name__)
-    raise TypeError(f"result: must be a SimulationResult, SynthesisResult, DesignResult, ShpbReduction or the "
+    raise TypeError(f"result: must be a SimulationResult, SynthesisResult, DesignResult, ShpbReduction, "
+                    f"IdentificationResult or the "
                     f"xarray.Dataset of rodimpact.sweep, got {what}")

@@ -6,7 +6,8 @@ figure) and returns that Axes (:func:`plot_forces`, :func:`plot_strain`, :func:`
 :func:`plot_force`, :func:`plot_existence`, :func:`plot_shape`, the Kolsky-bar prediction's
 :func:`plot_predicted_signals`, :func:`plot_predicted_stress_strain`, :func:`plot_predicted_strain_rate`, and the
 split-Hopkinson-bar reduction's :func:`plot_pulses`, :func:`plot_stress_strain`, :func:`plot_strain_rate`,
-:func:`plot_equilibrium`); its figure is ``ax.figure``. A function that draws on **several** Axes takes them as
+:func:`plot_equilibrium`, and the identification's :func:`plot_reflectogram`, :func:`plot_identified_profile`,
+:func:`plot_matched`); its figure is ``ax.figure``. A function that draws on **several** Axes takes them as
 ``axes`` and returns the Figure (:func:`plot_profile`, :func:`plot_snapshots`, :func:`plot_synthesis`,
 :func:`plot_sweep`). New figures are :class:`matplotlib.figure.Figure` objects not registered with pyplot: save them
 with ``ax.figure.savefig(...)``. In a notebook, draw on Axes from ``plt.subplots()`` so that pyplot shows the figure
@@ -34,13 +35,15 @@ from .synthesis import plot_existence, plot_force, plot_impedance, plot_shape, p
 from .sweep import plot_sweep
 from .shpb_model import plot_predicted_signals, plot_predicted_strain_rate, plot_predicted_stress_strain
 from .shpb_reduction import plot_equilibrium, plot_pulses, plot_strain_rate, plot_stress_strain
+from .identify import plot_identified_profile, plot_matched, plot_reflectogram
 
 __all__ = ["plot_forces", "plot_strain", "plot_energy", "plot_energy_comparison", "plot_profile", "plot_snapshots",
            "plot_xt", "animate_force", "pillow_available", "save_plots", "PLOT_FILES",
            "plot_impedance", "plot_force", "plot_existence", "plot_shape", "plot_synthesis", "plot_sweep",
            "plot_design_force", "plot_design_profile", "plot_convergence", "plot_incident_wave",
            "plot_phase_speed", "new_axes", "plot_predicted_signals", "plot_predicted_stress_strain",
-           "plot_predicted_strain_rate", "plot_pulses", "plot_stress_strain", "plot_strain_rate", "plot_equilibrium"]
+           "plot_predicted_strain_rate", "plot_pulses", "plot_stress_strain", "plot_strain_rate", "plot_equilibrium",
+           "plot_reflectogram", "plot_identified_profile", "plot_matched"]
 
 
 def __getattr__(name: str) -> Any:

@@ -47,7 +47,7 @@ REQUIRED: Any = dataclasses.MISSING
 class Declaration:
     """What a field declares.
 
-    ``kind``: ``quantity`` (a float in SI), ``history`` (a time history of ``dimension``), ``choice`` (one of
+    ``kind``: ``quantity`` (a float in SI), ``quantities`` (a list of them), ``history`` (a time history of ``dimension``), ``choice`` (one of
     ``choices``), ``flag`` (true/false), ``text`` (a name), ``rod`` (a rod index or name), ``spans``
     (pairs of lengths), ``path`` (a file name) or ``part`` (an element of the registered ``family``, e.g. a
     specimen's law). ``dimension`` names an entry of :data:`rodimpact._quantities.DIMENSIONS` (``length``,
@@ -107,6 +107,11 @@ def rod(doc: str) -> Any:
     return _field(Declaration("rod", doc), REQUIRED)
 
 
+def quantities(dimension: str, doc: str, default: Any = REQUIRED) -> Any:
+    """A list of finite quantities in the SI unit of ``dimension`` (the class checks their bounds)."""
+    return _field(Declaration("quantities", doc, _dimension(dimension)), default)
+
+
 def spans(doc: str) -> Any:
     """A list of (start, end) positions in m along a rod."""
     return _field(Declaration("spans", doc, "length"), REQUIRED)
@@ -157,6 +162,11 @@ def check(obj: Any) -> None:
                                                                                             "linear"), d.unit))
         elif d.kind == "choice" and value not in d.choices:
             raise ValueError(f"{owner}.{f.name}: must be one of {', '.join(map(repr, d.choices))}, got {value!r}")
+        elif d.kind == "quantities":
+            if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+                raise TypeError(f"{owner}.{f.name}: must be a list of numbers ({d.unit}), got {value!r}")
+            object.__setattr__(obj, f.name, tuple(finite(f"{owner}.{f.name}[{i}]", x, d.unit)
+                                                  for i, x in enumerate(value)))
         elif d.kind == "flag" and not isinstance(value, bool):
             raise TypeError(f"{owner}.{f.name}: must be True or False, got {value!r}")
         elif d.kind == "text" and (not isinstance(value, str) or not value):

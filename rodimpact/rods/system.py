@@ -11,6 +11,7 @@ from .._units import array_to_si
 from .._validate import finite
 from .conditions import Bonded, Contact, DeformableJoint, EndCondition, Junction, as_end_condition, as_junction
 from .loads import Bearings, NodalForce
+from .soil import ShaftResistance
 from .plausibility import check_strikers
 from .rod import Rod
 
@@ -50,7 +51,7 @@ class System:
         Conditions at the outer left end of the first rod and the outer right end of the last rod
         (default free).
     loads:
-        :class:`NodalForce` and :class:`Bearings` objects.
+        :class:`NodalForce`, :class:`Bearings` and :class:`~rodimpact.rods.soil.ShaftResistance` objects.
     initial:
         Optional per-rod :class:`InitialState` (``None`` entries for rods at rest/uniform velocity).
     """
@@ -60,7 +61,7 @@ class System:
     junctions: Optional[Sequence[Junction | str]] = None
     left: EndCondition | str = "free"
     right: EndCondition | str = "free"
-    loads: Sequence[NodalForce | Bearings] = field(default_factory=tuple)
+    loads: Sequence[NodalForce | Bearings | ShaftResistance] = field(default_factory=tuple)
     initial: Optional[Sequence[Optional[InitialState]]] = None
 
     def __post_init__(self) -> None:
@@ -86,8 +87,9 @@ class System:
                 j.check_fits(min(float(rods[i].area(rods[i].length)), float(rods[i + 1].area(0.0))), f"junctions[{i}]")
         loads = tuple(self.loads)
         for i, ld in enumerate(loads):
-            if not isinstance(ld, (NodalForce, Bearings)):
-                raise TypeError(f"loads[{i}]: must be NodalForce or Bearings, got {type(ld).__name__}")
+            if not isinstance(ld, (NodalForce, Bearings, ShaftResistance)):
+                raise TypeError(f"loads[{i}]: must be NodalForce, Bearings or ShaftResistance, got "
+                                f"{type(ld).__name__}")
             if ld.rod >= len(rods):
                 raise ValueError(f"loads[{i}].rod: rod index {ld.rod} does not exist (0..{len(rods) - 1})")
             if isinstance(ld, NodalForce) and not 0.0 < ld.position < rods[ld.rod].length:
@@ -98,6 +100,8 @@ class System:
                     if a < 0.0 or b > rods[ld.rod].length:
                         raise ValueError(f"loads[{i}].spans: span ({a}, {b}) m lies outside rod {ld.rod} "
                                          f"(0 .. {rods[ld.rod].length:.6g} m)")
+            if isinstance(ld, ShaftResistance):
+                ld.check_fits(rods[ld.rod].length, f"loads[{i}]")
         bearing_rods = [ld.rod for ld in loads if isinstance(ld, Bearings)]
         if len(bearing_rods) != len(set(bearing_rods)):
             raise ValueError("loads: give all bearings of one rod in a single Bearings(spans=[...]) so that the "

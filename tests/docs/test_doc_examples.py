@@ -142,7 +142,8 @@ def _lanl_shot(tmp_path: Path) -> None:
     shutil.copy(LANL, tmp_path / "shot.raw")
 
 
-SETUP = {"docs/measurement.md": _lanl_shot, "docs/cli.md": _lanl_shot, "docs/shpb.md": _lanl_shot}
+SETUP = {"docs/measurement.md": _lanl_shot, "docs/cli.md": _lanl_shot, "docs/shpb.md": _lanl_shot,
+         "docs/identification.md": _lanl_shot}
 
 
 # ============================================================================================ tests

@@ -1,0 +1,227 @@
+"""The compiled Smith soil law of the boundary step (:mod:`rodimpact.rods.soil`, docs/soil.md): one scalar
+equation per soil node and step, solved by a bracketed root.
+
+Arrays (one row per special node of the lattice, then the left and the right end; rows that carry no soil have
+``par[row, ACTIVE] == 0``):
+
+* ``soil_par[row]`` = (active, R_u, k, k_u, lo, J, c): ultimate resistance (N), loading and unloading stiffness
+  (N/m), lower limit of R_s (-R_u along the shaft, 0 at a compression-only toe), the Smith factor J (s/m,
+  R_d = J |R_s| V) and the dashpot c (N s/m, R_d = c V: smith-viscous c = J_sv R_u, Case c = J_c Z);
+* ``soil_state[row]`` = (u, R_s, u_p, W): displacement since the start (m, +x along the shaft, outward at an
+  end), static resistance (N), plastic set (m) and the work done by the pile on the soil (J).
+
+**The node equation.** During step k the node moves at the constant velocity V, so its displacement runs
+linearly from u to u + s, s = V dt. The static part acts with its exact mean over that path,
+Rbar(s) = (1/s) int_u^{u+s} R_s (piecewise linear in the path: loading, unloading, the plastic plateau and, at
+the toe, the gap are located exactly, :func:`static_path`); then the impulse Rbar dt and the work Rbar s are
+those of the continuous law along the path, and the soil's work closes the energy balance to rounding. The
+node relation V = v0 + F / zs (the face relations with the soil force F = -R, zs = Z_a + Z_b inside a rod, Z at
+an end) gives
+
+    g(V) = zs (V - v0) + Rbar(V dt) + R_d(V) = 0,   R_d = J |Rbar| V  or  c V
+
+(at a compression-only toe the sum Rbar + R_d is clipped to >= 0: the soil never pulls).
+
+Rbar is non-decreasing in V (the mean of a function non-decreasing along the path), so g is strictly increasing
+for the linear dashpot. For the Smith product, d/dV (J |Rbar| V) = J |Rbar| + J V d|Rbar|/dV can be negative
+while the node unloads (|Rbar| falls), by at most J |V| k dt / 2; g stays increasing while
+zs > J |V| k dt / 2 (always, for practical piles and time steps). In any case g runs from -inf to +inf, so
+the bracket search (expanding from v0) always finds a sign change and bisection a root.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+#: end code of a soil toe (``end_code``, :mod:`rodimpact.direct.boundary`)
+SOIL_TOE = 8
+#: columns of ``soil_par`` and ``soil_state``
+ACTIVE, R_U, K_LOAD, K_UNLOAD, LOW, SMITH_J, DASHPOT = range(7)
+PAR_COLUMNS = 7
+U, R_S, U_P, WORK = range(4)
+STATE_COLUMNS = 4
+
+
+@njit(inline="always", error_model="numpy", cache=True)
+def static_path(r, up, s, ru, kl, ku, lo):
+    """The static resistance along the path from the node's position (where it is ``r``, with plastic set
+    ``up`` relative to the position) over the signed distance ``s``: returns (int_0^s R_s, R_s at the end,
+    plastic set at the end relative to the start position).
+
+    Walked piece by piece in the direction of motion d = sign(s), R = r + d c t over a distance t of each piece:
+    unloading (|R_s| falls to 0, slope k_u), loading (|R_s| grows to R_u, slope k), the plateau at +-R_u (c = 0),
+    and at a compression-only toe (lo = 0) the gap (R_s = 0 until the contact point u_p). The plastic set at the
+    end is x - R_s / k_u, or, at the toe with R_s = 0, the point where contact resumes."""
+    d = 1.0 if s > 0.0 else -1.0
+    left = abs(s)
+    x = 0.0
+    j = 0.0
+    for _ in range(6):
+        if left <= 0.0:
+            break
+        if d > 0.0:
+            if r < 0.0:
+                c = ku
+                t = -r / ku
+                stop = 0.0
+            elif r == 0.0 and lo == 0.0 and x < up:
+                c = 0.0
+                t = up - x
+                stop = 0.0
+            elif r < ru:
+                c = kl
+                t = (ru - r) / kl
+                stop = ru
+            else:
+                c = 0.0
+                t = np.inf
+                stop = ru
+        else:
+            if r > 0.0:
+                c = ku
+                t = r / ku
+                stop = 0.0
+            elif r == 0.0 and lo == 0.0:
+                c = 0.0
+                t = np.inf
+                stop = 0.0
+            elif r > lo:
+                c = kl
+                t = (r - lo) / kl
+                stop = lo
+            else:
+                c = 0.0
+                t = np.inf
+                stop = lo
+        if t >= left:
+            j += d * r * left + 0.5 * c * left * left
+            r = r + d * c * left
+            x += d * left
+            left = 0.0
+        else:
+            j += d * r * t + 0.5 * c * t * t
+            r = stop
+            x += d * t
+            left -= t
+            if r == 0.0 and c > 0.0:
+                up = x                      # unloaded to zero here: the new zero point
+    if r != 0.0 or lo != 0.0:
+        up = x - r / ku
+    return j, r, up
+
+
+@njit(error_model="numpy", cache=True)
+def _residual(par, st, v0, zs, dt, v):
+    """g(V) of the node equation (module docstring) and Rbar."""
+    s = v * dt
+    if s == 0.0:
+        rbar = st[R_S]
+    else:
+        j, _, _ = static_path(st[R_S], st[U_P] - st[U], s, par[R_U], par[K_LOAD], par[K_UNLOAD], par[LOW])
+        rbar = j / s
+    return zs * (v - v0) + resistance(par, rbar, v)
+
+
+@njit(inline="always", error_model="numpy", cache=True)
+def resistance(par, rbar, v):
+    """R = Rbar + R_d, the damping R_d = J |Rbar| V (Smith) or c V (smith-viscous, Case); at a compression-only
+    toe (lo = 0) R >= 0: a toe that leaves the soil faster than it springs back separates from it."""
+    r = rbar + par[SMITH_J] * abs(rbar) * v + par[DASHPOT] * v
+    if par[LOW] == 0.0 and r < 0.0:
+        r = 0.0
+    return r
+
+
+@njit(error_model="numpy", cache=True)
+def soil_solve(par, st, v0, zs, dt):
+    """The node velocity V (m/s, +x along the shaft, outward at an end) and the soil's resistance R (N) in this
+    step, for the velocity ``v0`` the node would have without soil and the impedance sum ``zs``; advances the
+    state ``st`` (u, R_s, u_p, W). Bracketed bisection to adjacent floating-point numbers (module docstring)."""
+    g0 = _residual(par, st, v0, zs, dt, v0)
+    if g0 == 0.0:
+        v = v0
+    else:
+        sign = -1.0 if g0 > 0.0 else 1.0          # the root lies below v0 if g(v0) > 0
+        h = abs(g0) / zs
+        far = v0 + sign * h
+        gf = g0
+        for _ in range(200):
+            gf = _residual(par, st, v0, zs, dt, far)
+            if gf == 0.0 or (gf > 0.0) != (g0 > 0.0):
+                break
+            h *= 2.0
+            far = v0 + sign * h
+        lo, hi = (far, v0) if sign < 0.0 else (v0, far)
+        glo = _residual(par, st, v0, zs, dt, lo)
+        v = far if gf == 0.0 else 0.5 * (lo + hi)
+        if gf != 0.0:
+            for _ in range(2000):
+                mid = 0.5 * (lo + hi)
+                if mid == lo or mid == hi:
+                    break
+                gm = _residual(par, st, v0, zs, dt, mid)
+                if gm == 0.0:
+                    lo = mid
+                    hi = mid
+                    break
+                if (gm > 0.0) == (glo > 0.0):
+                    lo = mid
+                    glo = gm
+                else:
+                    hi = mid
+            v = 0.5 * (lo + hi) if lo != hi else lo
+    s = v * dt
+    if s == 0.0:
+        rbar = st[R_S]
+        r_end = st[R_S]
+        up = st[U_P] - st[U]
+        j = 0.0
+    else:
+        j, r_end, up = static_path(st[R_S], st[U_P] - st[U], s, par[R_U], par[K_LOAD], par[K_UNLOAD], par[LOW])
+        rbar = j / s
+    r = resistance(par, rbar, v)
+    st[WORK] += r * s
+    st[U_P] = st[U] + up
+    st[U] += s
+    st[R_S] = r_end
+    return v, r
+
+
+@njit(error_model="numpy", cache=True)
+def shaft_soil(soil, i, f_node, vn, zs, dt, acc):
+    """The soil at special node ``i`` (the boundary step's node force ``f_node`` and velocity ``vn`` without
+    soil; zs = Z_a + Z_b): returns them with the soil, the soil's force -R added (N, +x), and adds its work and
+    impulse on the pile to ``acc[9]``, ``acc[10]``. ``soil`` is None when the system has no soil: numba prunes
+    the branch at compile time, so the step loops of such systems contain no soil code
+    (:func:`rodimpact.direct.boundary.law_joint_force`)."""
+    if soil is None:
+        return f_node, vn
+    par, state = soil
+    if par[i, ACTIVE] == 0.0:
+        return f_node, vn
+    v, r = soil_solve(par[i], state[i], vn, zs, dt)
+    acc[9] += -r * v * dt
+    acc[10] += -r * dt
+    return f_node - r, v
+
+
+@njit(error_model="numpy", cache=True)
+def toe_soil(soil, code, row, a, z, dt, w, n):
+    """The outward velocity and the force (w, N) of an outer end: those given (of the end law) unless the end is
+    a soil toe (``code`` SOIL_TOE, its law in row ``row`` of ``soil_par``), where the element side gives
+    N = a + z w and the soil N = -R(w). ``soil`` is None when the system has no soil: numba prunes the rest at
+    compile time (a
+    branch on the code in the boundary step itself made the step loops of every system 3 times slower at
+    n = 1000 elements)."""
+    if soil is None or code != SOIL_TOE:
+        return w, n
+    par, state = soil
+    w, r = soil_solve(par[row], state[row], -a / z, z, dt)
+    return w, -r
+
+
+def soil_arrays(arrays: dict) -> tuple[np.ndarray, np.ndarray] | None:
+    """The soil of the kernel ``arrays`` as the step loops take it: ``(soil_par, soil_state)``, or None if the
+    system has no soil (``has_soil``; then the loops are compiled without the soil solver)."""
+    return (arrays["soil_par"], arrays["soil_state"]) if arrays["has_soil"] else None

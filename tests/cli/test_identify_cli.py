@@ -1,0 +1,129 @@
+"""``rodimpact identify``: a simulated pile record (CSV, force in kN compression positive as practice writes it)
+through the command line; the spec's errors name their key paths."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import rodimpact as ri
+from test_cli import main_in_process as main          # tests/cli/test_cli.py: the console script, in process
+
+DT = 1e-6
+LANL = Path(__file__).resolve().parents[1] / "data" / "hoppybar" / "LANLstandard-Cu" / "20061201_1148HE_CuOFE_273K.raw"
+
+
+def pile_csv(path):
+    """A pile of 50 + 150 elements, impedance 4e5 then 2.8e5 N s/m (beta = 0.7), hit by a half-sine pulse."""
+    rod = ri.Rod.from_impedance([4.0e5] * 50 + [2.8e5] * 150, dt=DT)
+    tk = DT * np.arange(301)
+    f = np.where(tk < 20 * DT, -1.0e3 * np.sin(np.pi * tk / (20 * DT)), 0.0)
+    system = ri.System([rod], [0.0], left=ri.ForceEnd((tk, f), interpolation="previous"), right="nonreflecting")
+    res = ri.simulate(ri.Problem.of(system, steps=300, dt=DT), backend="numpy")
+    rows = np.column_stack([res.time * 1e3, -np.asarray(res.end_force["left"]) / 1e3, res.end_velocity["left"]])
+    path.write_text("time [ms],force [kN],velocity [m/s]\n" + "\n".join(",".join(repr(float(x)) for x in r)
+                                                                        for r in rows) + "\n")
+    m = rod.segments[0].material
+    return float(np.sqrt(m.youngs_modulus / m.density))
+
+
+def test_identify_beta_from_a_csv(tmp_path, capsys, monkeypatch):
+    c = pile_csv(tmp_path / "pile.csv")
+    (tmp_path / "spec.toml").write_text(f'[identify]\nmethod = "beta"\n[record]\nforce_sign = "compression"\n'
+                                        f'[rod]\nimpedance = "400 kN s/m"\nwave_speed = {c!r}\n')
+    code, out, err = main(["identify", "pile.csv", "--spec", "spec.toml", "-o", "out", "--json"], tmp_path, capsys,
+                          monkeypatch)
+    assert code == 0, err
+    summary = json.loads(out)
+    (a,) = summary["anomalies"]
+    assert abs(a["beta"] - 0.7) < 1e-12 and a["beta_class"] == "damage"
+    assert abs(a["depth"] - 50 * c * DT) < 1e-9
+    back = ri.load(tmp_path / "out" / "identification.nc")
+    assert back.anomalies[0].beta == a["beta"]
+    assert (tmp_path / "out" / "profile.csv").is_file() and (tmp_path / "out" / "plots" / "profile.png").is_file()
+    assert (tmp_path / "out" / "plots" / "reflectogram.png").is_file()
+
+
+def test_spec_errors_name_the_key(tmp_path, capsys, monkeypatch):
+    pile_csv(tmp_path / "pile.csv")
+    (tmp_path / "spec.toml").write_text('[identify]\nmethod = "beta"\n[rod]\nimpedance = "400 kN"\n')
+    code, _, err = main(["identify", "pile.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
+    assert code == 2 and "rod.impedance" in err and "impedance" in err
+    (tmp_path / "spec.toml").write_text('[identify]\nmethod = "beta"\n[rod]\nimpedance = "400 kN s/m"\n')
+    code, _, err = main(["identify", "pile.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
+    assert code == 2 and "rod.wave_speed: missing" in err
+
+
+def test_striker_of_the_lanl_shot(tmp_path, capsys, monkeypatch):
+    (tmp_path / "spec.toml").write_text('[identify]\nmethod = "striker"\nresamples = 5\n'
+                                        '[record]\nbridge = "half-axial"\npolarity = -1\nend = "150 us"\n')
+    code, out, err = main(["identify", str(LANL), "--spec", "spec.toml", "--json"], tmp_path, capsys, monkeypatch)
+    assert code == 0, err
+    summary = json.loads(out)
+    assert abs(summary["toe_m"] - 0.127) < 0.022 * 0.127            # the sheet's 127 mm (see test_striker.py)
+
+
+def test_a_recording_with_named_channels_and_units(tmp_path, capsys, monkeypatch):
+    """The same pile as a recording with a time column and named channels, force in kN (compression positive),
+    velocity in mm/s (rodimpact.io.read_csv_recording's header units): the units are converted, beta unchanged.
+    A channel unit of the wrong dimension names the key."""
+    c = pile_csv(tmp_path / "pile.csv")
+    rows = (tmp_path / "pile.csv").read_text().splitlines()[1:]
+    table = ["time [ms],F [kN],V [mm/s]"] + [",".join([a, b, repr(float(v) * 1e3)]) for a, b, v in
+                                                (r.split(",") for r in rows)]
+    (tmp_path / "rec.csv").write_text("\n".join(table) + "\n")
+    spec = (f'[identify]\nmethod = "beta"\n[record]\nforce_sign = "compression"\nforce_channel = "F"\n'
+            f'velocity_channel = "V"\n[rod]\nimpedance = "400 kN s/m"\nwave_speed = {c!r}\n')
+    (tmp_path / "spec.toml").write_text(spec)
+    code, out, err = main(["identify", "rec.csv", "--spec", "spec.toml", "--json"], tmp_path, capsys, monkeypatch)
+    assert code == 0, err
+    (a,) = json.loads(out)["anomalies"]
+    assert abs(a["beta"] - 0.7) < 1e-12
+    (tmp_path / "rec.csv").write_text("\n".join(["time [ms],F [kN],V [kN]"] + table[1:]) + "\n")
+    code, _, err = main(["identify", "rec.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
+    assert code == 2 and "record.velocity_channel (V [kN])" in err
+
+
+def test_the_spec_reference_in_the_docs_is_current():
+    """docs/identification.md holds the generated spec reference (rodimpact docs identify) verbatim."""
+    from rodimpact.io.identify_spec import spec_reference_markdown
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "identification.md").read_text(encoding="utf-8")
+    assert spec_reference_markdown() in page, "docs/identification.md: regenerate the spec reference section"
+
+
+def test_identify_peeling_with_noise_bands(tmp_path, capsys, monkeypatch):
+    """A clean record of a two-step pile hit by a mass (sharp front) through the command line: peeling gives the
+    profile back to rounding (the CSV keeps every digit), and with `noise` the result carries bands."""
+    rod = ri.Rod.from_impedance([4.0e5] * 30 + [3.0e5] * 30, dt=DT)
+    tk = DT * np.arange(121)
+    head = ri.ForceEnd((tk, -1.0e5 * np.exp(-tk / 60e-6)), interpolation="previous")
+    res = ri.simulate(ri.Problem.of(ri.System([rod], [0.0], left=head, right="nonreflecting"), steps=120, dt=DT),
+                      backend="numpy")
+    rows = np.column_stack([res.time, res.end_force["left"], res.end_velocity["left"]])[::2]
+    (tmp_path / "head.csv").write_text("time [s],force [N],velocity [m/s]\n" + "\n".join(
+        ",".join(repr(float(x)) for x in r) for r in rows) + "\n")
+    (tmp_path / "spec.toml").write_text('[identify]\nmethod = "peeling"\nnoise = "1 N"\nresamples = 20\n'
+                                        '[rod]\nimpedance = "400 kN s/m"\nwave_speed = "5175.5 m/s"\n')
+    code, _, err = main(["identify", "head.csv", "--spec", "spec.toml", "-o", "out", "--no-plots"], tmp_path, capsys,
+                        monkeypatch)
+    assert code == 0, err
+    back = ri.load(tmp_path / "out" / "identification.nc")
+    assert np.max(np.abs(back.impedance / np.r_[[4.0e5] * 30, [3.0e5] * 30] - 1)) < 1e-10
+    assert back.lower is not None and np.all(back.lower <= back.impedance)
+    assert back.anomalies[0].beta == pytest.approx(0.75, rel=1e-10)
+
+
+@pytest.mark.parametrize("text, message", [
+    ('[identify]\nmethod = "peel"\n', "identify.method"),
+    ('[identify]\nmethod = "beta"\nthreshhold = 0.1\n', "identify.threshhold"),
+    ('[identify]\nmethod = "beta"\n[record]\nstart = "2 ms"\nend = "1 ms"\n', "record.end: must be after record.start"),
+    ('[identify]\nmethod = "beta"\n[record]\nlow_pass = "5 kN"\n', "record.low_pass"),
+    ('[rod]\nimpedance = "1 kN s/m"\n', "identify: missing"),
+])
+def test_bad_specs_name_the_key(tmp_path, capsys, monkeypatch, text, message):
+    pile_csv(tmp_path / "pile.csv")
+    (tmp_path / "spec.toml").write_text(text)
+    code, _, err = main(["identify", "pile.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
+    assert code == 2 and message in err, err
