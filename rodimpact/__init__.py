@@ -31,8 +31,8 @@ from .direct.batch import BatchOutputs, BatchResult, simulate_batch
 from .inverse import (ExistenceFailure, ExponentialDecay, ExponentialGrowth, ForceTarget, ForceTransformation,
                       LinearRamp, StrikerShape, SynthesisResult, SynthesisWarning, VerificationReport,
                       impedance_to_shape, synthesize, transform_force)
-from .design import (DesignResult, EfficiencyObjective, MatchObjective, SearchOptions, StrikerLimits,
-                     design)
+from .design import (DesignResult, EfficiencyObjective, MatchObjective, SearchOptions, StrainRateObjective,
+                     StrikerLimits, design)
 from .io.model import Model, dump_model, load_model, loads_model, save_model
 from .io.results import summarize
 from .io.storage import load, save
@@ -67,7 +67,8 @@ __all__ = [
     "synthesize", "SynthesisResult", "SynthesisWarning", "ExistenceFailure", "VerificationReport",
     "transform_force", "ForceTransformation", "StrikerShape", "impedance_to_shape", "ForceTarget",
     "ExponentialDecay", "LinearRamp", "ExponentialGrowth",
-    "design", "DesignResult", "MatchObjective", "EfficiencyObjective", "StrikerLimits", "SearchOptions",
+    "design", "DesignResult", "MatchObjective", "EfficiencyObjective", "StrainRateObjective", "StrikerLimits",
+    "SearchOptions",
     "Model", "load_model", "loads_model", "dump_model", "save_model", "load", "save", "summarize",
     "identify", "inverse", "io", "plotting", "reference", "shpb", "signals",
 ]

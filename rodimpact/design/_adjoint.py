@@ -9,7 +9,10 @@ scalar J of the outputs, given the seeds dJ/d(output). The derivation is in docs
 The forward run is the lattice of :func:`rodimpact.simulate` (same arrays, same boundary code, same operation
 order) on the system ``with_striker(struck, Rod.from_impedance(Z[::-1], dt=dt), velocity)``: its outputs are
 bit-identical to ``simulate``'s. The gradient is exact for the branches taken (contact or separated, friction
-stick or slip, bit-rock loading, unloading or released): the responses are piecewise smooth in (Z, v).
+stick or slip, bit-rock loading, unloading or released, a law joint's elastic or plastic branch, loading or
+unloading, carrying or lifted off): the responses are piecewise smooth in (Z, v). Law joints (specimens, pulse
+shapers) are differentiated through their implicit per-step root (:mod:`rodimpact.design._joint_adjoint`);
+tabulated laws and spring-dashpot junctions are refused.
 """
 
 from __future__ import annotations
@@ -21,15 +24,16 @@ from typing import Any, Optional
 import numpy as np
 
 from .._validate import finite, fits_in_memory, positive_array
-from ..direct.boundary import ACC_SLOTS, law_state
+from ..direct.boundary import ACC_SLOTS, LAW_JOINT, law_state
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
-from ..rods.conditions import Bonded, Contact
+from ..rods.conditions import Bonded, Contact, DeformableJoint
 from ..rods.rod import Rod
 from ..rods.soil import ShaftResistance, SoilToe
 from ..rods.system import System
 from ..inverse.struck import Location, as_struck_system, position_probe, with_striker
 from . import _adjoint_kernels as K
+from ._joint_adjoint import law_refusal, scratch_array
 
 QUANTITIES = ("force", "incident")
 
@@ -42,6 +46,11 @@ class Forward:
     at the location (the face force without a location), ``end_force`` / ``end_velocity`` the normal force (N)
     and outward velocity (m/s) at the struck system's far end, ``contact`` whether the striker touches;
     ``striker_mass`` = dt sum Z (kg), ``impedance`` (Z_1 at the face) and ``velocity`` the striker that was run.
+    ``shortening`` (junctions x steps, m; None without law joints): the shortening delta of each junction after
+    each step (compression positive; for a law joint the body's shortening, whose rate over step k is
+    (delta_k - delta_k-1) / dt, delta_-1 = 0); ``junction_force`` (junctions x steps, N, tension positive; None
+    without law joints): the force at every junction in every step (0 where a compression-only joint has lifted
+    off).
     ``_tape`` holds what :meth:`ImpactProblem.gradient` needs (lattice impedances, checkpoints).
     """
 
@@ -54,6 +63,8 @@ class Forward:
     impedance: np.ndarray
     velocity: float
     _tape: dict = field(repr=False)
+    shortening: Optional[np.ndarray] = None
+    junction_force: Optional[np.ndarray] = None
 
 
 class ImpactProblem:
@@ -90,10 +101,16 @@ class ImpactProblem:
                             f"got {type(struck).__name__}")
         struck = as_struck_system(struck)
         for i, j in enumerate(struck.junctions):
-            if j.code not in (Bonded.code, Contact.code):
-                # the reverse sweep (_adjoint_kernels.reverse) differentiates bonded and contact nodes only
+            if j.code == LAW_JOINT and isinstance(j, DeformableJoint):
+                why = law_refusal(int(j.law.code))
+                if why is not None:
+                    raise ValueError(f"struck.junctions[{i}].law: {type(j.law).__name__}: {why}")
+            elif j.code not in (Bonded.code, Contact.code):
+                # the reverse sweep (_adjoint_kernels.reverse) differentiates bonded and contact nodes and law
+                # joints (specimens, pulse shapers)
                 raise ValueError(f"struck.junctions[{i}]: design's exact gradients cover bonded and contact "
-                                 f"junctions, got {type(j).__name__}; simulate or synthesize take it")
+                                 f"junctions and law joints (Specimen, PulseShaper), got {type(j).__name__}; "
+                                 "simulate or synthesize take it")
         soil = [f"struck.loads[{i}]" for i, ld in enumerate(struck.loads) if isinstance(ld, ShaftResistance)]
         soil += [f"struck.{side}" for side in ("left", "right") if isinstance(getattr(struck, side), SoilToe)]
         if soil:
@@ -131,6 +148,7 @@ class ImpactProblem:
         self._arrays = arrays
         self._end_value, self._sp_force = (np.ascontiguousarray(x) for x in arrays["step_inputs"](0, self.steps))
         self._z = lat.impedance.copy()
+        self._has_joints = bool(np.any(arrays["junction_code"] == LAW_JOINT))
         if location is not None:   # element left of the observed node (the striker's face element at the face)
             self._k_left = self.n + location.element_left
 
@@ -154,8 +172,9 @@ class ImpactProblem:
         ck = _state_store(-(-self.steps // C), Z.size, self._arrays["junction_code"].size)
         buffers = self._buffers()
         run = K.advance_numba if self.backend == "numba" else K.advance_numpy
+        jt = self._joint_tape(ck[0].shape[0], 1, buffers[4][0])
         run(0, self.steps, C, f, g, Z, R, self._touch, self._arrays["rod_start"], *buffers, self.dt,
-            ck, False, _record(1, Z.size, self._touch.size))
+            ck, False, _record(1, Z.size, self._touch.size), jt)
         (jn, jc, en, ev), (pn, pv) = buffers[4], buffers[3][3:5]
         face = jn[0]
         if self.location is None:
@@ -165,9 +184,27 @@ class ImpactProblem:
         else:
             z_left = Z[self._k_left]
             observed = 0.5 * ((pn[0] - N0[self._k_left]) - z_left * (pv[0] - v0[self._k_left]))
-        tape = {"Z": Z, "R": R, "v0": v0, "checkpoints": ck, "probe_velocity": pv, "problem": self}
+        tape = {"Z": Z, "R": R, "v0": v0, "checkpoints": ck, "probe_velocity": pv, "problem": self,
+                "joint_checkpoints": None if jt is None else jt[K.JT_CK_Q]}
         return Forward(face, observed, en[1], ev[1], jc[0].astype(bool), float(self.dt * zq.sum()), zq.copy(),
-                       v_striker, tape)
+                       v_striker, tape, None if jt is None else jt[K.JT_SHORTENING].copy(),
+                       None if jt is None else jn.copy())
+
+    def _joint_tape(self, checkpoints: int, segment: int, junction_force: np.ndarray,
+                    ck_q: Optional[np.ndarray] = None) -> Optional[tuple]:
+        """The joint tape of the kernels (:data:`rodimpact.design._adjoint_kernels.JT_CK_Q` ...), or None for a
+        system without law joints (the kernels then carry no joint code). ``junction_force``: the per-step
+        junction forces of the step loop's outputs (the same array)."""
+        if not self._has_joints:
+            return None
+        a = self._arrays
+        n_j, width = a["junction_q"].shape
+        if ck_q is None:
+            ck_q = np.zeros((checkpoints, n_j, width))
+        return (ck_q, np.zeros((segment, n_j, width)), np.zeros((segment, n_j)), np.zeros((n_j, self.steps)),
+                np.zeros((n_j, 4)), np.zeros((n_j, self.steps)), scratch_array(),
+                np.ascontiguousarray(a["junction_code"], dtype=np.int64), np.ascontiguousarray(a["junction_par"]),
+                junction_force)
 
     def _buffers(self) -> tuple:
         """The grouped arrays of :func:`~rodimpact.direct._kernels.boundaries` for a run from the initial state:
@@ -189,9 +226,10 @@ class ImpactProblem:
 
     # ------------------------------------------------------------------ gradient
     def gradient(self, fw: Forward, face_force: Any = None, observed: Any = None, end_force: Any = None,
-                 end_velocity: Any = None) -> tuple[np.ndarray, float]:
+                 end_velocity: Any = None, shortening: Any = None) -> tuple[np.ndarray, float]:
         """dJ/dZ_q (shape (n,), Z_1 at the impact face) and dJ/dv for the scalar J whose derivatives with respect
-        to the per-step outputs of ``fw`` are the given seeds (each ``None`` or shape (steps,))."""
+        to the per-step outputs of ``fw`` are the given seeds (each ``None`` or shape (steps,); ``shortening``:
+        dJ/d(shortening of each junction after each step), shape (junctions, steps), law joints only)."""
         if not isinstance(fw, Forward) or fw._tape.get("problem") is not self:
             raise ValueError("fw: must be the result of forward() of this ImpactProblem")
         steps, n = self.steps, self.n
@@ -219,13 +257,21 @@ class ImpactProblem:
                     dv += 0.5 * Z[kl] * float(s.sum())
         lf, lg, les, dR = np.zeros(Z.size), np.zeros(Z.size), np.zeros((2, 2)), np.zeros(R.size)
         segment = _record(self.checkpoint_every, Z.size, self._touch.size)
+        buffers = self._buffers()
+        jt = self._joint_tape(0, self.checkpoint_every, buffers[4][0], tape["joint_checkpoints"])
+        if shortening is not None:
+            if jt is None:
+                raise ValueError("shortening: the system has no law joint (Specimen, PulseShaper) whose shortening "
+                                 "could be seeded")
+            arr = np.asarray(shortening, dtype=float)
+            if arr.shape != jt[K.JT_SEED].shape or not np.all(np.isfinite(arr)):
+                raise ValueError(f"shortening: the seed needs finite values of shape {jt[K.JT_SEED].shape} "
+                                 f"(junctions, steps), got shape {arr.shape}")
+            jt[K.JT_SEED][:] = arr
         args = (tape["checkpoints"], _state_store(0, Z.size, self._arrays["junction_code"].size), segment,
                 np.empty(Z.size), np.empty(Z.size), Z, R, self._touch,
-                self._arrays["rod_start"], *self._buffers(), self.dt, self.steps, seed, lf, lg, les, dZ, dR)
-        if self.backend == "numba":
-            K.sweep_numba(K.advance_numba, K.reverse_numba, *args)
-        else:
-            K.sweep_numpy(K.advance_numpy, K.reverse_numpy, *args)
+                self._arrays["rod_start"], *buffers, self.dt, self.steps, seed, lf, lg, les, dZ, dR, jt)
+        (K.sweep_numba if self.backend == "numba" else K.sweep_numpy)(*args)
         # initial waves f = (N0 - Z v0)/2, g = (N0 + Z v0)/2; the striker's v0 is the velocity
         dZ += 0.5 * v0 * (lg - lf)
         dv += float(np.sum(0.5 * Z[:n] * (lg[:n] - lf[:n])))

@@ -23,7 +23,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..direct.boundary import BITROCK, FIXED, FORCE, FREE, NONREFLECTING, SPRING, boundaries, end_solve
+from ..direct.boundary import BITROCK, FIXED, FORCE, FREE, LAW_JOINT, NONREFLECTING, SPRING, boundaries, end_solve
+from ._joint_adjoint import joint_vjp
 
 SEED_FACE, SEED_END_FORCE, SEED_END_VELOCITY, SEED_PROBE_FORCE, SEED_PROBE_VELOCITY = range(5)
 
@@ -41,14 +42,94 @@ def _save(slot, f, g, end_state, junction_state, gap, ck):
 _save_nb = njit(inline="always", cache=True)(_save)
 
 
+# ---------------------------------------------------------------------------------------------- law joints
+# ``jt`` is None for a system without law joints (numba then compiles these helpers to nothing and the step
+# loops carry no joint code, as rodimpact.direct.boundary.law_joint_force), else the joint tape
+# (ck_q, seg_q, seg_gap, shortening, l_state, shortening_seed, scratch, junction_code, junction_par, junction_N):
+# the joint states (eps_p, alpha, eps_max, work, crushed) at the checkpoints, the states and gaps before each step
+# of the recomputed segment, the shortening delta after every step (n_j, steps), the adjoint of each joint's
+# state (delta, eps_p, alpha, eps_max), the seeds dJ/d(shortening after step k), scratch of joint_vjp, and the
+# per-step junction forces the step loop records (the recomputed segment's face forces, read by the transpose).
+JT_CK_Q, JT_SEG_Q, JT_SEG_GAP, JT_SHORTENING, JT_LSTATE, JT_SEED, JT_SCRATCH, JT_CODE, JT_PAR, JT_FORCE = range(10)
+
+
+@njit(error_model="numpy", cache=True)
+def joint_save(jt, slot, q):
+    """Checkpoint the joint states ``q`` into slot ``slot``."""
+    if jt is None:
+        return
+    jt[0][slot] = q
+
+
+@njit(error_model="numpy", cache=True)
+def joint_restore(jt, slot, q):
+    """Restore the joint states ``q`` from checkpoint ``slot``."""
+    if jt is None:
+        return
+    q[:] = jt[0][slot]
+
+
+@njit(error_model="numpy", cache=True)
+def joint_record(jt, row, q, gap):
+    """Record the joint states and gaps before the step of the segment's row ``row``."""
+    if jt is None:
+        return
+    jt[1][row] = q
+    jt[2][row] = gap
+
+
+@njit(error_model="numpy", cache=True)
+def joint_history(jt, k, gap):
+    """The shortening delta = -gap of every junction after step k."""
+    if jt is None:
+        return
+    jt[3][:, k] = -gap
+
+
+@njit(error_model="numpy", cache=True)
+def is_law_joint(jt, r):
+    """Whether junction r is a law joint (always False without a joint tape)."""
+    if jt is None:
+        return False
+    return jt[7][r] == LAW_JOINT
+
+
+@njit(error_model="numpy", cache=True)
+def joints_vjp(jt, k, row, f, g, Z, rod_start, seed, lNL, lNR, lVL, lVR, mf, mg, dZ, dt):
+    """Transpose of the law joints of step k (``row`` its row in the segment's record): the seed on the
+    shortening after the step joins the adjoint of delta, then :func:`~rodimpact.design._joint_adjoint.joint_vjp`
+    (docs/adjoint.md, "Law joints")."""
+    if jt is None:
+        return
+    code = jt[7]
+    par = jt[8]
+    lstate = jt[4]
+    for r in range(code.size):
+        if code[r] != LAW_JOINT:
+            continue
+        a = rod_start[r + 1] - 1
+        b = a + 1
+        lstate[r, 0] += jt[5][r, k]
+        ln = lNR[r] + lNL[r + 1]
+        if r == 0:
+            ln += seed[0, k]
+        dfa, dgb, dza, dzb = joint_vjp(par[r], jt[1][row, r], jt[9][r, k], f[a], g[a], f[b], g[b], Z[a], Z[b],
+                                       -jt[2][row, r], dt, ln, lVR[r], lVL[r + 1], lstate[r], jt[6])
+        mf[a] += dfa
+        mg[b] += dgb
+        dZ[a] += dza
+        dZ[b] += dzb
+
+
 def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-             rod_nodes, dt, ck, record, rec):
+             rod_nodes, dt, ck, record, rec, jt):
     """Steps k0 .. k1-1 in place on the waves (f, g), exactly as :func:`~rodimpact.direct._kernels.run_numba`.
 
     ``ck`` (f, g, end state, junction state, gap; one slot per checkpoint, or none): the state before every
     ``stride``-th step. With ``record``, ``rec`` = (d, f_touch, g_touch, end state) receives in row k - k0 what
     the transpose of step k needs: d_j = f_j - g_{j+1} at the plain interior nodes, the waves of the ``touch``
-    elements and the end state (without ``record`` its row 0 is scratch)."""
+    elements and the end state (without ``record`` its row 0 is scratch). ``jt``: the joint tape (None without
+    law joints): joint states at the checkpoints and before each recorded step, shortening after each step."""
     n_rods = rod_start.size - 1
     n_el = Z.size
     N = np.empty(n_el)
@@ -64,9 +145,11 @@ def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, spec
         i = k - k0
         if checkpoints and i % stride == 0:
             _save_nb(i // stride, f, g, ends[2], junctions[1], junctions[2], ck)
+            joint_save(jt, i // stride, junctions[6])
         row = i if record else 0
         d = rec_d[row]
         if record:
+            joint_record(jt, row, junctions[6], junctions[2])
             for m in range(touch.size):
                 rec_ft[row, m] = f[touch[m]]
                 rec_gt[row, m] = g[touch[m]]
@@ -75,6 +158,7 @@ def _advance(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, spec
             N[t] = f[t] + g[t]
             v[t] = (g[t] - f[t]) / Z[t]
         boundaries(k, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        joint_history(jt, k, junctions[2])
         ptr = 0
         for r in range(n_rods):
             s = rod_start[r]
@@ -123,7 +207,7 @@ def interior_nodes(rod_start: np.ndarray, sp_elem: np.ndarray) -> tuple[np.ndarr
 
 
 def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-                  rod_nodes, dt, ck, record, rec):
+                  rod_nodes, dt, ck, record, rec, jt):
     """Readable reference of :func:`advance_numba`: per step, the scattering of every plain interior node as
     one vectorised expression (g_a' = g_b + R (f_a - g_b), f_b' = f_a + R (f_a - g_b), eq. 2.39) and the loaded
     nodes and rod ends from their node forces (g_a' = N_a^+ - f_a, f_b' = N_b^- - g_b)."""
@@ -137,7 +221,12 @@ def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions,
         i = k - k0
         if ck[0].shape[0] > 0 and i % stride == 0:
             _save(i // stride, f, g, ends[2], junctions[1], junctions[2], ck)
+            if jt is not None:
+                jt[JT_CK_Q][i // stride] = junctions[6]
         if record:
+            if jt is not None:
+                jt[JT_SEG_Q][i] = junctions[6]
+                jt[JT_SEG_GAP][i] = junctions[2]
             rec[0][i, a] = f[a] - g[a + 1]
             rec[1][i] = f[touch]
             rec[2][i] = g[touch]
@@ -145,6 +234,8 @@ def advance_numpy(k0, k1, stride, f, g, Z, R, touch, rod_start, ends, junctions,
         N[touch] = f[touch] + g[touch]
         v[touch] = (g[touch] - f[touch]) / Z[touch]
         boundaries.py_func(k, dt, N, v, Z, rod_start, ends, junctions, specials, probes, outputs, acc, rod_nodes)
+        if jt is not None:
+            jt[JT_SHORTENING][:, k] = -junctions[2]
         f_new = np.empty_like(f)
         g_new = np.empty_like(g)
         sc = R[a] * (f[a] - g[a + 1])
@@ -240,12 +331,14 @@ def node_vjp(fa, gb, za, zb, ln, lv):
 
 
 def _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, es, les, contact, sp_elem, sp_cap, sp_force,
-                  pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF, lspV, mf, mg, dZ, dt):
+                  pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF, lspV, mf, mg, dZ, dt, jt):
     """Transpose of :func:`~rodimpact.direct._kernels.boundaries` at step k: from the adjoints of the node values
     (lNL, lNR, lVL, lVR per rod; lnp = dJ/dN^+, lspF, lspV per loaded node) and the output seeds, add dJ/df,
     dJ/dg of the waves before the step into mf, mg and dJ/dZ into dZ; les (2, 2) holds the adjoint of the end
     state after the step on entry and before it on return. Branches: junction contact flags of the forward
-    run; friction branches and the bit-rock step recomputed with the forward arithmetic from the stored waves."""
+    run; friction branches and the bit-rock step recomputed with the forward arithmetic from the stored waves.
+    Law joints (``jt``, the joint tape or None) are skipped here: :func:`joints_vjp` transposes them after this
+    function (a call of more than 30 arguments becomes a star-args call that numba cannot inline)."""
     n_rods = rod_start.size - 1
     n_el = Z.size
     # ---- probes (outputs read from node values)
@@ -300,6 +393,8 @@ def _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, es, les, 
             dZ[b] -= vn / zs * lvn
     # ---- junctions
     for r in range(n_rods - 1):
+        if is_law_joint(jt, r):
+            continue
         a = rod_start[r + 1] - 1
         b = a + 1
         ln = lNR[r] + lNL[r + 1]
@@ -344,7 +439,7 @@ boundary_vjp = njit(inline="always", error_model="numpy", cache=True)(_boundary_
 
 
 def _reverse(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_value, contact, sp_elem, sp_cap, sp_force,
-             pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt):
+             pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt, jt):
     """Transpose of steps k1-1 .. k0 (compiled): on entry lf, lg, les are dJ/d(state after step k1-1), on
     return dJ/d(state before step k0); dJ/dZ (boundaries) and dJ/dR (interior scattering) are accumulated.
     ``rec`` is the record of the steps written by :func:`advance_numba` (row k - k0 for step k)."""
@@ -400,7 +495,8 @@ def _reverse(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_value, 
             mf[e - 1] = -lg[e - 1]
         boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, rec_es[k - k0], les, contact, sp_elem,
                      sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF, lspV, mf, mg,
-                     dZ, dt)
+                     dZ, dt, jt)
+        joints_vjp(jt, k, k - k0, f, g, Z, rod_start, seed, lNL, lNR, lVL, lVR, mf, mg, dZ, dt)
         lf, mf = mf, lf                                   # the new adjoint becomes the current one
         lg, mg = mg, lg
     if (k1 - k0) % 2 == 1:
@@ -412,7 +508,7 @@ reverse_numba = njit(cache=True, error_model="numpy", nogil=True)(_reverse)
 
 
 def reverse_numpy(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_value, contact, sp_elem, sp_cap,
-                  sp_force, pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt):
+                  sp_force, pr_rod, pr_local, pr_sp, seed, lf, lg, les, dZ, dR, dt, jt):
     """Readable reference of :func:`reverse_numba`: the transpose of the interior scattering as one vectorised
     expression per step (with s = l_{g_a'} + l_{f_b'}: l_{f_a} = l_{f_b'} + R s, l_{g_b} = l_{g_a'} - R s,
     dJ/dR += s (f_a - g_b)), then the transposed boundaries."""
@@ -443,36 +539,55 @@ def reverse_numpy(k0, k1, rec, touch, Z, R, rod_start, end_code, end_par, end_va
         lVR = np.zeros(n_rods)
         _boundary_vjp(k, f, g, Z, rod_start, end_code, end_par, end_value, rec[3][k - k0], les, contact, sp_elem,
                       sp_cap, sp_force, pr_rod, pr_local, pr_sp, seed, lNL, lNR, lVL, lVR, lnp, lspF,
-                      np.zeros(sp.size), mf, mg, dZ, dt)
+                      np.zeros(sp.size), mf, mg, dZ, dt, jt)
+        joints_vjp(jt, k, k - k0, f, g, Z, rod_start, seed, lNL, lNR, lVL, lVR, mf, mg, dZ, dt)
         lf[:] = mf
         lg[:] = mg
 
 
-def _sweep(advance, reverse, checkpoints, no_checkpoints, segment, f, g, Z, R, touch, rod_start, ends, junctions,
-           specials, probes, outputs, acc, rod_nodes, dt, steps, seed, lf, lg, les, dZ, dR):
+def _restore_segment(i, stride, steps, checkpoints, f, g, ends, junctions, jt):
+    """Restore the state of checkpoint ``i`` (waves, end state, junction state, gap, joint states); returns the
+    segment's steps (k0, k1)."""
+    f[:] = checkpoints[0][i]
+    g[:] = checkpoints[1][i]
+    ends[2][:] = checkpoints[2][i]
+    junctions[1][:] = checkpoints[3][i]
+    junctions[2][:] = checkpoints[4][i]
+    joint_restore(jt, i, junctions[6])
+    k0 = i * stride
+    return k0, min(steps, k0 + stride)
+
+
+_restore_segment_nb = njit(inline="always", error_model="numpy", cache=True)(_restore_segment)
+
+
+@njit(cache=True, error_model="numpy", nogil=True)
+def sweep_numba(checkpoints, no_checkpoints, segment, f, g, Z, R, touch, rod_start, ends, junctions, specials,
+                probes, outputs, acc, rod_nodes, dt, steps, seed, lf, lg, les, dZ, dR, jt):
     """The whole reverse pass: for the segments between checkpoints, last first, recompute the segment forward
     from its checkpoint (recording every step into ``segment``), then transpose its steps. On return lf, lg
-    hold dJ/d(initial waves); dZ, dR are accumulated. ``no_checkpoints``: empty checkpoint stores."""
-    ck_f, ck_g, ck_es, ck_js, ck_gap = checkpoints
+    hold dJ/d(initial waves); dZ, dR are accumulated. ``no_checkpoints``: empty checkpoint stores. ``jt``: the
+    joint tape (None without law joints), whose adjoint of the joint states runs along.
+
+    The compiled step and transpose are named here, not passed in (as :func:`sweep_numpy` takes its pair): numba
+    keys its on-disk cache by the argument types, and the type of a dispatcher argument carries the function's
+    address, so a sweep that took them as arguments was compiled again in every process (30-60 s)."""
     stride = segment[0].shape[0]
-    n_seg = ck_f.shape[0]
-    end_state = ends[2]
-    junction_state = junctions[1]
-    gap = junctions[2]
-    for i in range(n_seg - 1, -1, -1):
-        k0 = i * stride
-        k1 = min(steps, k0 + stride)
-        f[:] = ck_f[i]
-        g[:] = ck_g[i]
-        end_state[:] = ck_es[i]
-        junction_state[:] = ck_js[i]
-        gap[:] = ck_gap[i]
-        advance(k0, k1, 1, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
-                rod_nodes, dt, no_checkpoints, True, segment)
-        reverse(k0, k1, segment, touch, Z, R, rod_start, ends[0], ends[1], ends[3],
-                outputs[1], specials[0], specials[1], specials[2], probes[0], probes[1], probes[2], seed, lf, lg,
-                les, dZ, dR, dt)
+    for i in range(checkpoints[0].shape[0] - 1, -1, -1):
+        k0, k1 = _restore_segment_nb(i, stride, steps, checkpoints, f, g, ends, junctions, jt)
+        advance_numba(k0, k1, 1, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
+                      rod_nodes, dt, no_checkpoints, True, segment, jt)
+        reverse_numba(k0, k1, segment, touch, Z, R, rod_start, ends[0], ends[1], ends[3], outputs[1], specials[0],
+                      specials[1], specials[2], probes[0], probes[1], probes[2], seed, lf, lg, les, dZ, dR, dt, jt)
 
 
-sweep_numba = njit(cache=True, error_model="numpy", nogil=True)(_sweep)
-sweep_numpy = _sweep
+def sweep_numpy(checkpoints, no_checkpoints, segment, f, g, Z, R, touch, rod_start, ends, junctions, specials,
+                probes, outputs, acc, rod_nodes, dt, steps, seed, lf, lg, les, dZ, dR, jt):
+    """Readable reference of :func:`sweep_numba` with :func:`advance_numpy` and :func:`reverse_numpy`."""
+    stride = segment[0].shape[0]
+    for i in range(checkpoints[0].shape[0] - 1, -1, -1):
+        k0, k1 = _restore_segment(i, stride, steps, checkpoints, f, g, ends, junctions, jt)
+        advance_numpy(k0, k1, 1, f, g, Z, R, touch, rod_start, ends, junctions, specials, probes, outputs, acc,
+                      rod_nodes, dt, no_checkpoints, True, segment, jt)
+        reverse_numpy(k0, k1, segment, touch, Z, R, rod_start, ends[0], ends[1], ends[3], outputs[1], specials[0],
+                      specials[1], specials[2], probes[0], probes[1], probes[2], seed, lf, lg, les, dZ, dR, dt, jt)

@@ -27,7 +27,7 @@ from .._moved import moved
 from .._validate import integer, real_number
 from .._version import __version__
 from ..lattice.lattice import build_lattice
-from ..rods.conditions import BitRockEnd
+from ..rods.conditions import BitRockEnd, Specimen
 from ..inverse.diagnosis import explain_bounds
 from ..inverse.recursive import synthesize
 from ..inverse.struck import STRUCK_KEYWORDS, as_struck_system, locate, window_count_check
@@ -35,7 +35,8 @@ from ..inverse.targets import as_target
 from ..inverse.transform import struck_time_step, window_count
 from ._adjoint import ImpactProblem
 from .constraints import Constraints, StrikerLimits, build_constraints, velocity_start
-from .objectives import EfficiencyCost, EfficiencyObjective, MatchCost, MatchObjective
+from .objectives import (EfficiencyCost, EfficiencyObjective, MatchCost, MatchObjective, StrainRateCost,
+                         StrainRateObjective)
 from .optimize import Evaluator, Levels, OptimisationProgress, Run, best_of, minimise
 from .result import DesignResult
 from .screening import POOL_SIZE, candidate_pool, diverse, screen as screen_pool
@@ -165,7 +166,9 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
         :func:`rodimpact.synthesize` accepts), matched at the impact face; or a
         :class:`~rodimpact.MatchObjective` (the force observed at a ``position``, ``quantity``, ``rule``,
         ``weights``); or an :class:`~rodimpact.EfficiencyObjective` (work done on the rock per blow over the
-        striker's kinetic energy; needs a :class:`~rodimpact.BitRockEnd` far end).
+        striker's kinetic energy; needs a :class:`~rodimpact.BitRockEnd` far end); or a
+        :class:`~rodimpact.design.objectives.StrainRateObjective` (the strain rate of the struck system's
+        :class:`~rodimpact.Specimen` held at a rate over a window, the specimen's law in the loop; needs ``n``).
     struck:
         The struck system (left end = impact face): a :class:`~rodimpact.Rod` or rods listed from the impact face
         outwards (bonded, at rest, free far end), or a :class:`~rodimpact.System` made by
@@ -196,13 +199,14 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
     wall0 = _time.perf_counter()
     goal = _as_objective(target)
     match = isinstance(goal, MatchObjective)
+    rate_goal = isinstance(goal, StrainRateObjective)
     limits = StrikerLimits() if limits is None else _instance("limits", limits, StrikerLimits)
     search = SearchOptions() if search is None else _instance("search", search, SearchOptions)
     if backend not in ("numba", "numpy"):
         raise ValueError(f"backend: must be 'numba' or 'numpy', got {backend!r}")
     if progress is not None and not isinstance(progress, (bool, np.bool_)):
         raise TypeError(f"progress: must be True, False or None (when stderr is a terminal), got {progress!r}")
-    if not match and isinstance(n, (tuple, list)):
+    if not match and not rate_goal and isinstance(n, (tuple, list)):
         return _design_lengths(n, limits, wall0, lambda m: design(
             goal, struck, striker_velocity, m, dt, limits=limits, search=search, progress=progress, backend=backend))
     show_progress = bool(progress) if progress is not None else _stderr_is_a_terminal()
@@ -229,6 +233,22 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
                                    "MatchObjective.weights")
         run_steps = obj.steps
         obs_quantity = goal.quantity if location is not None else "force"
+    elif rate_goal:
+        if n is None:
+            raise ValueError("n: give the number of striker elements for the strain-rate objective")
+        n = window_count_check(n)
+        joints = [i for i, j in enumerate(system.junctions) if isinstance(j, Specimen)]
+        if not joints:
+            raise ValueError("struck.junctions: the strain-rate objective needs a Specimen between two struck rods")
+        specimen = system.junctions[joints[0]]
+        arrival = int(lat.rod_start[joints[0] + 1])           # steps from the impact to the specimen's face
+        first = arrival + int(round(goal.start / dt))
+        last = arrival + max(int(round(goal.end / dt)), int(round(goal.start / dt)) + 1)
+        location, obs_quantity, windows = None, "force", np.zeros(0)
+        run_steps = last
+        # junction j of the struck system is junction j + 1 of the impact problem (the striker's contact first)
+        obj = StrainRateCost(joints[0] + 1, len(system.junctions) + 1, float(specimen.initial_length), goal.rate,
+                             np.arange(first, last), dt, run_steps)
     else:
         if not isinstance(system.right, BitRockEnd):
             raise ValueError(f"struck.right: the 'efficiency' objective (work done on the rock / striker kinetic "
@@ -253,6 +273,8 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
 
     cons = build_constraints(n, dt, face_z, limits, striker_velocity)
     v0 = velocity_start(cons, striker_velocity)
+    if rate_goal and goal.start_velocity is not None:
+        v0 = velocity_start(cons, goal.start_velocity)
     if match and location is None and not any(system.velocities):
         diag["bounds_diagnosis"] = explain_bounds(windows, v0, face_z, float(cons.lower[0]), float(cons.upper[0]))
     problem = ImpactProblem(system, dt, n, run_steps, location=location, quantity=obs_quantity, backend=backend)
@@ -264,18 +286,22 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
                     convergence=[r.history for r in runs], start_values=[r.value for r in runs])
         if match:
             diag["weights"] = obj.weights
+        elif rate_goal:
+            diag["strain_rate"] = obj.rates(fw)
+            diag["window_steps"] = obj.index
         else:
             diag["uniform_reference"] = uniform_reference(system, dt, cons.mass_of(z), v, cons, n, goal,
                                                           location.node)
         value = obj.evaluate(fw, z, v)[0]
         return DesignResult(
-            impedance=z, striker_velocity=float(v), dt=dt, objective="match" if match else "efficiency",
+            impedance=z, striker_velocity=float(v), dt=dt,
+            objective="match" if match else ("strain-rate" if rate_goal else "efficiency"),
             time=dt * np.arange(run_steps),
             achieved=np.asarray(fw.observed, dtype=float), face_force=np.asarray(fw.face_force, dtype=float),
             target=obj.reference if match else np.zeros(0),
             compared=obj.index if match else np.zeros(0, dtype=int),
-            window_values=windows, misfit=float(np.sqrt(value)) if match else None,
-            efficiency=None if match else -value,
+            window_values=windows, misfit=float(np.sqrt(value)) if match or rate_goal else None,
+            efficiency=None if match or rate_goal else -value,
             constraint_report=cons.report(z, v), iterations=iterations, wall_time=_time.perf_counter() - wall0,
             struck=system, location=location, quantity=obs_quantity, material=limits.material, diagnostics=diag)
 
@@ -294,13 +320,21 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
         for name, level in (("uniform at the first force level", abs(windows[0])),
                             ("uniform at the peak force level", float(np.max(np.abs(windows))))):
             initial_profiles.append((name, np.full(n, _impedance_for_force(level, face_z, v0, cons))))
+    elif rate_goal:
+        if goal.start_impedance is not None:
+            z_start = np.asarray(goal.start_impedance, dtype=float)
+            if z_start.shape != (n,):
+                raise ValueError(f"StrainRateObjective.start_impedance: need {n} values (one per element), got "
+                                 f"shape {z_start.shape}")
+            initial_profiles.append(("given start", z_start))
+        initial_profiles.append(("uniform", np.full(n, face_z)))
     else:
         zu = np.full(n, face_z)
         initial_profiles += [("uniform", zu), ("rising taper", np.linspace(0.5, 2.0, n) * face_z),
                              ("falling taper", np.linspace(2.0, 0.5, n) * face_z)]
     free = Levels.free(cons)
     named = _distinct([(name, cons.project(z0)) for name, z0 in initial_profiles])
-    if match:
+    if match or rate_goal:
         progress_bar = OptimisationProgress(show_progress, "misfit", lambda j: float(np.sqrt(max(j, 0.0))), True)
     else:
         progress_bar = OptimisationProgress(show_progress, "efficiency", lambda j: -j, False)
@@ -314,7 +348,7 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
         labels.append(label)
         return run
 
-    if not match or location is None:                        # observed by simulate_batch: screen a pool first
+    if not rate_goal and (not match or location is None):   # observed by simulate_batch: screen a pool first
         ranked = screen_pool(system, dt, run_steps, obj, candidate_pool(named, cons, size=search.pool), v0,
                              limits.smoothness, z_ref)
         # the recursive method's striker (or prefix) stays first: it is the theory's guess, often in the basin
@@ -381,7 +415,7 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
             best = r
     diag["run_labels"] = labels
     shown = [progress_bar.show(r.value) for r in finals if np.isfinite(r.value)]
-    diag["local_optima"] = {"name": progress_bar.name, "values": sorted(shown, reverse=not match)}
+    diag["local_optima"] = {"name": progress_bar.name, "values": sorted(shown, reverse=not (match or rate_goal))}
     iterations = sum(r.iterations for r in runs)
     z, v, fw = free.expand(best.levels), best.velocity, best.fw
     diag["optimizer_message"] = best.message
@@ -395,18 +429,18 @@ def design(target: Any, struck: Any, striker_velocity: Optional[float] = None,
         iterations += st.run.iterations
         z, v, fw = st.impedance, st.run.velocity, st.run.fw
         diag["free_profile"] = {"impedance": best.levels.copy(), "velocity": best.velocity,
-                                ("misfit" if match else "efficiency"):
-                                    float(np.sqrt(free_value)) if match else -free_value}
+                                ("misfit" if match or rate_goal else "efficiency"):
+                                    float(np.sqrt(free_value)) if match or rate_goal else -free_value}
         diag["breakpoints"] = st.breaks.tolist()
     return finish(z, v, fw, iterations, runs)
 
 
 
 
-def _as_objective(target: Any) -> Union[MatchObjective, EfficiencyObjective]:
+def _as_objective(target: Any) -> Union[MatchObjective, EfficiencyObjective, StrainRateObjective]:
     """The objective of a design: ``target`` itself when it is one, else a :class:`MatchObjective` of the force
     history ``target`` at the impact face."""
-    if isinstance(target, (MatchObjective, EfficiencyObjective)):
+    if isinstance(target, (MatchObjective, EfficiencyObjective, StrainRateObjective)):
         return target
     if target is None:
         raise ValueError("target: give the force history to match, a ri.MatchObjective(target, position=...) or a "

@@ -224,3 +224,69 @@ def per_step_weights(weights: Optional[Any], n_windows: int, dt: float, name: st
     if not np.all(np.isfinite(w)) or np.any(w < 0) or not np.any(w > 0):
         raise ValueError(f"{name}: must be finite and >= 0, with at least one > 0")
     return w
+
+
+@dataclass(frozen=True, eq=False)
+class StrainRateObjective:
+    """Hold the strain rate of the struck system's specimen (a :class:`~rodimpact.Specimen` joint) at ``rate``
+    (1/s, engineering, compression positive) over a time window, with the specimen's law in the loop: minimise
+    the mean square relative deviation J = (1/M) sum_k (rate_k / rate - 1)^2 over the M steps of the window, where
+    rate_k = (delta_k - delta_k-1) / (dt L0) is the specimen's engineering strain rate in step k from its
+    shortening delta (the joint's state, simulated with the law at every step; docs/adjoint.md, "Law joints").
+
+    start, end:
+        The window, s after the incident wave's first arrival at the specimen (0 <= start < end).
+    start_impedance, start_velocity:
+        Optional starting striker (Z_1..Z_n from the impact face, N s/m) and velocity (m/s), e.g. the striker of
+        the target method (:func:`rodimpact.shpb.rate_design.design_striker`); default a uniform striker of the
+        face's impedance.
+    """
+
+    rate: float
+    start: float
+    end: float
+    start_impedance: Any = None
+    start_velocity: Optional[float] = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "rate", positive("StrainRateObjective.rate", self.rate, "1/s"))
+        object.__setattr__(self, "start", non_negative("StrainRateObjective.start", self.start, "s"))
+        object.__setattr__(self, "end", positive("StrainRateObjective.end", self.end, "s"))
+        if not self.start < self.end:
+            raise ValueError(f"StrainRateObjective.end: must be after start = {self.start:.6g} s, got "
+                             f"{self.end:.6g} s")
+        if self.start_velocity is not None:
+            object.__setattr__(self, "start_velocity",
+                               positive("StrainRateObjective.start_velocity", self.start_velocity, "m/s"))
+
+
+@dataclass(frozen=True)
+class StrainRateCost:
+    """J = (1/M) sum_{k in index} (rate_k / rate - 1)^2, rate_k = (delta_k - delta_k-1) / (dt L0) of junction
+    ``joint`` (a row of the forward run's ``shortening``; delta_-1 = 0). Seeds: with c_k = 2 (rate_k / rate - 1) /
+    (M rate dt L0), dJ/d delta_k += c_k and dJ/d delta_k-1 -= c_k."""
+
+    joint: int
+    junctions: int
+    length: float
+    rate: float
+    index: np.ndarray
+    dt: float
+    steps: int
+
+    def rates(self, fw: Any) -> np.ndarray:
+        """The specimen's engineering strain rate (1/s) in every step of the run."""
+        d = np.asarray(fw.shortening[self.joint])
+        return np.diff(d, prepend=0.0) / (self.dt * self.length)
+
+    def evaluate(self, fw: Any, impedance: np.ndarray, velocity: float) -> tuple[float, Seeds, np.ndarray, float]:
+        dev = self.rates(fw)[self.index] / self.rate - 1.0
+        m = self.index.size
+        value = float(np.sum(dev * dev)) / m
+        c = 2.0 * dev / (m * self.rate * self.dt * self.length)
+        seed = np.zeros((self.junctions, self.steps))
+        np.add.at(seed[self.joint], self.index, c)
+        earlier = self.index - 1
+        keep = earlier >= 0
+        np.add.at(seed[self.joint], earlier[keep], -c[keep])
+        return value, {"shortening": seed}, np.zeros(impedance.size), 0.0

@@ -44,7 +44,9 @@ class DesignResult:
     dt:
         Travel time of each element, s.
     objective:
-        "match" (a :class:`~rodimpact.MatchObjective`) or "efficiency" (an :class:`~rodimpact.EfficiencyObjective`).
+        "match" (a :class:`~rodimpact.MatchObjective`), "efficiency" (an :class:`~rodimpact.EfficiencyObjective`) or
+        "strain-rate" (a :class:`~rodimpact.design.objectives.StrainRateObjective`; ``misfit`` is then the RMS
+        relative deviation of the specimen's strain rate over the window).
     time:
         Start times k dt of the run's steps, s (from the impact).
     achieved:
@@ -96,7 +98,7 @@ class DesignResult:
     diagnostics: dict[str, Any] = field(default_factory=dict, repr=False)
 
     def __repr__(self) -> str:
-        what = (f"misfit {self.misfit:.3g}" if self.objective == "match" else f"efficiency {self.efficiency:.4g}")
+        what = (f"efficiency {self.efficiency:.4g}" if self.objective == "efficiency" else f"misfit {self.misfit:.3g}")
         return (f"DesignResult({self.objective}: {self.n_elements} elements, {what}, v = {self.striker_velocity:.4g} "
                 f"m/s, Z {self.impedance.min():.4g}..{self.impedance.max():.4g} N s/m, mass {self.mass:.4g} kg)")
 

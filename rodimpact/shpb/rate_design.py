@@ -8,7 +8,10 @@ Song, Split Hopkinson (Kolsky) Bar, Springer 2011, sec. 2.4; :func:`~rodimpact.s
 * :func:`design_striker` designs the striker's impedance profile whose incident wave at the specimen face
   matches that pulse (:func:`rodimpact.design` with the exact adjoint gradients of the lattice, the specimen law
   entering through the target), then runs the whole bar with the specimen in the loop to report the achieved
-  flatness.
+  flatness. With ``method="law"`` the specimen's law is in the loop instead: the objective is the specimen's
+  simulated strain rate itself (:class:`~rodimpact.design.objectives.StrainRateObjective`, its mean square
+  deviation from the requested rate over the window), minimised from a uniform striker with exact gradients
+  through the specimen's law (docs/adjoint.md, "Law joints"); no target pulse is involved.
 * :func:`design_shaper` chooses a pulse shaper's thickness and diameter and the striker's velocity for a given
   striker and shaper law, minimising the largest deviation of the specimen's rate over the strain window with
   the whole bar simulated at each trial (a three-parameter Nelder-Mead search in log space).
@@ -32,10 +35,11 @@ from scipy.optimize import minimize, minimize_scalar
 from .._validate import positive
 from ..design.constraints import StrikerLimits
 from ..design.design import SearchOptions, design
-from ..design.objectives import MatchObjective
+from ..design.objectives import MatchObjective, StrainRateObjective
 from ..design.result import DesignResult
 from ..rods.conditions import PulseShaper
 from ..rods.rod import Rod
+from ..rods.system import System
 from .kolsky import TRANSITS_FOR_EQUILIBRIUM, KolskyBar, KolskyPrediction, incident_for_constant_rate
 
 
@@ -48,7 +52,7 @@ class RateDesign:
     a uniform striker of the same length (at its best velocity) for comparison (None if not computed);
     ``equilibrium_time`` (s from the start of loading) by the four-transit rule (None without the specimen's
     density); ``prediction`` the whole-bar run; ``design`` the impedance design (striker designs only);
-    ``wall_time`` (s).
+    ``wall_time`` (s); ``method`` how it was designed ("target", "law" or "shaper").
     """
 
     striker: Rod
@@ -62,6 +66,7 @@ class RateDesign:
     prediction: KolskyPrediction = field(repr=False)
     design: Optional[DesignResult] = field(default=None, repr=False)
     wall_time: float = 0.0
+    method: str = "target"
 
 
 def _window_part(strain: np.ndarray, strain_window: tuple[float, float]) -> Optional[slice]:
@@ -129,16 +134,32 @@ def _uniform_flatness(bar: KolskyBar, length: float, rate: float, window: tuple[
     return rate_flatness(trial.predict(math.exp(best.x), dt=dt, duration=duration), rate, window)
 
 
+#: the law-in-the-loop window starts at this fraction of the time the requested rate needs to reach the strain
+#: window's start (after the rise of the pulse) and ends when it reaches LAW_WINDOW_END x the window's end
+LAW_WINDOW_START, LAW_WINDOW_END = 0.1, 1.02
+#: the law-in-the-loop search stops when its objective improved by less than this fraction over 10 iterations
+LAW_IMPROVEMENT = 0.01
+METHODS = ("target", "law")
+
+
 def design_striker(bar: KolskyBar, rate: float, strain_window: Any = (0.02, 0.15), n: int = 100, *,
                    limits: Optional[StrikerLimits] = None, search: Optional[SearchOptions] = None,
-                   compare_uniform: bool = True, progress: Optional[bool] = None) -> RateDesign:
+                   compare_uniform: bool = True, progress: Optional[bool] = None,
+                   method: str = "target") -> RateDesign:
     """Design the striker of ``bar`` for the constant engineering strain rate ``rate`` (1/s) of its specimen
     over ``strain_window`` (engineering strains), as an ``n``-element impedance profile (element travel time
     dt = t_end / (2 n), t_end = 1.05 x window end / rate). ``limits``: bounds of the design (default: impedances from
     0.05 to 5 times the bar's, velocity 0.1-100 m/s). ``compare_uniform``: also report the best uniform striker
-    of the same length. The specimen law enters through the target incident wave; the whole bar is then run
-    with the designed striker and the specimen in the loop."""
+    of the same length. ``method``: "target" (the specimen law enters through the target incident wave) or
+    "law" (the specimen law in the loop: from a uniform striker of the bar's impedance, the specimen's simulated
+    strain rate is held at ``rate`` over the window from LAW_WINDOW_START x start / rate to LAW_WINDOW_END x
+    end / rate after the pulse's arrival, :class:`~rodimpact.design.objectives.StrainRateObjective`, with the
+    striker velocity free within ``limits``; default search: one start, stopped when the objective improves by
+    less than LAW_IMPROVEMENT over 10 iterations). The whole bar is then run with the designed striker and the
+    specimen to report the flatness."""
     wall0 = _time.perf_counter()
+    if method not in METHODS:
+        raise ValueError(f"method: must be one of {METHODS}, got {method!r}")
     rate = positive("rate", rate, "1/s")
     window = _window(strain_window)
     z = float(bar.incident.impedance(bar.incident.length))
@@ -148,8 +169,17 @@ def design_striker(bar: KolskyBar, rate: float, strain_window: Any = (0.02, 0.15
     target = (t, incident_for_constant_rate(bar.specimen, rate, t, z))
     v0 = 2.0 * abs(target[1].mean()) / z
     limits = limits or StrikerLimits(impedance_bounds=(0.05 * z, 5.0 * z), velocity_bounds=(0.1, 100.0))
-    result = design(MatchObjective(target, position=bar.incident.length, quantity="incident"), bar.incident,
-                    striker_velocity=v0, n=n, dt=dt, limits=limits, search=search, progress=progress)
+    if method == "target":
+        result = design(MatchObjective(target, position=bar.incident.length, quantity="incident"), bar.incident,
+                        striker_velocity=v0, n=n, dt=dt, limits=limits, search=search, progress=progress)
+    else:
+        # from a uniform striker of the bar's impedance at the velocity of the target's mean force: only the
+        # simulated specimen (its law in the loop) tells the optimiser how the rate responds
+        struck = System.struck([bar.incident, bar.transmitted], junctions=[bar.specimen])
+        goal = StrainRateObjective(rate, LAW_WINDOW_START * window[0] / rate, LAW_WINDOW_END * window[1] / rate,
+                                   start_impedance=np.full(n, z), start_velocity=v0)
+        result = design(goal, struck, striker_velocity=v0, n=n, dt=dt, limits=limits,
+                        search=search or SearchOptions(starts=1, improvement=LAW_IMPROVEMENT), progress=progress)
     striker = result.to_rod("striker")
     designed = dataclasses.replace(bar, striker=striker, shaper=None)
     duration = bar.incident.length / float(bar.incident.wave_speed(0.0)) + 1.3 * t_end
@@ -158,7 +188,7 @@ def design_striker(bar: KolskyBar, rate: float, strain_window: Any = (0.02, 0.15
     same_length = n * dt * float(bar.incident.wave_speed(0.0))
     uniform = _uniform_flatness(bar, same_length, rate, window, dt, duration) if compare_uniform else None
     return RateDesign(striker, result.striker_velocity, None, rate, window, rate_flatness(pred, rate, window),
-                      uniform, _equilibrium_time(bar), pred, result, _time.perf_counter() - wall0)
+                      uniform, _equilibrium_time(bar), pred, result, _time.perf_counter() - wall0, method)
 
 
 def design_shaper(bar: KolskyBar, rate: float, law: Any, strain_window: Any = (0.02, 0.15), *,
@@ -204,4 +234,4 @@ def design_shaper(bar: KolskyBar, rate: float, law: Any, strain_window: Any = (0
         raise ValueError("design_shaper: no admissible shaper found (its diameter would exceed the bar's)")
     velocity = float(np.exp(best.x[2]))
     return RateDesign(bar.striker, velocity, shaper, rate, window, rate_flatness(pred, rate, window), None,
-                      _equilibrium_time(bar), pred, None, _time.perf_counter() - wall0)
+                      _equilibrium_time(bar), pred, None, _time.perf_counter() - wall0, "shaper")
