@@ -1,5 +1,5 @@
 """The compiled Smith soil law of the boundary step (:mod:`rodimpact.rods.soil`, docs/soil.md): one scalar
-equation per soil node and step, solved by a bracketed root.
+equation per soil node and step, solved piece by piece of the static law (:func:`node_root`).
 
 Arrays (one row per special node of the lattice, then the left and the right end; rows that carry no soil have
 ``par[row, ACTIVE] == 0``):
@@ -25,8 +25,18 @@ an end) gives
 Rbar is non-decreasing in V (the mean of a function non-decreasing along the path), so g is strictly increasing
 for the linear dashpot. For the Smith product, d/dV (J |Rbar| V) = J |Rbar| + J V d|Rbar|/dV can be negative
 while the node unloads (|Rbar| falls), by at most J |V| k dt / 2; g stays increasing while
-zs > J |V| k dt / 2 (always, for practical piles and time steps). In any case g runs from -inf to +inf, so
-the bracket search (expanding from v0) always finds a sign change and bisection a root.
+zs > J |V| k dt / 2 (always, for practical piles and time steps). g(0) = -zs v0 + R_s (clipped at a toe) gives
+the direction of motion d; the root is the first one in that direction (the only one where g is increasing).
+
+**The solve** (:func:`node_root`). With p = |s| the path length, the law's pieces (:func:`law_piece`: unloading,
+loading, plateau, toe gap) are walked in the direction of motion as in :func:`static_path`, and h(p) = d g(d p /
+dt) is evaluated exactly at the end of each piece until h >= 0 there. On that piece R_s is linear in p, the
+integral j = int R_s ds a quadratic, Rbar = d j / p, and the damping J |Rbar| V = J |j| / dt (Smith) or c V
+is a quadratic or linear in p: h is a smooth rational function of p (with a kink only where j changes sign or the
+toe's resistance reaches 0), solved by Newton's method with the analytic derivative, safeguarded by bisection in
+the piece's bracket and stopped at a step of a few units in the last place. Against the bracket + bisection it
+replaced (to adjacent floating-point numbers), V agrees to ~3e-13 relative on 20000 random node states, and
+the state update (:func:`static_path` at the root) is unchanged, so the energy closure is as before.
 """
 
 from __future__ import annotations
