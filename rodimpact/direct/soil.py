@@ -221,12 +221,16 @@ def node_root(par, st, v0, zs, dt, d, h0):
             a = p
         else:
             b = p
-        q = p - hp / dh if dh > 0.0 else a - 1.0
+        step = hp / dh if dh > 0.0 else np.inf
+        if abs(step) <= 4e-16 * p:       # converged: the Newton step is within a few units in the last place
+            p -= step
+            break
+        q = p - step
         if not (a < q < b):
             q = 0.5 * (a + b)
-        if abs(q - p) <= 4e-16 * p or q == a or q == b:
-            p = q
-            break
+            if q == a or q == b:         # the bracket has closed to adjacent floating-point numbers
+                p = q
+                break
         p = q
     return d * p / dt
 
