@@ -158,8 +158,6 @@ def test_tangent_rows_equal_central_differences_and_the_adjoint():
     np.testing.assert_allclose(J.T @ r, ref, rtol=1e-10)
 
 
-@pytest.mark.skipif(not hasattr(ri, "ShaftResistance"),
-                    reason="the Smith soil (ShaftResistance, branch pile-soil) is not in this tree yet")
 def test_forward_with_shaft_soil_equals_the_general_solvers_linear_smith_soil():
     """Below yield (R_u far above any soil force) the Smith shaft soil with smith-viscous damping is a spring
     k = R_u / q and a dashpot c = J_sv R_u at every interior node, its spring taken as the exact mean over the step's
