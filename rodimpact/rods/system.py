@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Optional, Sequence
 
 import numpy as np
@@ -20,6 +20,21 @@ _TOUCHING = Contact()
 
 #: Initial field of a rod: a number, a callable of x (m from the rod's left end) or per-element values.
 FieldLike = float | Callable[[np.ndarray], np.ndarray] | Sequence[float] | np.ndarray
+
+
+def _rod_number(ref: int | str, rods: Sequence[Rod], where: str) -> int:
+    """The index of the rod that ``ref`` names: its index (0 = first) or its ``name``."""
+    if isinstance(ref, str):
+        names = [r.name for r in rods]
+        if ref not in names:
+            raise ValueError(f"{where}: no rod is named {ref!r}; the rods are named "
+                             f"{', '.join(repr(n) for n in names if n) or '(none named)'}")
+        if names.count(ref) > 1:
+            raise ValueError(f"{where}: {names.count(ref)} rods are named {ref!r}; give the rod's index instead")
+        return names.index(ref)
+    if isinstance(ref, bool) or not isinstance(ref, (int, np.integer)) or not 0 <= ref < len(rods):
+        raise ValueError(f"{where}: rod index {ref!r} does not exist (0..{len(rods) - 1}, or a rod's name)")
+    return int(ref)
 
 
 @dataclass(frozen=True, eq=False)
@@ -85,13 +100,12 @@ class System:
         for i, j in enumerate(juncs):
             if isinstance(j, DeformableJoint):
                 j.check_fits(min(float(rods[i].area(rods[i].length)), float(rods[i + 1].area(0.0))), f"junctions[{i}]")
-        loads = tuple(self.loads)
+        loads = list(self.loads)
         for i, ld in enumerate(loads):
             if not isinstance(ld, (NodalForce, Bearings, ShaftResistance)):
                 raise TypeError(f"loads[{i}]: must be NodalForce, Bearings or ShaftResistance, got "
                                 f"{type(ld).__name__}")
-            if ld.rod >= len(rods):
-                raise ValueError(f"loads[{i}].rod: rod index {ld.rod} does not exist (0..{len(rods) - 1})")
+            ld = loads[i] = replace(ld, rod=_rod_number(ld.rod, rods, f"loads[{i}].rod"))
             if isinstance(ld, NodalForce) and not 0.0 < ld.position < rods[ld.rod].length:
                 raise ValueError(f"loads[{i}].position: must lie inside rod {ld.rod}, 0 < x < "
                                  f"{rods[ld.rod].length:.6g} m, got {ld.position:.6g} m (end faces take ForceEnd)")
@@ -117,7 +131,7 @@ class System:
         object.__setattr__(self, "junctions", juncs)
         object.__setattr__(self, "left", as_end_condition(self.left, "left"))
         object.__setattr__(self, "right", as_end_condition(self.right, "right"))
-        object.__setattr__(self, "loads", loads)
+        object.__setattr__(self, "loads", tuple(loads))
         object.__setattr__(self, "initial", tuple(initial))
         check_strikers(self.rods, self.velocities)
 

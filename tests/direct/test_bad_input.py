@@ -43,6 +43,10 @@ def rods():
     (lambda rods: ri.simulate(rods, [1.0, 0.0], duration=1e-4, outputs=ri.Outputs(probes=[ri.Probe("p", "nope", 0.0)])),
      r"probes\[0\].rod: no rod is named 'nope'"),
     (lambda rods: ri.simulate(ri.Problem.of(rods, [1.0, 0.0], steps=2, elements=(True, 10))), "elements: rod index"),
+    (lambda rods: ri.System(rods, [1.0, 0.0], loads=[ri.NodalForce("nope", 0.5, 1.0)]),
+     r"loads\[0\].rod: no rod is named 'nope'"),
+    (lambda rods: ri.System(rods, [1.0, 0.0], loads=[ri.NodalForce(2, 0.5, 1.0)]),
+     r"loads\[0\].rod: rod index 2 does not exist"),
 ])
 def test_bad_simulation_input(rods, run, match):
     with pytest.raises((ValueError, TypeError), match=match):
@@ -116,3 +120,16 @@ def test_end_and_junction_laws_that_would_create_energy_are_refused(make):
     energy is refused on the creating side."""
     with pytest.raises(ValueError, match="must be"):
         make()
+
+
+def test_loads_name_their_rod():
+    """A load may name its rod, in Python as in model files: the same run as with the index."""
+    named = [ri.Rod.from_impedance([5e4] * 20, dt=DT, name="striker"),
+             ri.Rod.from_impedance([5e4] * 40, dt=DT, name="bar")]
+    by_name = ri.System(named, [1.0, 0.0], loads=[ri.NodalForce("bar", 0.01, 100.0)])
+    by_index = ri.System(named, [1.0, 0.0], loads=[ri.NodalForce(1, 0.01, 100.0)])
+    assert by_name.loads[0].rod == 1
+    a = ri.simulate(by_name, duration=5e-5).to_xarray()
+    b = ri.simulate(by_index, duration=5e-5).to_xarray()
+    np.testing.assert_array_equal(a["junction_force"].values, b["junction_force"].values)
+    np.testing.assert_array_equal(a["kinetic_energy"].values, b["kinetic_energy"].values)
