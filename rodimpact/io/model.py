@@ -898,9 +898,9 @@ class _Writer:
                 d[f.name] = self.element(value, f"{path}.{f.name}", inline=True)
             elif decl.kind == "parts":
                 d[f.name] = [self.element(x, f"{path}.{f.name}[{i}]", inline=True) for i, x in enumerate(value)]
-            elif decl.kind == "path" and value is None and hasattr(e, "plastic_strain"):
-                raise ModelWriteError(f"{path}: a table given as arrays cannot be written to a model file; give "
-                                      "it as a CSV file")
+            elif decl.kind == "path" and value is None:
+                raise ModelWriteError(f"{path}.{f.name}: {type(e).__name__} holds its data as arrays, which a "
+                                      f"model file cannot; give it as a file ({decl.doc})")
             elif has_default(f) and value == f.default:
                 continue
             elif decl.kind == "quantity":

@@ -123,7 +123,9 @@ def text(doc: str) -> Any:
 
 
 def path(doc: str) -> Any:
-    """An optional file name (model files read it relative to the model file's folder)."""
+    """An optional file name (model files read it relative to the model file's folder). Left out (``None``), the
+    element holds the same data as arrays given in Python, which a model file cannot hold: writing such an
+    element to a model file is refused."""
     return _field(Declaration("path", doc), None)
 
 

@@ -172,3 +172,14 @@ def test_example_files_keep_the_thesis_numbers_as_written():
     rig = model_text("test-rig.toml")
     for s in ('"4.60 m/s"', '"1800 mm"', '"110 mm"', '"900 mm"', '"1690 mm"', '"40 mm"', '"50 mm"'):
         assert s in rig
+
+
+def test_a_law_tabulated_from_arrays_cannot_be_written_and_says_where():
+    """A tabulated law given as arrays has no file to name; writing it is refused with its key path (a law read
+    from a CSV file is written by its file name, tests/io/test_model_files.py)."""
+    law = ri.TabulatedLaw(117e9, plastic_strain=[0.0, 1.0], stress=[80e6, 1080e6])
+    joint = ri.Specimen(law, 0.006, 0.003)
+    bar = ri.Rod([ri.Cylinder(1.0, 0.0095)])
+    m = Model(ri.System([bar, bar], [1.0, 0.0], junctions=[joint]), steps=3)
+    with pytest.raises(ModelWriteError, match=r"junctions\[0\].law.file: TabulatedLaw holds its data as arrays"):
+        dump_model(m)
