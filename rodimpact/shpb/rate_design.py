@@ -201,9 +201,12 @@ def design_striker(bar: KolskyBar, rate: float, strain_window: Any = (0.02, 0.15
 #: MIN_DIAMETER x the largest the faces allow up to that; velocity from VELOCITY_RANGE x that of a matched striker
 #: giving the constant-rate pulse's mean force
 MIN_ASPECT, MIN_DIAMETER, VELOCITY_RANGE = 0.02, 0.2, (0.2, 5.0)
-#: default starts of the shaper search: (thickness / diameter, diameter / the largest allowed), at the velocity
-#: of a matched striker whose force is START_FORCE x the constant-rate pulse's last (a shaper still climbing there)
-SHAPER_STARTS, START_FORCE = ((0.25, 0.8), (0.1, 0.95)), 1.1
+#: default starts of the shaper search: (thickness / diameter as a fraction of ``max_aspect``, diameter / the
+#: largest allowed), at the velocity of a matched striker whose force is START_FORCE x the constant-rate pulse's
+#: last (a shaper still climbing there)
+SHAPER_STARTS, START_FORCE = ((0.2, 0.95), (0.8, 0.85)), 1.1
+#: edges of the start simplex of the root-mean-square stage and of the minimax polish, in log units
+SIMPLEX_STEP, POLISH_STEP = 0.2, 0.05
 
 
 def design_shaper(bar: KolskyBar, rate: float, law: Law, strain_window: Any = (0.02, 0.15), *,
@@ -250,7 +253,7 @@ def design_shaper(bar: KolskyBar, rate: float, law: Law, strain_window: Any = (0
               (math.log(VELOCITY_RANGE[0] * v0), math.log(VELOCITY_RANGE[1] * v0))]
     if starts is None:
         v_start = 2.0 * START_FORCE * abs(f_target[-1]) / z
-        starts = [(a * f * d_max, f * d_max, v_start) for a, f in SHAPER_STARTS]
+        starts = [(max(a * max_aspect, MIN_ASPECT) * f * d_max, f * d_max, v_start) for a, f in SHAPER_STARTS]
     points = [_shaper_start(k, start, bounds) for k, start in enumerate(starts)]
     if not points:
         raise ValueError("starts: give at least one (thickness, diameter, velocity)")
@@ -266,15 +269,27 @@ def design_shaper(bar: KolskyBar, rate: float, law: Law, strain_window: Any = (0
     best = None
     for y0 in points:
         smooth = minimize(lambda y: _search_cost(trial(y)[0], rate, window, "rms"), y0, method="Nelder-Mead",
-                          bounds=bounds, options={"maxfev": max_evaluations, "xatol": 1e-3, "fatol": 1e-5})
+                          bounds=bounds, options={"maxfev": max_evaluations, "xatol": 1e-3, "fatol": 1e-5,
+                                                  "initial_simplex": _simplex(y0, bounds, SIMPLEX_STEP)})
         polish = minimize(lambda y: _search_cost(trial(y)[0], rate, window), smooth.x, method="Nelder-Mead",
-                          bounds=bounds, options={"maxfev": max_evaluations, "xatol": 1e-4, "fatol": 1e-5})
+                          bounds=bounds, options={"maxfev": max_evaluations, "xatol": 1e-4, "fatol": 1e-5,
+                                                  "initial_simplex": _simplex(smooth.x, bounds, POLISH_STEP)})
         if best is None or polish.fun < best.fun:
             best = polish
     pred, shaper = trial(best.x)
     velocity = float(np.exp(best.x[2]))
     return RateDesign(bar.striker, velocity, shaper, rate, window, rate_flatness(pred, rate, window), None,
                       _equilibrium_time(bar), pred, None, _time.perf_counter() - wall0, "shaper")
+
+
+def _simplex(y: np.ndarray, bounds: list[tuple[float, float]], step: float) -> np.ndarray:
+    """A Nelder-Mead start simplex at ``y`` with one edge of ``step`` per (log) variable, pointing away from
+    the nearer bound: equal relative steps in every variable (scipy's default, 5 % of each log value, would step
+    a log diameter of about -5 twenty times as far as a log aspect near 0)."""
+    simplex = np.tile(y, (y.size + 1, 1))
+    for i, (lo, hi) in enumerate(bounds):
+        simplex[i + 1, i] += step if y[i] + step <= hi else -step
+    return simplex
 
 
 def _shaper_start(k: int, start: Any, bounds: list[tuple[float, float]]) -> np.ndarray:

@@ -61,7 +61,7 @@ def test_a_designed_copper_shaper_holds_the_rate_within_five_percent() -> None:
     first = np.flatnonzero(strain >= 0.02)[0]
     last = first + np.flatnonzero(strain[first:] > 0.15)[0]
     flatness = np.abs(rate[first:last] / 2000.0 - 1.0).max()
-    assert flatness < 0.05                                      # measured: 4.6 % (default search: 4.58 %)
+    assert flatness < 0.05                                      # measured: 4.64 % (default search: 4.54 %)
     assert flatness == pytest.approx(result.flatness, rel=1e-9)
 
 
