@@ -13,8 +13,9 @@ Song, Split Hopkinson (Kolsky) Bar, Springer 2011, sec. 2.4; :func:`~rodimpact.s
   deviation from the requested rate over the window), minimised from a uniform striker with exact gradients
   through the specimen's law (docs/adjoint.md, "Law joints"); no target pulse is involved.
 * :func:`design_shaper` chooses a pulse shaper's thickness and diameter and the striker's velocity for a given
-  striker and shaper law, minimising the largest deviation of the specimen's rate over the strain window with
-  the whole bar simulated at each trial (a three-parameter Nelder-Mead search in log space).
+  striker and shaper law, with the whole bar simulated at each trial: a bounded three-parameter Nelder-Mead
+  search in log space (thickness / diameter, diameter, velocity) that first minimises the root-mean-square
+  deviation of the specimen's rate over the strain window, then polishes the largest one.
 
 Flatness is the largest |rate / r - 1| while the specimen's strain is inside the ``strain_window``; the time of
 equilibrium is estimated by the rule of about four elastic transits of the specimen (Ravichandran and Subhash
@@ -32,12 +33,13 @@ from typing import Any, Optional, Sequence
 import numpy as np
 from scipy.optimize import minimize, minimize_scalar
 
-from .._validate import positive
+from .._validate import integer, positive, real_number
 from ..design.constraints import StrikerLimits
 from ..design.design import SearchOptions, design
 from ..design.objectives import MatchObjective, StrainRateObjective
 from ..design.result import DesignResult
 from ..rods.conditions import PulseShaper
+from ..rods.laws import FREW, Law
 from ..rods.rod import Rod
 from ..rods.system import System
 from .kolsky import TRANSITS_FOR_EQUILIBRIUM, KolskyBar, KolskyPrediction, incident_for_constant_rate
@@ -89,15 +91,19 @@ def rate_flatness(prediction: KolskyPrediction, rate: float, strain_window: tupl
     return float(np.abs(prediction.strain_rate[part] / rate - 1.0).max())
 
 
-def _search_cost(prediction: KolskyPrediction, rate: float, strain_window: tuple[float, float]) -> float:
-    """The flatness over the part of the window the specimen reaches, plus a penalty growing with the part it
-    does not reach: continuous where :func:`rate_flatness` jumps to ``inf``, so that a search can climb."""
+def _search_cost(prediction: KolskyPrediction, rate: float, strain_window: tuple[float, float],
+                 norm: str = "max") -> float:
+    """The largest (``norm="max"``: the flatness) or the root-mean-square (``"rms"``) |rate / ``rate`` - 1| over
+    the part of the window the specimen reaches, plus a penalty growing with the part it does not reach:
+    continuous where :func:`rate_flatness` jumps to ``inf``, so that a search can climb."""
     lo, hi = strain_window
     reached = min(float(prediction.strain.max()), hi)
     if reached <= lo:
         return 10.0 + (lo - reached) / lo if lo > 0.0 else 10.0
     part = _window_part(prediction.strain, strain_window)
-    return float(np.abs(prediction.strain_rate[part] / rate - 1.0).max()) + 5.0 * (hi - reached) / hi
+    deviation = np.abs(prediction.strain_rate[part] / rate - 1.0)
+    size = float(deviation.max()) if norm == "max" else float(np.sqrt(np.mean(deviation ** 2)))
+    return size + 5.0 * (hi - reached) / hi
 
 
 def _window(strain_window: Any) -> tuple[float, float]:
@@ -191,47 +197,112 @@ def design_striker(bar: KolskyBar, rate: float, strain_window: Any = (0.02, 0.15
                       uniform, _equilibrium_time(bar), pred, result, _time.perf_counter() - wall0, method)
 
 
-def design_shaper(bar: KolskyBar, rate: float, law: Any, strain_window: Any = (0.02, 0.15), *,
+#: the shaper search's bounds: thickness / diameter from MIN_ASPECT (a disc) to ``max_aspect``; diameter from
+#: MIN_DIAMETER x the largest the faces allow up to that; velocity from VELOCITY_RANGE x that of a matched striker
+#: giving the constant-rate pulse's mean force
+MIN_ASPECT, MIN_DIAMETER, VELOCITY_RANGE = 0.02, 0.2, (0.2, 5.0)
+#: default starts of the shaper search: (thickness / diameter as a fraction of ``max_aspect``, diameter / the
+#: largest allowed), at the velocity of a matched striker whose force is START_FORCE x the constant-rate pulse's
+#: last (a shaper still climbing there)
+SHAPER_STARTS, START_FORCE = ((0.2, 0.95), (0.8, 0.85)), 1.1
+#: edges of the start simplex of the root-mean-square stage and of the minimax polish, in log units
+SIMPLEX_STEP, POLISH_STEP = 0.2, 0.05
+
+
+def design_shaper(bar: KolskyBar, rate: float, law: Law, strain_window: Any = (0.02, 0.15), *,
+                  measure: Optional[str] = None, max_aspect: float = 0.5,
                   starts: Optional[Sequence[tuple[float, float, float]]] = None, dt: float = 0.5e-6,
                   max_evaluations: int = 100) -> RateDesign:
     """Choose the thickness and diameter of a pulse shaper of ``law`` and the striker velocity, for ``bar``'s
-    striker and specimen, so that the specimen's strain rate stays at ``rate`` (1/s) over ``strain_window``:
-    Nelder-Mead on (log thickness, log diameter, log velocity) from each of ``starts`` ((thickness m, diameter
-    m, velocity m/s); default 0.5, 1 and 2 mm at half and at the full bar diameter, with the velocity of a
-    matched striker giving the mean incident force of the constant-rate pulse), ``max_evaluations`` whole-bar
-    runs each, keeping the flattest. The shaper's diameter is kept within the bar's."""
+    striker and specimen, so that the specimen's strain rate stays at ``rate`` (1/s) over ``strain_window``.
+
+    The whole bar is simulated at every trial. Variables: log(thickness / diameter) in [log MIN_ASPECT,
+    log ``max_aspect``] (the shaper is a disc: the massless joint needs its elastic transit time short against
+    the pulse's rise), log diameter from MIN_DIAMETER x to the largest the striker and incident faces cover, and
+    log striker velocity within VELOCITY_RANGE x v0, v0 = 2 |mean F_I| / Z the velocity of a matched striker
+    giving the mean force of the constant-rate incident pulse (:func:`incident_for_constant_rate`). From each of
+    ``starts`` ((thickness m, diameter m, velocity m/s); default SHAPER_STARTS at the velocity of a matched
+    striker whose force is START_FORCE x the pulse's last), bounded Nelder-Mead first minimises the
+    root-mean-square deviation |rate / ``rate`` - 1| over the window (smooth, so the simplex finds the basin),
+    then polishes the largest deviation (the flatness), at most ``max_evaluations`` whole-bar runs per stage;
+    the flattest result is kept. The optimum may lie on the ``max_aspect`` bound (the Johnson-Cook copper
+    shaper of docs/shpb.md does), so the achieved flatness can depend on it. ``measure``: the shaper's strain
+    measure (default "engineering" for :class:`~rodimpact.FrewShaper`, whose fit includes the area change,
+    "true" with incompressible area growth A0 / (1 - eps) for the other laws). ``dt``: the lattice step (s)."""
     wall0 = _time.perf_counter()
     if bar.striker is None:
         raise ValueError("bar.striker: the shaper sits on the striker's face; give the KolskyBar a striker")
+    if not isinstance(law, Law):
+        raise TypeError(f"law: must be a rodimpact law (e.g. ri.FrewShaper, ri.JohnsonCook), got "
+                        f"{type(law).__name__}")
     rate = positive("rate", rate, "1/s")
     window = _window(strain_window)
-    bar_diameter = math.sqrt(4.0 * float(bar.incident.area(0.0)) / math.pi)
+    max_aspect = real_number("max_aspect", max_aspect, f"a number in ({MIN_ASPECT}, 1] (thickness / diameter)",
+                             lambda x: MIN_ASPECT < x <= 1.0)
+    max_evaluations = integer("max_evaluations", max_evaluations, 1, "whole-bar runs per stage and start")
+    dt = positive("dt", dt, "s")
+    if measure is None:
+        measure = "engineering" if law.code == FREW else "true"
+    faces = min(float(bar.striker.area(bar.striker.length)), float(bar.incident.area(0.0)))
+    d_max = math.sqrt(4.0 * faces / math.pi)
     z = float(bar.incident.impedance(bar.incident.length))
     t_end = window[1] / rate
+    f_target = incident_for_constant_rate(bar.specimen, rate, np.linspace(0.0, t_end, 50), z)
+    v0 = 2.0 * abs(f_target.mean()) / z
+    bounds = [(math.log(MIN_ASPECT), math.log(max_aspect)), (math.log(MIN_DIAMETER * d_max), math.log(d_max)),
+              (math.log(VELOCITY_RANGE[0] * v0), math.log(VELOCITY_RANGE[1] * v0))]
     if starts is None:
-        f_mean = incident_for_constant_rate(bar.specimen, rate, np.linspace(0.0, t_end, 50), z).mean()
-        v0 = 2.0 * abs(f_mean) / z
-        starts = [(t, f * bar_diameter, v0) for t in (0.5e-3, 1e-3, 2e-3) for f in (0.5, 0.999)]
+        v_start = 2.0 * START_FORCE * abs(f_target[-1]) / z
+        starts = [(max(a * max_aspect, MIN_ASPECT) * f * d_max, f * d_max, v_start) for a, f in SHAPER_STARTS]
+    points = [_shaper_start(k, start, bounds) for k, start in enumerate(starts)]
+    if not points:
+        raise ValueError("starts: give at least one (thickness, diameter, velocity)")
+    PulseShaper(law, d_max, max_aspect * d_max, measure=measure)          # refuses a bad measure by name
     duration = (bar.incident.length / float(bar.incident.wave_speed(0.0))
                 + 2.0 * bar.striker.length / float(bar.striker.wave_speed(0.0)) + t_end)
 
-    def trial(x: np.ndarray) -> tuple[float, Optional[KolskyPrediction], Optional[PulseShaper]]:
-        thickness, diameter, velocity = np.exp(x)
-        if diameter > bar_diameter:
-            return 20.0 + diameter / bar_diameter, None, None
-        shaper = PulseShaper(law, diameter, thickness)
-        pred = dataclasses.replace(bar, shaper=shaper).predict(velocity, dt=dt, duration=duration)
-        return _search_cost(pred, rate, window), pred, shaper
+    def trial(y: np.ndarray) -> tuple[KolskyPrediction, PulseShaper]:
+        aspect, diameter, velocity = np.exp(y)
+        shaper = PulseShaper(law, diameter, aspect * diameter, measure=measure)
+        return dataclasses.replace(bar, shaper=shaper).predict(velocity, dt=dt, duration=duration), shaper
 
     best = None
-    for start in starts:
-        run = minimize(lambda x: trial(x)[0], np.log(np.array(start, dtype=float)), method="Nelder-Mead",
-                       options={"maxfev": max_evaluations, "xatol": 1e-3, "fatol": 1e-4})
-        if best is None or run.fun < best.fun:
-            best = run
-    _, pred, shaper = trial(best.x)
-    if pred is None:
-        raise ValueError("design_shaper: no admissible shaper found (its diameter would exceed the bar's)")
+    for y0 in points:
+        smooth = minimize(lambda y: _search_cost(trial(y)[0], rate, window, "rms"), y0, method="Nelder-Mead",
+                          bounds=bounds, options={"maxfev": max_evaluations, "xatol": 1e-3, "fatol": 1e-5,
+                                                  "initial_simplex": _simplex(y0, bounds, SIMPLEX_STEP)})
+        polish = minimize(lambda y: _search_cost(trial(y)[0], rate, window), smooth.x, method="Nelder-Mead",
+                          bounds=bounds, options={"maxfev": max_evaluations, "xatol": 1e-4, "fatol": 1e-5,
+                                                  "initial_simplex": _simplex(smooth.x, bounds, POLISH_STEP)})
+        if best is None or polish.fun < best.fun:
+            best = polish
+    pred, shaper = trial(best.x)
     velocity = float(np.exp(best.x[2]))
     return RateDesign(bar.striker, velocity, shaper, rate, window, rate_flatness(pred, rate, window), None,
                       _equilibrium_time(bar), pred, None, _time.perf_counter() - wall0, "shaper")
+
+
+def _simplex(y: np.ndarray, bounds: list[tuple[float, float]], step: float) -> np.ndarray:
+    """A Nelder-Mead start simplex at ``y`` with one edge of ``step`` per (log) variable, pointing away from
+    the nearer bound: equal relative steps in every variable (scipy's default, 5 % of each log value, would step
+    a log diameter of about -5 twenty times as far as a log aspect near 0)."""
+    simplex = np.tile(y, (y.size + 1, 1))
+    for i, (lo, hi) in enumerate(bounds):
+        simplex[i + 1, i] += step if y[i] + step <= hi else -step
+    return simplex
+
+
+def _shaper_start(k: int, start: Any, bounds: list[tuple[float, float]]) -> np.ndarray:
+    """``starts[k]`` = (thickness, diameter, velocity) as the search's (log aspect, log diameter, log velocity),
+    refused by name when outside the search's ``bounds``."""
+    try:
+        thickness, diameter, velocity = (positive(f"starts[{k}]", x) for x in start)
+    except (TypeError, ValueError) as err:
+        raise type(err)(f"starts[{k}]: must be (thickness m, diameter m, velocity m/s), all > 0, got "
+                        f"{start!r}") from None
+    y = np.log([thickness / diameter, diameter, velocity])
+    for value, (lo, hi), what in zip(y, bounds, ("thickness / diameter", "diameter", "velocity")):
+        if not lo - 1e-12 <= value <= hi + 1e-12:
+            raise ValueError(f"starts[{k}]: its {what} {math.exp(value):.6g} lies outside the search's range "
+                             f"[{math.exp(lo):.6g}, {math.exp(hi):.6g}]")
+    return y

@@ -13,3 +13,4 @@ def test_the_design_benchmark_runs_quickly() -> None:
     assert out.returncode == 0, out.stderr[-2000:]
     assert "| designed striker, target method |" in out.stdout and "| uniform striker (baseline) |" in out.stdout
     assert "| designed striker, law in the loop |" in out.stdout
+    assert "| designed shaper, Johnson-Cook OFHC Cu |" in out.stdout and "| designed shaper, Frew" in out.stdout
