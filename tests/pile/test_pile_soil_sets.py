@@ -65,6 +65,16 @@ def test_every_number_cites_its_source_and_how_it_was_read(name):
     assert s.status.startswith("secondary:")           # not read in the source itself: the file must say so
 
 
+def test_rods_soil_defaults_are_gec12_non_cohesive():
+    """The defaults of ShaftResistance and SoilToe (rodimpact.rods.soil) are GEC-12's, as their docstring says."""
+    from rodimpact.rods import soil as rods_soil
+
+    s = soil_set("gec12")
+    assert rods_soil.DEFAULT_QUAKE == pytest.approx(s.shaft_quake, rel=1e-15)
+    assert rods_soil.DEFAULT_SHAFT_DAMPING == pytest.approx(s.shaft_damping["non-cohesive"], rel=1e-15)
+    assert rods_soil.DEFAULT_TOE_DAMPING == pytest.approx(s.toe_damping, rel=1e-15)
+
+
 def test_published_dynamics_from_python():
     d = SoilDynamics.published("grlweap", "clay", "very-dense-or-hard", toe_diameter=0.508)
     assert d == SoilDynamics(2.5e-3, 0.508 / 120, 0.65, 0.50, "smith")
