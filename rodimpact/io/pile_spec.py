@@ -355,7 +355,7 @@ def _dynamics(s: dict) -> SoilDynamics:
                          + ("not both" if s["toe_quake"] is not None else "got neither"))
     toe = s["toe_quake_rule"] if s["toe_quake"] is None else s["toe_quake"]
     try:
-        return soil_set(name).dynamics(s["shaft_soil"], toe, s["toe_diameter"], s["unloading_quake"])
+        return SoilDynamics.published(name, s["shaft_soil"], toe, s["toe_diameter"], s["unloading_quake"])
     except (ValueError, TypeError) as exc:
         key, _, rest = str(exc).partition(":")
         spec_key = {"shaft_soil": "soil.shaft_soil", "toe_diameter": "soil.toe_diameter",

@@ -23,6 +23,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .._validate import finite_array, non_negative, positive
+from .soil_sets import soil_set
 
 #: Smith damping kinds: "smith" R_s (1 + J V), "smith-viscous" J R_u V, "case" J_c Z V
 DAMPING_KINDS = ("smith", "smith-viscous", "case")
@@ -53,11 +54,14 @@ class SoilDynamics:
                   unloading_quake: Optional[float] = None) -> "SoilDynamics":
         """Smith parameters from the shipped ``parameter_set`` (``gec12``, ``grlweap``;
         :func:`rodimpact.pile.soil_sets.soil_set`): its shaft quake, the shaft damping of ``shaft_soil``, its toe
-        damping, and the toe quake of the rule ``toe_quake`` (with ``toe_diameter`` in m for a rule D / n) or a
-        length given for the job."""
-        from .soil_sets import soil_set
-
-        return soil_set(parameter_set).dynamics(shaft_soil, toe_quake, toe_diameter, unloading_quake)
+        damping (``damping_kind = "smith"``: the sets give Smith's J), and the toe quake of the set's rule
+        ``toe_quake`` (with ``toe_diameter`` in m for a rule D / n) or a length given for the job."""
+        s = soil_set(parameter_set)
+        if shaft_soil not in s.shaft_damping:
+            raise ValueError(f"shaft_soil: {shaft_soil!r} is not a soil of the {s.name!r} set; one of "
+                             f"{', '.join(map(repr, s.shaft_damping))}")
+        return cls(s.shaft_quake, s.resolve_toe_quake(toe_quake, toe_diameter), s.shaft_damping[shaft_soil],
+                   s.toe_damping, "smith", unloading_quake)
 
     def __post_init__(self) -> None:
         for name in ("shaft_quake", "toe_quake"):

@@ -1,7 +1,7 @@
 """Published sets of Smith's soil quakes and damping factors: small TOML files in ``rodimpact/pile/soils/``, one per
 source, every number with the place it was read (``[sources]``: key -> citation) and a ``status`` saying how it
-was read. :func:`soil_set` loads one, :meth:`SoilParameterSet.dynamics` (or
-:meth:`rodimpact.pile.SoilDynamics.published`) turns it into the :class:`~rodimpact.pile.SoilDynamics` of a job.
+was read. :func:`soil_set` loads one, :meth:`rodimpact.pile.SoilDynamics.published` turns it into the
+:class:`~rodimpact.pile.SoilDynamics` of a job.
 
 A set holds the shaft quake (m), the Smith damping factors of the shaft by soil (s/m) and of the toe (s/m), and
 rules for the toe quake: a length, or the toe diameter divided by a number (GRLWEAP's D/120 and D/60). The
@@ -25,7 +25,6 @@ from typing import Any, Optional
 
 from .._units import to_si
 from .._validate import positive
-from .soil import SoilDynamics
 
 #: folder of the shipped sets, inside the package
 _FOLDER = "soils"
@@ -67,22 +66,14 @@ class SoilParameterSet:
                              f"diameter / {n:g}")
         return positive("toe_diameter", toe_diameter, "m") / n
 
-    def dynamics(self, shaft_soil: str, toe_quake: Any, toe_diameter: Optional[float] = None,
-                 unloading_quake: Optional[float] = None) -> SoilDynamics:
-        """:class:`SoilDynamics` with this set's shaft quake, the shaft damping of ``shaft_soil`` and the toe
-        damping (``damping_kind = "smith"``); ``toe_quake`` is a rule of the set (with ``toe_diameter`` for a
-        diameter rule) or a length (m, or a quantity such as ``"2.5 mm"``) stated for the job."""
-        if shaft_soil not in self.shaft_damping:
-            raise ValueError(f"shaft_soil: {shaft_soil!r} is not a soil of the {self.name!r} set; one of "
-                             f"{', '.join(map(repr, self.shaft_damping))}")
+    def resolve_toe_quake(self, toe_quake: Any, toe_diameter: Optional[float] = None) -> Any:
+        """``toe_quake`` as the job states it: a rule of the set (its quake in m, with ``toe_diameter`` for a rule
+        D / n), or a length (m or a quantity such as ``"2.5 mm"``) returned as given for the caller to check."""
         if isinstance(toe_quake, str) and not _is_quantity(toe_quake):
-            q = self.toe_quake(toe_quake, toe_diameter)          # a rule name (an unknown one lists the rules)
-        else:
-            if toe_diameter is not None:
-                raise ValueError("toe_diameter: only with a toe quake rule of the set, not with a toe quake length")
-            q = toe_quake                                        # a length: SoilDynamics checks it
-        return SoilDynamics(self.shaft_quake, q, self.shaft_damping[shaft_soil], self.toe_damping, "smith",
-                            unloading_quake)
+            return self.toe_quake(toe_quake, toe_diameter)       # a rule name (an unknown one lists the rules)
+        if toe_diameter is not None:
+            raise ValueError("toe_diameter: only with a toe quake rule of the set, not with a toe quake length")
+        return toe_quake
 
 
 def _is_quantity(text: str) -> bool:
