@@ -24,6 +24,7 @@ import numpy as np
 from ..pile import (Blow, CapacitySoil, DrivingSystem, SoilDynamics, SoilLayer, SoilProfile, drive_blows, hammer,
                     hammer_names)
 from ..pile.soil import DAMPING_KINDS, DISTRIBUTIONS
+from ..pile.soil_sets import soil_set, soil_set_names
 from ..pile.studies import COLUMNS, BlowTable, bearing_graph, drivability, inspector_chart, pile_edges
 from ..pile.units import UNIT_SYSTEMS
 from ..rods.conditions import Cushion
@@ -100,15 +101,28 @@ SOIL = Table("soil", "The soil: either a total `capacity` with `shaft_share` and
     _q("perimeter", "length", "With `layers`: shaft perimeter of the pile.", required=False),
     _q("toe_area", "area", "With `layers`: area the toe pushes (plugged or closed end: the full section).",
        required=False),
-    _q("shaft_quake", "length", "Quake of the shaft resistance (> 0; a rigid-plastic soil is a small quake)."),
-    _q("toe_quake", "length", "Quake of the toe resistance (> 0)."),
+    _q("shaft_quake", "length", "Quake of the shaft resistance (> 0; a rigid-plastic soil is a small quake); "
+                                "required without `parameter_set`.", required=False),
+    _q("toe_quake", "length", "Quake of the toe resistance (> 0); required without `parameter_set`, or with a set "
+                              "instead of `toe_quake_rule`.", required=False),
     _q("unloading_quake", "length", "Unloading quake of the toe, at most `toe_quake` (default: `toe_quake`).",
        required=False),
-    _q("shaft_damping", "dimensionless", "Shaft damping factor (s/m for smith kinds, as a number in SI).",
-       sign="non_negative"),
-    _q("toe_damping", "dimensionless", "Toe damping factor (s/m for smith kinds, as a number in SI).",
-       sign="non_negative"),
+    _q("shaft_damping", "dimensionless", "Shaft damping factor (s/m for smith kinds, as a number in SI); required "
+                                         "without `parameter_set`.", sign="non_negative", required=False),
+    _q("toe_damping", "dimensionless", "Toe damping factor (s/m for smith kinds, as a number in SI); required "
+                                       "without `parameter_set`.", sign="non_negative", required=False),
     Field("damping_kind", "string", "Damping law.", default="smith", choices=DAMPING_KINDS),
+    Field("parameter_set", "string", "A published set of Smith quakes and damping instead of `shaft_quake`, "
+                                     "`shaft_damping` and `toe_damping` (docs/pile-driving.md, \"Soil parameters "
+                                     "and their sources\"): " + ", ".join(f"`{n}`" for n in soil_set_names()) + ".",
+          choices=tuple(soil_set_names())),
+    Field("shaft_soil", "string", "With `parameter_set`: the shaft soil whose damping the set gives (`gec12`: "
+                                  "`non-cohesive`, `silty-sand`, `cohesive-silt`, `cohesive`; `grlweap`: `sand`, "
+                                  "`clay`)."),
+    Field("toe_quake_rule", "string", "With `parameter_set`: the set's toe quake rule (`grlweap`: "
+                                      "`very-dense-or-hard` D/120, `soft-or-loose` D/60, `non-displacement`, "
+                                      "`hard-rock`), or give `toe_quake`."),
+    _q("toe_diameter", "length", "With a toe quake rule D / n: the pile's toe diameter D.", required=False),
 ), '[soil]\npenetration = "20 m"\ncapacity = "2 MN"\nshaft_share = 0.6\ndistribution = "triangular"\n'
    'shaft_quake = "2.54 mm"\ntoe_quake = "2.54 mm"\nshaft_damping = 0.164\ntoe_damping = 0.492')
 
@@ -307,9 +321,50 @@ def _cushion(c: dict, key: str) -> Cushion:
         raise ModelError(str(exc).replace("Cushion.", f"driving.{key}.", 1)) from None
 
 
+#: keys of [soil] a published parameter set replaces, and the keys that belong to a set
+_SET_GIVES = ("shaft_quake", "shaft_damping", "toe_damping")
+_SET_KEYS = ("shaft_soil", "toe_quake_rule", "toe_diameter")
+
+
+def _dynamics(s: dict) -> SoilDynamics:
+    """Smith's parameters of ``[soil]``: given one by one, or from ``parameter_set`` (its shaft quake and damping,
+    the shaft damping of ``shaft_soil``, the toe quake of ``toe_quake_rule`` or ``toe_quake``)."""
+    if s["parameter_set"] is None:
+        for key in ("shaft_quake", "toe_quake", "shaft_damping", "toe_damping"):
+            if s[key] is None:
+                raise ModelError(f"soil.{key}: missing; give it, or a published parameter_set "
+                                 f"({', '.join(soil_set_names())})")
+        for key in _SET_KEYS:
+            if s[key] is not None:
+                raise ModelError(f"soil.{key}: only with soil.parameter_set")
+        return _build(lambda: SoilDynamics(s["shaft_quake"], s["toe_quake"], s["shaft_damping"], s["toe_damping"],
+                                           s["damping_kind"], s["unloading_quake"]))
+    name = s["parameter_set"]
+    for key in _SET_GIVES:
+        if s[key] is not None:
+            raise ModelError(f"soil.{key}: the parameter_set {name!r} gives it; give either the set or the quakes "
+                             f"and damping one by one")
+    if s["damping_kind"] != "smith":
+        raise ModelError(f"soil.damping_kind: the parameter_set {name!r} gives Smith damping factors, not "
+                         f"{s['damping_kind']!r}")
+    if s["shaft_soil"] is None:
+        raise ModelError(f"soil.shaft_soil: missing; the parameter_set {name!r} gives the shaft damping by soil: "
+                         f"{', '.join(soil_set(name).shaft_damping)}")
+    if (s["toe_quake"] is None) == (s["toe_quake_rule"] is None):
+        raise ModelError("soil.toe_quake_rule: with a parameter_set give the toe quake rule or the toe_quake, "
+                         + ("not both" if s["toe_quake"] is not None else "got neither"))
+    toe = s["toe_quake_rule"] if s["toe_quake"] is None else s["toe_quake"]
+    try:
+        return SoilDynamics.published(name, s["shaft_soil"], toe, s["toe_diameter"], s["unloading_quake"])
+    except (ValueError, TypeError) as exc:
+        key, _, rest = str(exc).partition(":")
+        spec_key = {"shaft_soil": "soil.shaft_soil", "toe_diameter": "soil.toe_diameter",
+                    "toe_quake": "soil.toe_quake" if s["toe_quake_rule"] is None else "soil.toe_quake_rule"}.get(key)
+        raise (translated(exc, PILE_KEYS) if spec_key is None else ModelError(spec_key + ":" + rest)) from None
+
+
 def _soil(s: dict, pile: Rod) -> tuple[CapacitySoil | SoilProfile, Optional[float]]:
-    dyn = _build(lambda: SoilDynamics(s["shaft_quake"], s["toe_quake"], s["shaft_damping"], s["toe_damping"],
-                                      s["damping_kind"], s["unloading_quake"]))
+    dyn = _dynamics(s)
     by_capacity, by_layers = s["capacity"] is not None, s["layers"] is not None
     if by_capacity == by_layers:
         raise ModelError("soil: give either capacity (with shaft_share) or [[soil.layers]] (with perimeter and "
@@ -540,10 +595,11 @@ helmet_mass = "500 kg"
 hammer_cushion = { stiffness = "1 GN/m", restitution = 0.8 }
 
 # The soil: a total capacity with a shaft share and a distribution (uniform, triangular, trapezoid, custom), or
-# [[soil.layers]] of unit resistances with the pile's perimeter and toe area. Quakes and damping: the values
-# commonly attributed to Smith (E. A. L. Smith, J. Soil Mech. Found. Div. ASCE 86 (SM4), 1960, 35-61), quake
-# 0.1 in = 2.54 mm, toe damping 0.15 s/ft = 0.492 s/m, shaft damping 0.05 s/ft = 0.164 s/m; not verified against
-# the paper here: check them for your soil.
+# [[soil.layers]] of unit resistances with the pile's perimeter and toe area. Quakes and Smith damping (E. A. L.
+# Smith, J. Soil Mech. Found. Div. ASCE 86 (SM4), 1960, 35-61): quake 0.1 in = 2.54 mm, toe damping 0.15 s/ft =
+# 0.492 s/m and shaft damping 0.05 s/ft = 0.164 s/m are FHWA GEC-12's defaults for a non-cohesive soil (read in
+# a quotation of GEC-12, not the circular itself; docs/pile-driving.md). Or take a published set instead of the
+# quakes and damping: parameter_set = "gec12" or "grlweap", with shaft_soil and toe_quake_rule (or toe_quake).
 [soil]
 penetration = "15 m"
 capacity = "1.5 MN"

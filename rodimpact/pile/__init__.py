@@ -12,6 +12,7 @@ from .blow import Blow, StressEnvelope, blow_setup, drive_blow, drive_blows, str
 from .driving import DrivingSystem, impact_velocity
 from .hammers import HAMMER_KINDS, Hammer, hammer, hammer_names
 from .soil import CapacitySoil, SoilDynamics, SoilLayer, SoilProfile, SoilResistance
+from .soil_sets import SoilParameterSet, soil_set, soil_set_names
 
 __all__ = [
     "Blow",
@@ -21,6 +22,7 @@ __all__ = [
     "Hammer",
     "SoilDynamics",
     "SoilLayer",
+    "SoilParameterSet",
     "SoilProfile",
     "SoilResistance",
     "StressEnvelope",
@@ -29,6 +31,8 @@ __all__ = [
     "drive_blows",
     "hammer",
     "hammer_names",
+    "soil_set",
+    "soil_set_names",
     "impact_velocity",
     "stress_envelope",
     "transferred_energy",

@@ -23,6 +23,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from .._validate import finite_array, non_negative, positive
+from .soil_sets import soil_set
 
 #: Smith damping kinds: "smith" R_s (1 + J V), "smith-viscous" J R_u V, "case" J_c Z V
 DAMPING_KINDS = ("smith", "smith-viscous", "case")
@@ -37,9 +38,9 @@ class SoilDynamics:
     """Smith's dynamic soil parameters: the quakes (m, > 0; deformation at which the static resistance reaches its
     ultimate value; a rigid-plastic soil is approached by a small quake) of the shaft and the toe, the toe's unloading quake (m, at most the toe quake; ``None``: the toe quake), the
     damping factors of the shaft and the toe (s/m for the ``smith`` and ``smith-viscous`` kinds, dimensionless
-    for ``case``) and the ``damping_kind``. No defaults: the values commonly attributed to Smith (1960), quake
-    0.1 in = 2.54 mm, toe damping 0.15 s/ft, shaft damping 0.05 s/ft, are shown in the template (``rodimpact init
-    drive``); they were not verified against the paper here (docs/soil.md says the same)."""
+    for ``case``) and the ``damping_kind``. No defaults: state the values for the job, or take a published set
+    with :meth:`published` (``SoilDynamics.published("grlweap", "sand", "very-dense-or-hard", toe_diameter=0.61)``;
+    the sets and where each number was read: :mod:`rodimpact.pile.soil_sets`)."""
 
     shaft_quake: float
     toe_quake: float
@@ -47,6 +48,20 @@ class SoilDynamics:
     toe_damping: float
     damping_kind: str = "smith"
     unloading_quake: Optional[float] = None
+
+    @classmethod
+    def published(cls, parameter_set: str, shaft_soil: str, toe_quake: Any, toe_diameter: Optional[float] = None,
+                  unloading_quake: Optional[float] = None) -> "SoilDynamics":
+        """Smith parameters from the shipped ``parameter_set`` (``gec12``, ``grlweap``;
+        :func:`rodimpact.pile.soil_sets.soil_set`): its shaft quake, the shaft damping of ``shaft_soil``, its toe
+        damping (``damping_kind = "smith"``: the sets give Smith's J), and the toe quake of the set's rule
+        ``toe_quake`` (with ``toe_diameter`` in m for a rule D / n) or a length given for the job."""
+        s = soil_set(parameter_set)
+        if shaft_soil not in s.shaft_damping:
+            raise ValueError(f"shaft_soil: {shaft_soil!r} is not a soil of the {s.name!r} set; one of "
+                             f"{', '.join(map(repr, s.shaft_damping))}")
+        return cls(s.shaft_quake, s.resolve_toe_quake(toe_quake, toe_diameter), s.shaft_damping[shaft_soil],
+                   s.toe_damping, "smith", unloading_quake)
 
     def __post_init__(self) -> None:
         for name in ("shaft_quake", "toe_quake"):

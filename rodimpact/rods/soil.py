@@ -29,10 +29,12 @@ The law (Smith 1960: R = R_s (1 + J_s V)) is R = R_s + R_d:
     Case damping option; not verified against the manual here).
 
 Defaults. The quake q = 2.54 mm (0.1 in), the shaft damping 0.05 s/ft = 0.164 s/m and the toe damping
-0.15 s/ft = 0.492 s/m are the values commonly attributed to Smith (1960) and used as standard values in
-GRLWEAP and FHWA GEC-12 (FHWA-NHI-16-009, Ch. 12). NOT VERIFIED: the search of the stored pages and
-documentation found no copy of Smith (1960), the GRLWEAP manual or GEC-12 that states them; check them
-against the source before relying on the defaults. The Case damping has no default (J_c must be given).
+0.15 s/ft = 0.492 s/m are FHWA GEC-12's defaults for a non-cohesive soil (FHWA-NHI-16-009, Vol. II, sec. 12.5
+and 12.8; the ``gec12`` set of :mod:`rodimpact.pile.soil_sets`, which a test keeps equal to them). Read at second
+hand, from quotations of GEC-12 in a third-party report (docs/pile-driving.md, "Soil parameters and their
+sources"); Smith (1960), to whom they are often attributed, could not be read. The toe's default quake, the
+same 0.1 in, has no source: the quoted sentences give no toe quake. The Case damping has no default (J_c must be
+given).
 """
 
 from __future__ import annotations
@@ -51,11 +53,11 @@ from .declared import rod as rod_index
 
 #: damping laws (module docstring); the kernel codes of :mod:`rodimpact.direct.soil`
 DAMPING_KINDS = ("smith", "smith-viscous", "case")
-#: Smith's quake, 0.1 in (m); see the module docstring for the (unverified) source
+#: GEC-12's default quake, 0.10 in (m); see the module docstring for the source
 DEFAULT_QUAKE = 0.1 * 0.0254
-#: Smith shaft damping 0.05 s/ft in s/m; see the module docstring
+#: GEC-12's shaft damping of a non-cohesive soil, 0.05 s/ft in s/m; see the module docstring
 DEFAULT_SHAFT_DAMPING = 0.05 / 0.3048
-#: Smith toe damping 0.15 s/ft in s/m; see the module docstring
+#: GEC-12's toe damping, 0.15 s/ft in s/m; see the module docstring
 DEFAULT_TOE_DAMPING = 0.15 / 0.3048
 
 _KIND_DOC = "Damping law: `smith` (J_s abs(R_s) V), `smith-viscous` (J_sv R_u V) or `case` (J_c Z V)."
