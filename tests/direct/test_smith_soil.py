@@ -270,7 +270,6 @@ def test_node_resistance_sums_the_layers_as_the_scalar_integral():
     """ShaftResistance.node_resistance (vectorised over the node edges) against the layer-by-layer integral
     _integral at every edge: the same sums in the same order, so equal bit for bit; and the nodes' resistances
     add up to the total."""
-    from rodimpact.rods.soil import ShaftResistance
 
     rng = np.random.default_rng(7)
     for _ in range(50):
