@@ -39,7 +39,7 @@ from .units import blows_per_foot, blows_per_inch, blows_per_quarter_metre
 #: default run length: this many round trips 2 L / c of the pile after impact
 ROUND_TRIPS = 10
 #: default time step: the longest rod gets at least this many lattice elements
-PILE_ELEMENTS = 100
+PILE_ELEMENTS = 50
 
 
 def transferred_energy(force: np.ndarray, velocity: np.ndarray, dt: float) -> np.ndarray:
