@@ -1,10 +1,10 @@
 """How many pile elements a blow needs: the permanent set, the largest compressive and tensile stresses and EMX
 of the benchmark's blow (``bench_pile.py``: 30 m pipe pile, rigid ram with hammer cushion and helmet, Smith soil,
-40 % on the shaft, triangular, toe at 25 m) against the number of pile elements n (dt = 2 L / c / (2 n); the
-shaft soil is gathered at the n - 1 interior nodes, the segment edges of ``pile_edges`` follow n), at five
-capacities. The reference is n = 800; the pile itself is exact at every n (the lattice carries waves without
-dispersion), so what converges is the soil's lumping at the nodes and the step of the hammer chain and the soil
-node solves (second order in dt).
+40 % on the shaft, triangular, toe at 25 m) against the number of pile elements n (dt = L / (c n); the shaft
+soil is gathered at the interior nodes below ground, the segments of the triangular distribution follow n as in
+``pile_edges``), at five capacities. The reference is n = 800; the pile itself is exact at every n (the lattice
+carries waves without dispersion), so what converges is the soil's lumping at the nodes and the time step of the
+hammer chain and the soil node solves.
 
 Run:  python benchmarks/pile_elements.py          (writes the "pile-elements" section of docs/pile-driving.md)
       python benchmarks/pile_elements.py --quick  (prints only, n <= 200)
@@ -68,7 +68,7 @@ def main() -> None:
         err.append(f"| {n} | " + " | ".join(f"{100 * x:.2f} %" for x in worst[n]) + " |")
     text = ("The benchmark's blow (`benchmarks/pile_elements.py`: the 30 m pipe pile of `bench_pile.py`, rigid "
             "4536 kg ram, 2 GN/m hammer cushion, 1 t helmet, Smith soil 40 % on the shaft, triangular, toe at 25 m) "
-            f"against the number of pile elements n (shaft soil at the n - 1 interior nodes), at five capacities; "
+            f"against the number of pile elements n (shaft soil at the interior nodes below ground), at five capacities; "
             f"reference n = {sizes[-1]}:\n\n" + "\n".join(lines) +
             f"\n\nLargest deviation from n = {sizes[-1]} over the five capacities (set: relative to the reference "
             "set, at least 0.1 mm, since near refusal the set is a few micrometres):\n\n" + "\n".join(err) + "\n")

@@ -8,7 +8,7 @@ when more than 10 points run on a terminal). The bearing graph's blows differ on
 lattice (:func:`~rodimpact.pile.blow.drive_blow_batch`); each costs one run of the compiled kernels, which is
 nearly all of its time (the soil node solves most: docs/performance.md). The batched solver
 (:func:`rodimpact.simulate_batch`) varies strikers and takes no lumped heads or soil; on one core a single
-compiled call over the capacities would save only the Python set-up of each blow (about 1 ms of 14 ms at the
+compiled call over the capacities would save only the Python set-up of each blow (about 1 ms of 12 ms at the
 default 50 pile elements).
 """
 
