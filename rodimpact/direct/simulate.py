@@ -131,8 +131,8 @@ def solve_compiled(compiled: CompiledProblem, backend: Backend = "numba",
                    progress: Optional[bool] = None) -> SimulationResult:
     """Run a compiled problem (:meth:`Problem.compile <rodimpact.direct.problem.Problem.compile>`, whose state
     arrays the loop advances in place: each run needs its own) as :func:`simulate` runs its problem. The pile
-    blows of a bearing graph (:func:`rodimpact.pile.blow.drive_blow_batch`) compile one problem and run it with
-    each soil."""
+    blows of a bearing graph (:func:`rodimpact.pile.blow.drive_blow_batch`) compile the problem of each soil on
+    one lattice and run it with this."""
     problem = compiled.problem
     allowed = tolerance.check(problem.system, compiled.lattice, problem.allow_discretization_error)
     return _run(compiled, backend, progress, _time.perf_counter(), allowed)

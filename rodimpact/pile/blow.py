@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any, Iterator, Mapping, Optional, Sequence
+from typing import Any, Iterable, Iterator, Mapping, Optional
 
 import numpy as np
 
@@ -233,13 +233,14 @@ def drive_blow(pile: Rod, driving: DrivingSystem, soil: Optional[SoilResistance]
     return evaluate_blow(result, pile, setup.pile_index, soil)
 
 
-def drive_blow_batch(pile: Rod, driving: DrivingSystem, soils: Sequence[SoilResistance], *,
+def drive_blow_batch(pile: Rod, driving: DrivingSystem, soils: Iterable[SoilResistance], *,
                      gauges: Optional[Mapping[str, float]] = None, duration: Optional[float] = None,
                      dt: Optional[float] = None, backend: str = "numba") -> Iterator[Blow]:
     """One blow of ``driving`` on ``pile`` against each of ``soils`` (each from the same initial state; arguments
     as :func:`drive_blow`), yielded in order: equal to ``drive_blow`` for each soil (tested), the lattice of
     the pile and the driving system built once for all (the soil does not change it: its default time step
-    and run length depend on the rods only). The bearing graph runs its capacities through this."""
+    and run length depend on the rods only). The bearing graph and drivability run their points through
+    this."""
     lattice = None
     for soil in soils:
         setup = blow_setup(pile, driving, soil, gauges=gauges, duration=duration, dt=dt)

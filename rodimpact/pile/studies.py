@@ -4,10 +4,10 @@ profile) and the inspector's chart (impact velocity or stroke against blow count
 
 Each point is one blow (:func:`~rodimpact.pile.drive_blow`) from the same initial state (at rest, no residual
 stress), run one after another with progress on stderr (a bar on a terminal, else a line at every 10 %; by default
-when more than 10 points run on a terminal). The bearing graph's blows differ only in their soil and share one
-lattice (:func:`~rodimpact.pile.blow.drive_blow_batch`); each costs one run of the compiled kernels, which is
-nearly all of its time (the soil node solves most: docs/performance.md). The batched solver
-(:func:`rodimpact.simulate_batch`) varies strikers and takes no lumped heads or soil; on one core a single
+when more than 10 points run on a terminal). The blows of the bearing graph and of drivability differ only in
+their soil and share one lattice (:func:`~rodimpact.pile.blow.drive_blow_batch`); each costs one run of the
+compiled kernels, which is nearly all of its time (the soil node solves most: docs/performance.md). The batched
+solver (:func:`rodimpact.simulate_batch`) varies strikers and takes no lumped heads or soil; on one core a single
 compiled call over the capacities would save only the Python set-up of each blow (about 1 ms of 12 ms at the
 default 50 pile elements).
 """
@@ -119,8 +119,8 @@ def drivability(pile: Rod, driving: DrivingSystem, profile: SoilProfile, depths:
     if np.any(zs <= 0) or np.any(zs > pile.length * (1 + 1e-12)):
         bad = zs[(zs <= 0) | (zs > pile.length * (1 + 1e-12))][0]
         raise ValueError(f"depths: must lie in (0, {pile.length:.6g}] m (the pile's length), got {bad:.6g} m")
-    return _run("depth", "m", zs, (drive_blow(pile, driving, profile.resistance(float(d)), **blow_options)
-                                   for d in zs), progress, "drivability")
+    return _run("depth", "m", zs, drive_blow_batch(pile, driving, (profile.resistance(float(d)) for d in zs),
+                                                   **blow_options), progress, "drivability")
 
 
 def inspector_chart(pile: Rod, driving: DrivingSystem, soil: SoilResistance, *,

@@ -40,14 +40,15 @@ def test_drivability_meets_the_profiles_resistance_and_refuses_a_deeper_profile(
 
 
 def test_batched_blows_equal_blows_run_one_by_one():
-    """drive_blow_batch (one lattice for all soils, the bearing graph's driver) against drive_blow per soil, with a
-    gauge and both backends' kernels compiled alike: every history and the set equal to 1e-12."""
+    """drive_blow_batch (one lattice for all soils, the driver of the bearing graph and drivability) against
+    drive_blow per soil, with a gauge: every history, the envelopes and the set equal to 1e-12."""
     from rodimpact.pile import drive_blow
     from rodimpact.pile.blow import drive_blow_batch
 
-    soils = [CapacitySoil(c, 0.5, DYN, distribution="triangular").resistance(12.0) for c in (0.3e6, 0.9e6, 2e6)]
+    soils = [CapacitySoil(c, 0.5, DYN, distribution="triangular").resistance(d)
+             for c, d in ((0.3e6, 12.0), (0.9e6, 12.0), (2e6, 12.0), (0.9e6, 5.0))]   # the last: other soil nodes
     batched = list(drive_blow_batch(PILE, DRIVING, soils, gauges={"mid": 7.5}))
-    assert len(batched) == 3
+    assert len(batched) == 4
     for soil, b in zip(soils, batched):
         ref = drive_blow(PILE, DRIVING, soil, gauges={"mid": 7.5})
         assert b.soil is soil
