@@ -157,10 +157,17 @@ class Problem:
         """The equal-travel-time lattice of the system at ``time.dt`` (built once per problem)."""
         return build_lattice(self.system, self.time.dt)
 
-    def compile(self) -> CompiledProblem:
+    def compile(self, lattice: Optional[Lattice] = None) -> CompiledProblem:
         """The lattice, the initial element state and the kernel inputs of this problem (a fresh state each
-        call: the solvers advance it in place)."""
-        lat = self.lattice
+        call: the solvers advance it in place). ``lattice``: the lattice of another problem with the same rods
+        and time step, built once for a batch of problems that differ only in their ends, junctions, loads or
+        initial state (the soils of a bearing graph, :func:`rodimpact.pile.blow.drive_blow_batch`); its time
+        step and rod count are checked here, the rods by the discretisation check of the run."""
+        lat = self.lattice if lattice is None else lattice
+        if lattice is not None and (lattice.dt != self.time.dt or lattice.n_rods != len(self.system.rods)):
+            raise ValueError(f"lattice: built for other rods or another time step (dt = {lattice.dt:.6g} s, "
+                             f"{lattice.n_rods} rods) than this problem's (dt = {self.time.dt:.6g} s, "
+                             f"{len(self.system.rods)} rods)")
         N, v = initial_state(self.system, lat)
         arrays = kernel_arrays(self.system, lat, N, v, list(self.outputs.probes))
         return CompiledProblem(self, lat, N, v, arrays)

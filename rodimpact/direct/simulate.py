@@ -16,7 +16,7 @@ from ..rods.system import System
 from . import _kernels as K
 from . import boundary as B
 from . import guards
-from .problem import Problem, wave_arrays
+from .problem import CompiledProblem, Problem, wave_arrays
 from .recording import Recorder, Outputs
 from .soil import soil_arrays
 from .soil_result import soil_outcome
@@ -121,13 +121,31 @@ def simulate(problem: Problem | System | Sequence[Rod] | Rod, velocities: Option
 def _solve(problem: Problem, backend: Backend, progress: Optional[bool],
            max_element_updates: Optional[float]) -> SimulationResult:
     """Run ``problem``: the discretisation check, the compiled or numpy loop, the result with its diagnostics."""
+    allowed = tolerance.check(problem.system, problem.lattice, problem.allow_discretization_error)
+    guards.check_element_updates(problem.lattice.n_elements, problem.time.steps, max_element_updates)
+    wall0 = _time.perf_counter()
+    return _run(problem.compile(), backend, progress, wall0, allowed)
+
+
+def solve_compiled(compiled: CompiledProblem, backend: Backend = "numba",
+                   progress: Optional[bool] = None) -> SimulationResult:
+    """Run a compiled problem (:meth:`Problem.compile <rodimpact.direct.problem.Problem.compile>`, whose state
+    arrays the loop advances in place: each run needs its own) as :func:`simulate` runs its problem. The pile
+    blows of a bearing graph (:func:`rodimpact.pile.blow.drive_blow_batch`) compile the problem of each soil on
+    one lattice and run it with this."""
+    problem = compiled.problem
+    allowed = tolerance.check(problem.system, compiled.lattice, problem.allow_discretization_error)
+    return _run(compiled, backend, progress, _time.perf_counter(), allowed)
+
+
+def _run(compiled: CompiledProblem, backend: Backend, progress: Optional[bool], wall0: float,
+         allowed: list[str]) -> SimulationResult:
+    """The loop of ``backend`` on ``compiled`` and the result (wall time from ``wall0``, the discretisation
+    warnings ``allowed``)."""
+    problem = compiled.problem
     system, record = problem.system, problem.outputs
     dt, n_steps = problem.time.dt, problem.time.steps
-    lattice = problem.lattice
-    allowed = tolerance.check(system, lattice, problem.allow_discretization_error)
-    guards.check_element_updates(lattice.n_elements, n_steps, max_element_updates)
-    wall0 = _time.perf_counter()
-    compiled = problem.compile()
+    lattice = compiled.lattice
     arrays = compiled.arrays
     state = {"N": compiled.N, "v": compiled.v}
     bar = guards.progress(progress, n_steps, lattice.n_elements)

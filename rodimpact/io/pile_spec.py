@@ -149,7 +149,7 @@ ANALYSIS = Table("analysis", "What to compute.", (
 ), '[analysis]\nkind = "bearing-graph"\ncapacities = ["0.5 MN", "1 MN", "2 MN", "3 MN"]')
 
 SIMULATION = Table("simulation", "Run settings.", (
-    _q("dt", "time", "Time step; default: the longest rod in at least 100 elements.", required=False),
+    _q("dt", "time", "Time step; default: the longest rod in at least 50 elements.", required=False),
     _q("duration", "time", "Simulated time of a blow; default: 10 round trips 2 L / c of the pile.", required=False),
     Field("backend", "string", "`numba` (compiled) or `numpy` (reference).", default="numba",
           choices=("numba", "numpy")),
@@ -624,7 +624,7 @@ kind = "blow"
 # capacities = ["0.5 MN", "1 MN", "1.5 MN", "2 MN", "3 MN"]
 
 [simulation]
-# dt = "20 us"                 # default: the longest rod in at least 100 elements
+# dt = "20 us"                 # default: the longest rod in at least 50 elements
 # duration = "40 ms"           # default: 10 round trips 2 L / c of the pile
 backend = "numba"
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any, Mapping, Optional
+from typing import Any, Iterable, Iterator, Mapping, Optional
 
 import numpy as np
 
@@ -25,7 +25,7 @@ from .._validate import integer, non_negative, positive
 from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
 from ..direct.result import PEAK_REL_TOL, Probe, ProbeHistory, SimulationResult
-from ..direct.simulate import simulate
+from ..direct.simulate import simulate, solve_compiled
 from ..direct.soil_result import next_blow
 from ..lattice.lattice import default_time_step
 from ..rods.conditions import Contact, FreeEnd
@@ -39,7 +39,7 @@ from .units import blows_per_foot, blows_per_inch, blows_per_quarter_metre
 #: default run length: this many round trips 2 L / c of the pile after impact
 ROUND_TRIPS = 10
 #: default time step: the longest rod gets at least this many lattice elements
-PILE_ELEMENTS = 100
+PILE_ELEMENTS = 50
 
 
 def transferred_energy(force: np.ndarray, velocity: np.ndarray, dt: float) -> np.ndarray:
@@ -231,6 +231,22 @@ def drive_blow(pile: Rod, driving: DrivingSystem, soil: Optional[SoilResistance]
     setup = blow_setup(pile, driving, soil, gauges=gauges, duration=duration, dt=dt, toe=toe)
     result = simulate(setup.problem, backend=backend, progress=False)
     return evaluate_blow(result, pile, setup.pile_index, soil)
+
+
+def drive_blow_batch(pile: Rod, driving: DrivingSystem, soils: Iterable[SoilResistance], *,
+                     gauges: Optional[Mapping[str, float]] = None, duration: Optional[float] = None,
+                     dt: Optional[float] = None, backend: str = "numba") -> Iterator[Blow]:
+    """One blow of ``driving`` on ``pile`` against each of ``soils`` (each from the same initial state; arguments
+    as :func:`drive_blow`), yielded in order: equal to ``drive_blow`` for each soil (tested), the lattice of
+    the pile and the driving system built once for all (the soil does not change it: its default time step
+    and run length depend on the rods only). The bearing graph and drivability run their points through
+    this."""
+    lattice = None
+    for soil in soils:
+        setup = blow_setup(pile, driving, soil, gauges=gauges, duration=duration, dt=dt)
+        lattice = setup.problem.lattice if lattice is None else lattice
+        result = solve_compiled(setup.problem.compile(lattice), backend, progress=False)
+        yield evaluate_blow(result, pile, setup.pile_index, soil)
 
 
 def evaluate_blow(result: SimulationResult, pile: Rod, pile_index: int, soil: Optional[SoilResistance]) -> Blow:

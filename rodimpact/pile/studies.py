@@ -4,8 +4,12 @@ profile) and the inspector's chart (impact velocity or stroke against blow count
 
 Each point is one blow (:func:`~rodimpact.pile.drive_blow`) from the same initial state (at rest, no residual
 stress), run one after another with progress on stderr (a bar on a terminal, else a line at every 10 %; by default
-when more than 10 points run on a terminal). The batched solver (:func:`rodimpact.simulate_batch`) does not take
-lumped heads or soil, so the points are a loop; each costs one run of the compiled kernels.
+when more than 10 points run on a terminal). The blows of the bearing graph and of drivability differ only in
+their soil and share one lattice (:func:`~rodimpact.pile.blow.drive_blow_batch`); each costs one run of the
+compiled kernels, which is nearly all of its time (the soil node solves most: docs/performance.md). The batched
+solver (:func:`rodimpact.simulate_batch`) varies strikers and takes no lumped heads or soil; on one core a single
+compiled call over the capacities would save only the Python set-up of each blow (about 1 ms of 12 ms at the
+default 50 pile elements).
 """
 
 from __future__ import annotations
@@ -14,14 +18,14 @@ import dataclasses
 import math
 import sys
 from dataclasses import dataclass
-from typing import Any, Callable, Optional, Sequence
+from typing import Any, Callable, Iterable, Optional, Sequence
 
 import numpy as np
 
 from .._validate import finite_array
 from ..direct.guards import Progress
 from ..rods.rod import Rod
-from .blow import PILE_ELEMENTS, Blow, drive_blow
+from .blow import PILE_ELEMENTS, Blow, drive_blow, drive_blow_batch
 from .driving import DrivingSystem, impact_velocity
 from .soil import CapacitySoil, SoilProfile, SoilResistance
 
@@ -58,15 +62,15 @@ class BlowTable:
         return self.blows_per_quarter_metre * (0.3048 / 0.25)
 
 
-def _run(x_name: str, x_unit: str, xs: np.ndarray, blow_of: Callable[[float], Blow], progress: Optional[bool],
+def _run(x_name: str, x_unit: str, xs: np.ndarray, blows: Iterable[Blow], progress: Optional[bool],
          desc: str) -> BlowTable:
+    """The table of the ``blows``, one per point of ``xs`` (run as they are taken), with progress on stderr."""
     if progress is None:
         progress = sys.stderr.isatty() and xs.size > 10
     bar = Progress(xs.size, unit="blow", desc=desc) if progress else None
     rows = []
     try:
-        for x in xs:
-            b = blow_of(float(x))
+        for b in blows:
             c, t = b.envelope.max_compression, b.envelope.max_tension
             rows.append((b.permanent_set, b.blows_per_quarter_metre, c[0], c[1], t[0], t[1], b.emx, b.soil.total))
             if bar is not None:
@@ -94,12 +98,13 @@ def bearing_graph(pile: Rod, driving: DrivingSystem, soil: CapacitySoil, capacit
         raise ValueError(f"capacities: must be > 0 N, got {caps.min():.6g} N")
     edges = pile_edges(pile, penetration)
 
-    def blow(capacity: float) -> Blow:
+    def resistance(capacity: float) -> SoilResistance:
         scaled = dataclasses.replace(soil, capacity=capacity, shaft_resistances=None if soil.shaft_resistances is None
                                      else np.asarray(soil.shaft_resistances) * capacity / soil.capacity)
-        return drive_blow(pile, driving, scaled.resistance(penetration, edges), **blow_options)
+        return scaled.resistance(penetration, edges)
 
-    return _run("capacity", "N", caps, blow, progress, "bearing graph")
+    return _run("capacity", "N", caps, drive_blow_batch(pile, driving, (resistance(float(c)) for c in caps),
+                                                        **blow_options), progress, "bearing graph")
 
 
 def drivability(pile: Rod, driving: DrivingSystem, profile: SoilProfile, depths: Sequence[float], *,
@@ -114,8 +119,8 @@ def drivability(pile: Rod, driving: DrivingSystem, profile: SoilProfile, depths:
     if np.any(zs <= 0) or np.any(zs > pile.length * (1 + 1e-12)):
         bad = zs[(zs <= 0) | (zs > pile.length * (1 + 1e-12))][0]
         raise ValueError(f"depths: must lie in (0, {pile.length:.6g}] m (the pile's length), got {bad:.6g} m")
-    return _run("depth", "m", zs, lambda d: drive_blow(pile, driving, profile.resistance(d), **blow_options),
-                progress, "drivability")
+    return _run("depth", "m", zs, drive_blow_batch(pile, driving, (profile.resistance(float(d)) for d in zs),
+                                                   **blow_options), progress, "drivability")
 
 
 def inspector_chart(pile: Rod, driving: DrivingSystem, soil: SoilResistance, *,
@@ -133,5 +138,5 @@ def inspector_chart(pile: Rod, driving: DrivingSystem, soil: SoilResistance, *,
         xs, name, unit = finite_array("strokes", strokes, unit="m"), "stroke", "m"
         impact_velocity(float(xs[0]), efficiency)                      # refuses a missing efficiency up front
         speed = lambda h: impact_velocity(h, efficiency)
-    return _run(name, unit, xs, lambda x: drive_blow(pile, dataclasses.replace(driving, impact_velocity=speed(x)),
-                                                     soil, **blow_options), progress, "inspector chart")
+    return _run(name, unit, xs, (drive_blow(pile, dataclasses.replace(driving, impact_velocity=speed(float(x))),
+                                            soil, **blow_options) for x in xs), progress, "inspector chart")

@@ -255,8 +255,15 @@ class ShaftResistance:
         rod of ``length``): the integral of the unit resistance over each node's half elements, the end halves
         added to the nearest interior node."""
         edges = np.concatenate([[0.0], 0.5 * (x_nodes[1:] + x_nodes[:-1]), [length]])
-        cum = np.array([self._integral(x) for x in edges])
-        return np.diff(cum)
+        return np.diff(self._integrals(edges))
+
+    def _integrals(self, x: np.ndarray) -> np.ndarray:
+        """int_0^x of the unit resistance at every ``x`` (m), N: the layers' shares summed in depth order
+        (``np.cumsum`` is sequential), as :meth:`_integral` sums them."""
+        a, b = np.asarray(self.depths[:-1], dtype=float), np.asarray(self.depths[1:], dtype=float)
+        shares = np.asarray(self.unit_resistance, dtype=float) * np.maximum(
+            0.0, np.minimum(b, np.asarray(x, dtype=float)[:, None]) - a)
+        return np.cumsum(shares, axis=1)[:, -1]
 
     def _integral(self, x: float) -> float:
         """int_0^x of the unit resistance, N."""

@@ -97,3 +97,18 @@ def test_a_model_file_is_a_problem():
     assert m.problem.time == TimeGrid(DT, 11) and m.n_steps == 11
     assert m.problem.outputs.snapshot_every == 2
     np.testing.assert_array_equal(m.simulate().contact_force, ri.simulate(m.problem).contact_force)
+
+
+def test_compile_on_a_shared_lattice_equals_its_own_and_refuses_another_time_step():
+    """Problem.compile(lattice): a lattice built for the same rods and dt gives the same kernel inputs as the
+    problem's own; one built at another dt is refused, naming the argument."""
+    rod = ri.Rod([ri.Cylinder(1.0, 0.02)])
+    first = Problem.of([rod, rod], [5.0, 0.0], steps=50, dt=2e-6)
+    second = Problem.of(ri.System([rod, rod], [5.0, 0.0], right="fixed"), steps=50, dt=2e-6)
+    own, shared = second.compile(), second.compile(first.lattice)
+    assert shared.lattice is first.lattice
+    assert np.array_equal(own.N, shared.N) and np.array_equal(own.v, shared.v)
+    assert np.array_equal(own.arrays["end_code"], shared.arrays["end_code"])
+    other = Problem.of([rod, rod], [5.0, 0.0], steps=50, dt=1e-6)
+    with pytest.raises(ValueError, match=r"^lattice: built for other rods or another time step"):
+        second.compile(other.lattice)

@@ -264,3 +264,23 @@ def test_shaft_dashpots_add_up_to_the_laws_total(kind: str, j: float, total: flo
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     # measured (case): errors 3.7e-6, 8.4e-7, 2.0e-7; orders 2.12, 2.06
     assert np.all(orders > 1.9) and errors[-1] < 1e-6, (errors, orders)
+
+
+def test_node_resistance_sums_the_layers_as_the_scalar_integral():
+    """ShaftResistance.node_resistance (vectorised over the node edges) against the layer-by-layer integral
+    _integral at every edge: the same sums in the same order, so equal bit for bit; and the nodes' resistances
+    add up to the total."""
+
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        n = int(rng.integers(1, 90))
+        depths = np.concatenate([[rng.uniform(0.0, 2.0)], rng.uniform(0.01, 1.0, n)]).cumsum()
+        unit = rng.uniform(0.0, 1e5, n) * (rng.uniform(size=n) > 0.2)
+        shaft = ShaftResistance(0, tuple(depths), tuple(unit))
+        length = depths[-1] + rng.uniform(0.0, 1.0)
+        x_nodes = np.linspace(0.0, length, int(rng.integers(3, 120)))[1:-1]
+        edges = np.concatenate([[0.0], 0.5 * (x_nodes[1:] + x_nodes[:-1]), [length]])
+        want = np.diff([shaft._integral(x) for x in edges])
+        got = shaft.node_resistance(x_nodes, length)
+        assert np.array_equal(got, want)
+        assert got.sum() == pytest.approx(shaft.total, rel=1e-12)
