@@ -415,11 +415,12 @@ def sensitivity_table(runs: list[Validation]) -> list[str]:
     return rows
 
 
-def unloading_note(mini: Validation) -> str:
-    """What the end of the PMMA record says about the specimen (:func:`unloading`), against the elastic unloading
-    time Z / (2 k) of a massless specimen of the stiffest variant's modulus between the bars."""
-    u = unloading(mini.reduction)
-    bar, geom = mini.shot.incident_bar, mini.shot.specimen
+def unloading_note(shot: Shot, red: ShpbReduction) -> str:
+    """What the end of the PMMA record says about the specimen (:func:`unloading` of its reduction ``red``), against
+    the elastic unloading time Z / (2 k) of a massless specimen of the stiffest variant's modulus between the
+    bars."""
+    u = unloading(red)
+    bar, geom = shot.incident_bar, shot.specimen
     e_max = max(e for e, _ in PMMA_VARIANTS)
     tau = bar.material.impedance(bar.area) / (2.0 * e_max * geom.area / geom.length)
     return (f"The record ends the loading pulse with a drop no intact PMMA specimen can follow: in the 3-wave "
@@ -475,7 +476,7 @@ def render(lanl: Validation, mini: Validation, sensitivity: list[Validation]) ->
         "",
         *sensitivity_table(sensitivity),
         "",
-        unloading_note(mini),
+        unloading_note(mini.shot, mini.reduction),
         "",
         "## Caveats",
         "",
