@@ -78,4 +78,5 @@ SHPB_KEYS: dict[str, Rule] = {
     **{f"KolskyBar.{k}": f"bars.{k}" for k in ("incident", "transmitted", "striker", "momentum_trap")},
     **{f"KolskyBar.{k}_gauge": f"gauges.{k}" for k in ("incident", "transmitted")},
     "KolskyBar.specimen": "specimen", "KolskyBar.shaper": "shaper",
+    "KolskyBar.specimen_inertia": "simulation.specimen_inertia",
 }

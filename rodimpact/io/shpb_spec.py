@@ -106,6 +106,9 @@ SIMULATION = Table("simulation", "Run settings.", (
        required=False),
     Field("backend", "string", "`numba` (compiled) or `numpy` (reference).", default="numba",
           choices=("numba", "numpy")),
+    Field("specimen_inertia", "boolean", "Give the specimen its mass: its elastic part a rod of the lattice (needs "
+                                         "`specimen.density`), its inelastic part a massless law joint "
+                                         "(`KolskyBar(specimen_inertia=True)`, docs/shpb.md).", default=False),
 ), '[simulation]\ndt = "0.2 us"')
 
 SHPB_OUTPUT = Table("output", "What to write.", (Field("plots", "boolean", "Write the plots.", default=True),))
@@ -167,7 +170,8 @@ class ShpbSpec:
         """Run :meth:`KolskyBar.predict` with these settings; errors name the spec's keys (``simulation.dt``,
         ``bars.incident``; :data:`rodimpact.io.keypaths.SHPB_KEYS`)."""
         kb = self.kolsky
-        bars = (["striker"] if self.incident_pulse is None else []) + ["incident", "transmitted"] \
+        bars = (["striker"] if self.incident_pulse is None else []) + ["incident"] \
+            + (["specimen"] if kb.specimen_inertia else []) + ["transmitted"] \
             + (["momentum_trap"] if kb.momentum_trap is not None else [])
         try:
             return kb.predict(self.striker_velocity, incident_pulse=self.incident_pulse, duration=self.duration,
@@ -175,7 +179,8 @@ class ShpbSpec:
         except ModelError:
             raise
         except (ValueError, TypeError) as exc:     # the system's rods are the bars, in this order
-            raise translated(exc, {**SHPB_KEYS, **{f"rods[{i}]": f"bars.{b}" for i, b in enumerate(bars)}}) from None
+            raise translated(exc, {**SHPB_KEYS, **{f"rods[{i}]": b if b == "specimen" else f"bars.{b}"
+                                                   for i, b in enumerate(bars)}}) from None
 
 
 def load_spec(path: str | Path, overrides: Optional[Mapping[str, Any]] = None) -> ShpbSpec:
@@ -219,7 +224,8 @@ def _spec(raw: dict, base: Path, text: str) -> ShpbSpec:
                          "input.incident_pulse instead")
     try:
         kolsky = KolskyBar(bars["incident"], bars["transmitted"], specimen, gauges["incident"],
-                           gauges["transmitted"], bars.get("striker"), shaper, bars.get("momentum_trap"))
+                           gauges["transmitted"], bars.get("striker"), shaper, bars.get("momentum_trap"),
+                           sim["specimen_inertia"])
     except (ValueError, TypeError) as exc:        # errors name the spec's keys, not KolskyBar's fields
         raise translated(exc, SHPB_KEYS) from None
     out = d["output"] or {"plots": True}

@@ -3,7 +3,9 @@ transmitted bar and optional momentum trap, with the gauge signals and the speci
 
 The bars are rods of the exact lattice (thesis ch. 3); the shaper and the specimen are deformable joints whose
 constitutive law is solved in every step (:mod:`rodimpact.direct.joints`; massless, i.e. in force
-equilibrium). The input is either the striker and its impact velocity, or a measured incident pulse, which then
+equilibrium). With ``specimen_inertia=True`` the specimen's elastic part is a rod of the lattice instead (its own
+impedance and wave speed: the ring-up by multiple reflections is resolved exactly), in series with a massless law
+joint that carries its inelastic shortening (:meth:`KolskyBar.system`). The input is either the striker and its impact velocity, or a measured incident pulse, which then
 drives the incident bar's free end so that it passes the incident gauge exactly as recorded.
 
 Signs: strains and forces in the bars are tension positive (a compressive pulse is negative), as the gauges
@@ -15,7 +17,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Optional, Sequence
 
 import numpy as np
@@ -25,14 +27,20 @@ from ..direct.problem import Problem, TimeGrid
 from ..direct.recording import Outputs
 from ..direct.result import Probe, SimulationResult
 from ..direct.simulate import simulate
-from ..rods.conditions import Contact, ForceEnd, FreeEnd, PulseShaper, Specimen
+from ..rods.conditions import Bonded, Contact, ForceEnd, FreeEnd, PulseShaper, Specimen
+from ..rods.laws import LinearElastic
+from ..rods.material import Material
 from ..rods.rod import Rod
+from ..rods.segments import Cylinder
 from ..rods.system import System
 from ..signals.gauges import Bridge
 
 #: equilibrium needs about four elastic transits of the specimen within the pulse's rise (Ravichandran and
 #: Subhash, J. Am. Ceram. Soc. 77 (1994) 263-267; Davies and Hunter, J. Mech. Phys. Solids 11 (1963) 155-179)
 TRANSITS_FOR_EQUILIBRIUM = 4.0
+#: with ``specimen_inertia``, the modulus of the law joint that carries the inelastic shortening, as a multiple of
+#: the law's own modulus: the joint's elastic compliance is then 1 % of the specimen rod's
+INERTIA_JOINT_STIFFENING = 100.0
 
 
 @dataclass(frozen=True)
@@ -78,7 +86,8 @@ class KolskyPrediction:
     Bar strains (tension positive) at the two gauges: ``incident`` and ``reflected`` (the right- and left-running
     parts at the incident gauge, separated exactly from the gauge's force and velocity: eps = (N -+ Z V) /
     (2 E A)), ``incident_gauge`` (their sum, what the gauge reads) and ``transmitted``. Specimen (compression
-    positive): ``force`` (N), ``strain`` and ``strain_rate`` (engineering, from the faces' displacements and
+    positive): ``force`` (N; with ``specimen_inertia`` the mean of the two face forces, as 3-wave reduction
+    takes it), ``strain`` and ``strain_rate`` (engineering, from the faces' displacements and
     velocities at the step midpoints), ``true_strain``, ``stress`` (engineering, F / A0) and ``true_stress``
     (F (1 - eps) / A0). ``volts``: the gauges' voltages where their chains are given.
     """
@@ -130,7 +139,8 @@ class KolskyBar:
     :class:`Gauge` stations (distance from the specimen face); ``striker``: the striker rod (for
     :meth:`predict` with an impact velocity); ``shaper``: an optional :class:`~rodimpact.PulseShaper` between
     striker and incident bar; ``momentum_trap``: an optional rod in unilateral contact behind the transmitted bar
-    (without one the transmitted bar's far end is free).
+    (without one the transmitted bar's far end is free); ``specimen_inertia``: model the specimen with its mass
+    (needs ``specimen.density``), see :meth:`system`.
     """
 
     incident: Rod
@@ -141,6 +151,7 @@ class KolskyBar:
     striker: Optional[Rod] = None
     shaper: Optional[PulseShaper] = None
     momentum_trap: Optional[Rod] = None
+    specimen_inertia: bool = False
 
     def __post_init__(self) -> None:
         for name in ("incident", "transmitted", "striker", "momentum_trap"):
@@ -154,6 +165,15 @@ class KolskyBar:
             raise TypeError(f"KolskyBar.specimen: must be a Specimen, got {type(self.specimen).__name__}")
         if self.shaper is not None and not isinstance(self.shaper, PulseShaper):
             raise TypeError(f"KolskyBar.shaper: must be a PulseShaper, got {type(self.shaper).__name__}")
+        if not isinstance(self.specimen_inertia, bool):
+            raise TypeError(f"KolskyBar.specimen_inertia: must be True or False, got {self.specimen_inertia!r}")
+        if self.specimen_inertia and self.specimen.density is None:
+            raise ValueError("KolskyBar.specimen.density: needed with specimen_inertia=True (the specimen rod's "
+                             "mass and wave speed); give Specimen(..., density=...)")
+        if self.specimen_inertia and self.specimen.law.compression_only:
+            raise ValueError(f"KolskyBar.specimen.law: the {type(self.specimen.law).__name__} law is a loading curve "
+                             "in total strain (a pulse shaper's), with no elastic part to give the specimen rod; "
+                             "use specimen_inertia=False")
         if self.shaper is not None and self.striker is None:
             raise ValueError("KolskyBar.shaper: a pulse shaper sits on the striker's face; give the striker too")
         for name, joint, left, right in (("specimen", self.specimen, self.incident, self.transmitted),
@@ -179,14 +199,39 @@ class KolskyBar:
             junctions.append(self.shaper if self.shaper is not None else Contact())
         else:
             left = ForceEnd(incident_force, interpolation="linear")
-        rods += [self.incident, self.transmitted]
-        velocities += [0.0, 0.0]
-        junctions.append(self.specimen)
+        rods.append(self.incident)
+        if self.specimen_inertia:
+            rods.append(self.specimen_rod())
+            junctions += self._specimen_junctions()
+        else:
+            junctions.append(self.specimen)
+        rods.append(self.transmitted)
+        velocities += [0.0] * (len(rods) - len(velocities))
         if self.momentum_trap is not None:
             rods.append(self.momentum_trap)
             velocities.append(0.0)
             junctions.append(Contact())
         return System(rods, velocities, junctions, left, "free")
+
+    def specimen_rod(self) -> Rod:
+        """The specimen as an elastic rod of the lattice (``specimen_inertia``): length L0, the specimen's area,
+        the law's (unloading) modulus E and the specimen's density, so its impedance A0 rho c and wave speed
+        c = sqrt(E / rho) are its own (a square or other section enters as the circle of equal area)."""
+        sp = self.specimen
+        return Rod([Cylinder(sp.length, sp.diameter)], material=Material(sp.law.modulus, sp.density, "specimen"),
+                   name="specimen")
+
+    def _specimen_junctions(self) -> list[Any]:
+        """The junctions on either side of :meth:`specimen_rod`: contact (or bonded, for a specimen that may pull)
+        at the incident face; at the transmitted face the same, or, for an inelastic law, a massless law joint
+        with the specimen's law, stiffened by :data:`INERTIA_JOINT_STIFFENING` so that its shortening is the
+        inelastic one, L0 its length and the specimen's area and measure."""
+        sp = self.specimen
+        face = Contact() if sp.compression_only else Bonded()
+        if isinstance(sp.law, LinearElastic):
+            return [face, face]
+        stiff = replace(sp.law, youngs_modulus=INERTIA_JOINT_STIFFENING * sp.law.modulus)
+        return [face, replace(sp, law=stiff)]
 
     def predict(self, striker_velocity: Optional[float] = None, *, incident_pulse: Any = None,
                 duration: Optional[float] = None, dt: Optional[float] = None,
@@ -220,9 +265,10 @@ class KolskyBar:
             pulse = 2.0 * self.striker.length / float(self.striker.wave_speed(0.0))
             system = self.system(striker_velocity)
         k_i = 1 if incident_pulse is None else 0           # index of the incident bar
+        k_t = k_i + (2 if self.specimen_inertia else 1)   # index of the transmitted bar
         probes = [Probe("incident_gauge", k_i, self.incident.length - self.incident_gauge.distance),
-                  Probe("transmitted_gauge", k_i + 1, self.transmitted_gauge.distance),
-                  Probe("incident_face", k_i, self.incident.length), Probe("transmitted_face", k_i + 1, 0.0)]
+                  Probe("transmitted_gauge", k_t, self.transmitted_gauge.distance),
+                  Probe("incident_face", k_i, self.incident.length), Probe("transmitted_face", k_t, 0.0)]
         if duration is None:
             c_t = float(self.transmitted.wave_speed(0.0))
             duration = to_gauge + 2.0 * self.incident_gauge.distance / c_i + pulse * 1.5 \
@@ -246,6 +292,8 @@ class KolskyBar:
         sp = self.specimen
         strain = delta_mid / sp.length
         force = -res.junction_force[k_i]
+        if self.specimen_inertia:                       # the faces differ during the ring-up: their mean (3-wave)
+            force = -0.5 * (res.junction_force[k_i] + res.junction_force[k_i + 1])
         stress = force / sp.area
         volts = {name: g.volts(sig) for name, g, sig in (("incident_gauge", self.incident_gauge, gi.strain),
                                                           ("transmitted_gauge", self.transmitted_gauge, gt.strain))
@@ -260,8 +308,9 @@ class KolskyBar:
 
     def _check_equilibrium_validity(self, incident: np.ndarray, time: np.ndarray, pulse: float) -> None:
         """Warn, with the numbers, when the specimen's elastic transit time is not small against the incident
-        pulse's rise time (10 % to 90 % of its peak): the massless joint assumes equilibrium."""
-        if self.specimen.density is None:
+        pulse's rise time (10 % to 90 % of its peak): the massless joint assumes equilibrium (not needed with
+        ``specimen_inertia``: the specimen rod resolves its ring-up)."""
+        if self.specimen.density is None or self.specimen_inertia:
             return
         c_s = math.sqrt(self.specimen.law.modulus / self.specimen.density)
         transit = self.specimen.length / c_s

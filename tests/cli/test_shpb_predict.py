@@ -88,6 +88,23 @@ def test_json_and_overrides_without_an_output_folder(tmp_path, capsys, monkeypat
     assert not (tmp_path / "out" / "plots").exists()             # [output] plots = false
 
 
+def test_the_specimen_inertia_key_gives_the_specimen_its_mass(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "shot.toml").write_text(TEMPLATE.replace("plots = true", "plots = false"))
+    inertia = ["--set", "simulation.specimen_inertia=true"]
+    assert cli.main(["shpb", "predict", "shot.toml", *inertia]) == 2            # the template's dt = 0.2 us
+    assert "simulation.dt: rod 2 (specimen): its travel time is represented with a 9.77 % error" \
+        in capsys.readouterr().err                                              # cannot resolve the specimen rod
+    finer = ["--set", "simulation.dt=0.178195 us"]                              # the step the message proposes
+    assert cli.main(["shpb", "predict", "shot.toml", "--json", *inertia, *finer]) == 0
+    printed = capsys.readouterr()
+    assert "elastic transit time" not in printed.err          # the ring-up is resolved: no equilibrium warning
+    assert json.loads(printed.out)["input"] == {"striker_velocity_m_s": 10.0}
+    (tmp_path / "light.toml").write_text(TEMPLATE.replace('density = "8960 kg/m^3"', "# no density"))
+    assert cli.main(["shpb", "predict", "light.toml", *inertia, *finer]) == 2
+    assert capsys.readouterr().err.startswith("rodimpact: error: specimen.density: needed with specimen_inertia")
+
+
 @pytest.mark.parametrize("change, message", [
     (('b = "292 MPa"', 'b = "-292 MPa"'), "rodimpact: error: specimen.law.b: must be >= 0, got -292 MPa"),
     (('type = "johnson-cook"', 'type = "jonson-cook"'),

@@ -95,6 +95,57 @@ def test_the_equilibrium_validity_warning_gives_the_numbers() -> None:
         _kolsky(specimen).predict(5.0, dt=DT, duration=3500 * DT)
 
 
+def _ring_up_specimen(law: ri.Law) -> ri.Specimen:
+    """A specimen of wave speed 2000 m/s (E = 10 GPa, rho = 2500 kg/m^3) and 10 lattice steps of transit."""
+    return ri.Specimen(law, 6e-3, 10 * 2000.0 * DT, density=2500.0, measure="engineering")
+
+
+@pytest.mark.parametrize("law, lag", [
+    (ri.LinearElastic(10e9), 0.0),
+    # the same rod with an elastic-plastic law that never yields: the rod in series with the stiffened law joint,
+    # stiffness k = 100 E A0 / L0 = 100 Z_s / theta, time constant tau = Z_s Z / (k (Z_s + Z)) = 0.092 steps here.
+    # The implicit midpoint rule turns a jump into a ringing at the step's Nyquist frequency that decays by
+    # |(1 - dt / (2 tau)) / (1 + dt / (2 tau))| = 0.69 per step: read 10 steps after each jump, 0.69^10 = 0.024 of
+    # the jumps so far is left (bounded by 3 % of the first jump, the largest)
+    (ri.ElasticPlastic(10e9, 1e12), 0.03),
+])
+def test_a_specimen_with_inertia_rings_up_by_multiple_reflections(law: ri.Law, lag: float) -> None:
+    # an elastic specimen rod of impedance Z_s between equal bars of impedance Z, hit by a rectangular force wave
+    # F_i: after the specimen's (j+1)-th transit to the transmitted face the transmitted force is
+    # F_i T T' (1 + r^2 + ... + r^2j) = F_i (1 - r^(2 (j + 1))), r = (Z - Z_s) / (Z + Z_s) (the force
+    # transmission coefficients T = 2 Z_s / (Z + Z_s), T' = 2 Z / (Z + Z_s) and 1 - r^2 = T T'; Chen and Song,
+    # Split Hopkinson (Kolsky) Bar, Springer 2011, sec. 2.3). With whole elements the lattice is exact.
+    specimen = _ring_up_specimen(law)
+    kb = _kolsky(specimen, striker_length=2000 * STEP, specimen_inertia=True)
+    pred = kb.predict(5.0, dt=DT, duration=5500 * DT)
+    area = math.pi / 4 * D_BAR ** 2
+    z, z_s = TI.impedance(area), math.pi / 4 * 6e-3 ** 2 * 2500.0 * 2000.0
+    r = (z - z_s) / (z + z_s)
+    f_i = -z * 5.0 / 2.0
+    arrival = 3000 + 10 + 1000                       # striker face -> specimen -> its transit -> transmitted gauge
+    j = np.arange(50)
+    middles = arrival + 20 * j + 10                  # the middle of each plateau (two transits long)
+    expected = f_i * (1.0 - r ** (2 * (j + 1))) / (TI.youngs_modulus * area)
+    np.testing.assert_allclose(pred.transmitted[middles], expected, rtol=1e-9, atol=lag * abs(expected[0]))
+    assert np.all(pred.transmitted[:arrival] == 0.0)
+    assert not np.allclose(pred.force[3000 + 1:3000 + 20], -pred.transmitted[3000 + 1001:3000 + 1020]
+                           * TI.youngs_modulus * area)   # the faces differ during the ring-up
+
+
+def test_a_perfectly_plastic_specimen_with_inertia_transmits_its_flow_force() -> None:
+    # once the law joint flows, the transmitted bar carries exactly the flow force sigma_y A0 (engineering
+    # measure, no hardening): a flat transmitted pulse, as for the massless rigid-perfectly-plastic specimen
+    sigma_y = 50e6
+    specimen = _ring_up_specimen(ri.ElasticPlastic(10e9, sigma_y))
+    pred = _kolsky(specimen, striker_length=2000 * STEP, specimen_inertia=True).predict(5.0, dt=DT,
+                                                                                        duration=5500 * DT)
+    area = math.pi / 4 * D_BAR ** 2
+    flow = -sigma_y * specimen.area / (TI.youngs_modulus * area)
+    late = np.arange(3000 + 1000 + 400, 5490)
+    np.testing.assert_allclose(pred.transmitted[late], flow, rtol=1e-9)
+    assert pred.strain.max() > 10 * sigma_y / 10e9           # it flowed far beyond the elastic strain
+
+
 @pytest.mark.parametrize("make, message", [
     (lambda s: KolskyBar(_bar(1.0, "i"), _bar(1.0, "t"), s, Gauge(1.5), Gauge(0.3)),
      r"KolskyBar\.incident_gauge\.distance: must lie on the bar"),
@@ -109,6 +160,11 @@ def test_the_equilibrium_validity_warning_gives_the_numbers() -> None:
      r"KolskyBar\.specimen\.diameter: the specimen \(12 mm, .* is wider than the rod faces it joins"),
     (lambda s: _kolsky(s, shaper=ri.PulseShaper(ri.FrewShaper(360e6, 0.3, 2.0), 10e-3, 1e-3)),
      r"KolskyBar\.shaper\.diameter: the pulse-shaper \(10 mm, .* is wider than the rod faces it joins"),
+    (lambda s: _kolsky(s, specimen_inertia=True), r"KolskyBar\.specimen\.density: needed with specimen_inertia"),
+    (lambda s: _kolsky(ri.Specimen(ri.FrewShaper(360e6, 0.3, 2.0), 6e-3, 3e-3, measure="engineering",
+                                   density=8960.0), specimen_inertia=True),
+     r"KolskyBar\.specimen\.law: the FrewShaper law is a loading curve"),
+    (lambda s: _kolsky(s, specimen_inertia=1), r"KolskyBar\.specimen_inertia: must be True or False"),
 ])
 def test_bad_set_ups_are_refused_by_name(make, message: str) -> None:
     specimen = ri.Specimen(ri.LinearElastic(117e9), 6.34e-3, 3.2e-3)
