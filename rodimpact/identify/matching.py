@@ -45,6 +45,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 from scipy.optimize import minimize
+from scipy.signal import lfilter
 
 from . import _match_kernels as mk
 
@@ -516,7 +517,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
                          penalty: str = "tv", weight: Any = "auto", impedance_bounds: tuple[float, float] = (0.02, 3.0),
                          soil: bool = True, toe: str = "spring", bands: str = "laplace", min_change: float = 0.08,
                          window: Optional[int] = None, draws: int = 300, seed: int = 0, max_toe_scan: int = 12,
-                         refit: bool = True, block_step: float = 0.03,
+                         refit: bool = True, block_step: float = 0.03, band_noise: str = "residual",
+                         band_scale: float = 1.0,
                          progress: Optional[Callable[[str], None]] = None, backend: str = "numba"):
     """The impedance profile of a pile by regularised matching of its head velocity (module docstring).
 
@@ -551,6 +553,16 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     bands:
         ``"laplace"`` (Gauss-Newton covariance), ``"sampling"`` (pCN chains started from it, stopped at
         convergence) or ``"none"``.
+    band_noise:
+        The noise the bands assume: ``"residual"`` (default) an autoregressive model of the final fit's residual
+        (:func:`~rodimpact.identify.uncertainty.ar_noise_model`: its level with the fit's degrees of freedom
+        and its colour, e.g. 1/f noise, and whatever model error the fit leaves), the Laplace covariance then the
+        sandwich of :func:`~rodimpact.identify.uncertainty.laplace_covariance`; or ``"white"``: white noise at
+        ``noise`` (the baseline's level). With ``"residual"`` the white-noise bands are also given, for comparison,
+        in ``diagnostics["comparison_bands"]["white"]``.
+    band_scale:
+        A factor on the band widths (the covariance times its square), for an empirical calibration (default 1:
+        none); the uncalibrated bands are then in ``diagnostics["comparison_bands"]["uncalibrated"]``.
     min_change, window:
         An anomaly departs from the running median of ``window`` elements (default a quarter of the pile) by
         more than ``min_change`` (share) and its band excludes that median.
@@ -574,6 +586,10 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     if not (0 < lo_b < 1.0 < hi_b and np.isfinite(hi_b)):
         raise ValueError(f"impedance_bounds: must be (low, high) with 0 < low < 1 < high (shares of the impedance "
                          f"scale, which is the start of the search), got {impedance_bounds!r}")
+    if not (np.isfinite(band_scale) and band_scale > 0):
+        raise ValueError(f"band_scale: must be a factor > 0, got {band_scale!r}")
+    if band_noise not in ("residual", "white"):
+        raise ValueError(f"band_noise: must be 'residual' or 'white', got {band_noise!r}")
     if bands not in ("laplace", "sampling", "none"):
         raise ValueError(f"bands: must be 'laplace', 'sampling' or 'none', got {bands!r}")
     pen = Penalty(penalty)
@@ -747,26 +763,59 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     lower = upper = None
     samples_m = None
     diag_extra: dict[str, Any] = {"blocks": int(B.shape[1])}
+    nb = work_model.n
+
+    def gaussian_bands(C, rng):
+        """90 % bands (N s/m) of Z and ``draws`` draws of m from the Gaussian N(theta, C) of the work model."""
+        lo_m, up_m = unc.log_bands(m, B @ C[:nb, :nb] @ B.T)
+        idx = np.flatnonzero(np.diag(C)[:nb] > 0)
+        sd = np.zeros((draws, nb))
+        ev, V = np.linalg.eigh(C[np.ix_(idx, idx)])           # a square root that rounding cannot break
+        sd[:, idx] = rng.standard_normal((draws, idx.size)) @ (V * np.sqrt(np.maximum(ev, 0.0))).T
+        return z_ref * lo_m, z_ref * up_m, m + sd @ B.T
+
+    def anomaly_bands(ft, samples):
+        """5-95 % of the depth (m) and size of the feature matched to ``ft`` in every drawn profile."""
+        got = [unc.match_feature(unc.find_anomalies(np.exp(s), None, None, window=win, min_change=min_change), ft)
+               for s in samples]
+        got = [g for g in got if g is not None]
+        if not got:
+            return None, None
+        return (tuple(np.percentile([g.start * h for g in got], [5, 95])),
+                tuple(np.percentile([g.change for g in got], [5, 95])))
+
+    compare: dict[str, tuple] = {}
     if bands != "none":
-        nb = work_model.n
-        _, J = work_model.jacobian(work_theta)
+        y_work, J = work_model.jacobian(work_theta)
         bl = np.array([b[0] for b in work_bounds])
         bu = np.array([b[1] for b in work_bounds])
         free = bu > bl
         ph = pen.hessian(work_theta[:nb]) if work_alpha > 0 else np.zeros((nb, nb))
-        C = unc.laplace_covariance(J, sigma, ph, work_alpha, free)
+        C_white = unc.laplace_covariance(J, sigma, ph, work_alpha, free)
+        noise_model = None
+        C = C_white
+        if band_noise == "residual":
+            noise_model = unc.ar_noise_model(y_work - vel, fitted=int(free.sum()))
+            C = unc.laplace_covariance(J, sigma, ph, work_alpha, free, noise=noise_model)
+            compare["white"] = gaussian_bands(C_white, np.random.default_rng(seed))
+            diag_extra.update({"noise_model_order": noise_model.order,
+                               "noise_model_sd": float(np.sqrt(noise_model.variance())),
+                               "band_variance_ratio": float(np.median(np.diag(C)[:nb][free[:nb]]
+                                                                      / np.diag(C_white)[:nb][free[:nb]]))})
+        if band_scale != 1.0:
+            compare["uncalibrated"] = gaussian_bands(C, np.random.default_rng(seed))
+            C = band_scale ** 2 * C
         rng = np.random.default_rng(seed)
         if bands == "laplace":
-            Cm = B @ C[:nb, :nb] @ B.T
-            lo_m, up_m = unc.log_bands(m, Cm)
-            idx = np.flatnonzero(free[:nb])
-            sd = np.zeros((draws, nb))
-            Lc = np.linalg.cholesky(C[np.ix_(idx, idx)] + 1e-14 * np.eye(idx.size) * np.max(np.diag(C)))
-            sd[:, idx] = rng.standard_normal((draws, idx.size)) @ Lc.T
-            samples_m = m + sd @ B.T
+            lower, upper, samples_m = gaussian_bands(C, rng)
         else:
             def phi_work(t):
-                f, _, _ = work_model.misfit_gradient(t, vel, weight_vec)
+                r = work_model.simulate(t) - vel
+                if noise_model is not None:         # the likelihood of the AR noise model: whitened residual
+                    e = lfilter(np.r_[1.0, -noise_model.a], [1.0], r)
+                    f = 0.5 * float(e @ e) / noise_model.innovation
+                else:
+                    f = 0.5 * float(r @ r) / sigma ** 2
                 return f + (work_alpha * pen.value_gradient(t[:nb])[0] if work_alpha > 0 else 0.0)
 
             res = unc.sample(phi_work, work_theta, C, bl, bu, seed=seed, progress=progress,
@@ -774,24 +823,22 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             flat = res.draws.reshape(-1, work_theta.size)
             samples_m = flat[:, :nb] @ B.T
             lo_m, up_m = np.exp(np.percentile(samples_m, [5, 95], axis=0))
+            lower, upper = z_ref * lo_m, z_ref * up_m
             diag_extra.update({"sampling_acceptance": res.acceptance, "sampling_rhat": res.rhat,
                                "sampling_ess": res.ess, "sampling_converged": res.converged,
                                "sampling_evaluations": res.evaluations, "sampling_draws": int(flat.shape[0])})
-        lower, upper = z_ref * lo_m, z_ref * up_m
     feats = unc.find_anomalies(Z, lower, upper, window=win, min_change=min_change)
     anomalies = []
     for ft in feats:
-        depth_band = size_band = None
-        if samples_m is not None:
-            got = [unc.match_feature(unc.find_anomalies(np.exp(s), None, None, window=win, min_change=min_change), ft)
-                   for s in samples_m]
-            got = [g for g in got if g is not None]
-            if got:
-                depth_band = tuple(np.percentile([g.start * h for g in got], [5, 95]))
-                size_band = tuple(np.percentile([g.change for g in got], [5, 95]))
+        depth_band, size_band = anomaly_bands(ft, samples_m) if samples_m is not None else (None, None)
         beta = 1.0 + ft.change
         anomalies.append(Anomaly(ft.start * h, (ft.stop - ft.start) * h, ft.change, beta, beta_class(beta),
                                  depth_band, size_band))
+    # the bands before the residual noise model (white noise at the baseline's level) and before the calibration,
+    # on the same anomalies, for comparison
+    diag_extra["comparison_bands"] = {
+        name: {"lower": lo.tolist(), "upper": up.tolist(),
+               "anomaly_bands": [anomaly_bands(ft, smp) for ft in feats]} for name, (lo, up, smp) in compare.items()}
     y = final.y
     K = vel.size
     diag_extra.update({"time_weight_s": phase1 - phase0, "time_toe_s": phase2 - phase1,
