@@ -12,6 +12,11 @@ pre-trigger baseline. The methods get the nominal head impedance and a pile leng
 
     python benchmarks/bench_identify.py --quick          # 6 small piles (what tests/identify runs)
     python benchmarks/bench_identify.py --piles 1000 --write
+    python benchmarks/bench_identify.py --calibrate --piles 36 --seed 7   # the band factor, on other seeds
+    python benchmarks/bench_identify.py --timing         # one 256-element pile into docs/performance.md
+
+The matching runs use the band factor BAND_SCALE, calibrated with ``--calibrate`` on piles of seed 7 (disjoint from
+the benchmark's seed 2024); the page also shows the coverage without it and with white-noise bands.
 """
 
 from __future__ import annotations

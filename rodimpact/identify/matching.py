@@ -664,9 +664,10 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     # the two largest such changes of the mean of ln Z (toe_candidates) are candidates, and the profile
     # likelihood Phi(j) of models truncated at element j (a spring-dashpot toe there) decides around them:
     # screened at steps of w/3 over +-w (short fits from the extended one), the best two refitted in full, then
-    # single steps out from the best until the 90 % interval 2 (Phi(j) - Phi_min) <= 2.71 is closed on both sides. Elements below the toe imitate any toe better than its spring-dashpot does, so a
-    # deeper truncation always fits a little better: every element is charged ln(K) / 2, Schwarz's (1978) BIC
-    # price of a parameter, and the criterion compared is Phi(j) + j ln(K) / 2.
+    # single steps out from the best until the 90 % interval 2 (Phi(j) - Phi_min) <= 2.71 is closed on both sides.
+    # Elements below the toe imitate any toe better than its spring-dashpot does, so a deeper truncation always
+    # fits a little better: every element is charged ln(K) / 2, Schwarz's (1978) BIC price of a parameter, and the
+    # criterion compared is Phi(j) + j ln(K) / 2.
     weight_vec = np.full(vel.size, 1.0 / sigma ** 2)
     phase1 = _time.perf_counter()
 
@@ -795,7 +796,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         noise_model = None
         C = C_white
         if band_noise == "residual":
-            noise_model = unc.ar_noise_model(y_work - vel, fitted=int(free.sum()))
+            noise_model = unc.ar_noise_model(y_work - vel, fitted=int(free.sum()), max_order=min(20, vel.size // 4))
             C = unc.laplace_covariance(J, sigma, ph, work_alpha, free, noise=noise_model)
             compare["white"] = gaussian_bands(C_white, np.random.default_rng(seed))
             diag_extra.update({"noise_model_order": noise_model.order,
