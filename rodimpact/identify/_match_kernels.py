@@ -147,6 +147,12 @@ def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
     inv_D = np.empty(n)                 # 1 / (Z_a + Z_b + q) of every shaft node, as in the forward run
     for i in range(1, n):
         inv_D[i] = 1.0 / (Z[i - 1] + Z[i] + c[i] + k[i] * h)
+    sNa = np.empty(n)                   # per-node scratch of the shaft pass: what node i gives element i-1 (a)
+    sva = np.empty(n)
+    sZa = np.empty(n)
+    sNb = np.empty(n)                   # ... and element i (b)
+    svb = np.empty(n)
+    sZb = np.empty(n)
     for s in range(K - 1, -1, -1):
         # element update: N^- and N^+ of element j both receive bN'_j; node i receives bv' of elements i-1, i
         for j in range(n):
@@ -167,42 +173,41 @@ def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
         bv[0] += g
         bN[0] += g / Z[0]
         gZ[0] -= g * (Ns[s, 0] - F[s]) / (Z[0] * Z[0])
-        # shaft nodes
+        # shaft nodes, in two passes so that both vectorise: node i's partials into per-node scratch (pass 1, no
+        # node writes a neighbour's entry), then every element collects from its two nodes (pass 2)
         for i in range(1, n):
             a = i - 1
-            Na = Ns[s, a]
-            Nb = Ns[s, i]
             va = vs[s, a]
             vb = vs[s, i]
             ui = us[s, i]
             q = c[i] + k[i] * h
             iD = inv_D[i]
-            d = (-q * va - k[i] * ui + Nb - Na + Z[i] * (vb - va)) * iD
+            d = (-q * va - k[i] * ui + Ns[s, i] - Ns[s, a] + Z[i] * (vb - va)) * iD
             V = va + d
-            g = bNe[i]                      # N^-_b = N_b - Z_b (V - v_b)
-            bN[i] += g
-            bVi = bV[i] - Z[i] * g
-            bv[i] += Z[i] * g
-            gZ[i] -= (V - vb) * g
-            g = bNe[a]                      # N^+_a = N_a + Z_a d
-            bN[a] += g
-            gZ[a] += d * g
-            bd = Z[a] * g + bVi             # V = v_a + d
-            bv[a] += bVi
+            gm = bNe[i]                     # N^-_b = N_b - Z_b (V - v_b)
+            gp = bNe[a]                     # N^+_a = N_a + Z_a d
+            bVi = bV[i] - Z[i] * gm
+            bd = Z[a] * gp + bVi            # V = v_a + d
             bnum = bd * iD
             bD = -bnum * d
-            gZ[a] += bD
-            gZ[i] += bD
             bq = bD - va * bnum
-            bv[a] -= (q + Z[i]) * bnum
-            gk[i] -= ui * bnum
+            sNb[i] = gm + bnum
+            sNa[i] = gp - bnum
+            svb[i] = Z[i] * gm + Z[i] * bnum
+            sva[i] = bVi - (q + Z[i]) * bnum
+            sZb[i] = -(V - vb) * gm + bD + (vb - va) * bnum
+            sZa[i] = d * gp + bD
             bu[i] -= k[i] * bnum
-            bN[i] += bnum
-            bN[a] -= bnum
-            gZ[i] += (vb - va) * bnum
-            bv[i] += Z[i] * bnum
+            gk[i] += h * bq - ui * bnum
             gc[i] += bq
-            gk[i] += h * bq
+        for j in range(n - 1):
+            bN[j] += sNa[j + 1]
+            bv[j] += sva[j + 1]
+            gZ[j] += sZa[j + 1]
+        for j in range(1, n):
+            bN[j] += sNb[j]
+            bv[j] += svb[j]
+            gZ[j] += sZb[j]
         # toe
         a = n - 1
         Na = Ns[s, a]

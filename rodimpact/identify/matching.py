@@ -45,6 +45,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 from scipy.optimize import minimize
+from scipy.signal import lfilter
 
 from . import _match_kernels as mk
 
@@ -324,9 +325,23 @@ class Fit:
     history: list = field(default_factory=list)
 
 
+#: L-BFGS-B's corrections kept (scipy's default is 10): on the 317-element benchmark pile 50 took 97 iterations
+#: where 20 took 136 and 5 took 248 to the same Phi
+LBFGS_MEMORY = 50
+#: the stall test of :func:`fit`: stop when Phi fell by less than STALL over the last STALL_WINDOW iterations.
+#: Phi = chi2/2 + alpha R is compared only in steps that matter at >= 1 (the discrepancy target tau K with
+#: K ~ 10^3 samples, the 90 % profile-likelihood interval 2 Delta Phi <= 2.71), so the last tenths of a unit of a
+#: slow L-BFGS tail change no decision.
+STALL = 0.05
+STALL_WINDOW = 10
+
+
 def fit(model: PileModel, data: np.ndarray, sigma: float, alpha: float, penalty: Penalty, theta0: np.ndarray,
-        bounds: list[tuple[float, float]], max_iterations: int = 400, tolerance: float = 1e-9) -> Fit:
-    """Minimise Phi(theta) = 1/2 chi2 + alpha R(m) with L-BFGS-B from ``theta0`` within ``bounds``."""
+        bounds: list[tuple[float, float]], max_iterations: int = 400, tolerance: float = 1e-9,
+        stall: float = STALL) -> Fit:
+    """Minimise Phi(theta) = 1/2 chi2 + alpha R(m) with L-BFGS-B from ``theta0`` within ``bounds``; stopped by
+    scipy's tests, after ``max_iterations``, or when Phi fell by less than ``stall`` over the last
+    :data:`STALL_WINDOW` iterations (``stall=0``: never)."""
     n = model.n
     weight = np.full(data.size, 1.0 / sigma ** 2)
 
@@ -337,13 +352,20 @@ def fit(model: PileModel, data: np.ndarray, sigma: float, alpha: float, penalty:
         g[:n] += alpha * gr
         return f + alpha * r, g
 
+    history: list[float] = []
+
+    def stop_on_stall(intermediate_result):
+        history.append(float(intermediate_result.fun))
+        if stall > 0 and len(history) > STALL_WINDOW and history[-STALL_WINDOW - 1] - history[-1] < stall:
+            raise StopIteration
+
     with _one_blas_thread():
-        res = minimize(fun, theta0, jac=True, method="L-BFGS-B", bounds=bounds,
-                       options={"maxiter": max_iterations, "ftol": tolerance, "gtol": 1e-8, "maxcor": 20})
+        res = minimize(fun, theta0, jac=True, method="L-BFGS-B", bounds=bounds, callback=stop_on_stall,
+                       options={"maxiter": max_iterations, "ftol": tolerance, "gtol": 1e-8, "maxcor": LBFGS_MEMORY})
     theta = np.clip(res.x, [b[0] for b in bounds], [b[1] for b in bounds])
     y = model.simulate(theta)
     chi2 = float(np.sum(((y - data) / sigma) ** 2))
-    return Fit(theta, y, chi2, penalty.value_gradient(theta[:n])[0], alpha, int(res.nit))
+    return Fit(theta, y, chi2, penalty.value_gradient(theta[:n])[0], alpha, int(res.nit), history)
 
 
 def choose_weight(model: PileModel, data: np.ndarray, sigma: float, penalty: Penalty, theta0: np.ndarray,
@@ -430,6 +452,11 @@ def summary_of(theta: np.ndarray, model: PileModel) -> dict[str, Any]:
 # ------------------------------------------------------------------------------------------------ entry
 #: 2 Delta Phi of a 90 % profile-likelihood interval for one parameter (chi-square, 1 degree of freedom)
 PROFILE_90 = 2.705543454095404
+#: iteration caps of the toe scan's truncated-model fits: screening (the coarse steps) and full
+TOE_COARSE = 40
+TOE_FULL = 150
+#: screened truncations refitted in full (the best by their screening value)
+TOE_REFINE = 2
 
 
 def toe_candidates(m: np.ndarray, first: int, window: int, count: int = 2) -> list[int]:
@@ -490,7 +517,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
                          penalty: str = "tv", weight: Any = "auto", impedance_bounds: tuple[float, float] = (0.02, 3.0),
                          soil: bool = True, toe: str = "spring", bands: str = "laplace", min_change: float = 0.08,
                          window: Optional[int] = None, draws: int = 300, seed: int = 0, max_toe_scan: int = 12,
-                         refit: bool = True, block_step: float = 0.03,
+                         refit: bool = True, block_step: float = 0.03, band_noise: str = "residual",
+                         band_scale: float = 1.0,
                          progress: Optional[Callable[[str], None]] = None, backend: str = "numba"):
     """The impedance profile of a pile by regularised matching of its head velocity (module docstring).
 
@@ -525,6 +553,16 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     bands:
         ``"laplace"`` (Gauss-Newton covariance), ``"sampling"`` (pCN chains started from it, stopped at
         convergence) or ``"none"``.
+    band_noise:
+        The noise the bands assume: ``"residual"`` (default) an autoregressive model of the final fit's residual
+        (:func:`~rodimpact.identify.uncertainty.ar_noise_model`: its level with the fit's degrees of freedom
+        and its colour, e.g. 1/f noise, and whatever model error the fit leaves), the Laplace covariance then the
+        sandwich of :func:`~rodimpact.identify.uncertainty.laplace_covariance`; or ``"white"``: white noise at
+        ``noise`` (the baseline's level). With ``"residual"`` the white-noise bands are also given, for comparison,
+        in ``diagnostics["comparison_bands"]["white"]``.
+    band_scale:
+        A factor on the band widths (the covariance times its square), for an empirical calibration (default 1:
+        none); the uncalibrated bands are then in ``diagnostics["comparison_bands"]["uncalibrated"]``.
     min_change, window:
         An anomaly departs from the running median of ``window`` elements (default a quarter of the pile) by
         more than ``min_change`` (share) and its band excludes that median.
@@ -548,6 +586,10 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     if not (0 < lo_b < 1.0 < hi_b and np.isfinite(hi_b)):
         raise ValueError(f"impedance_bounds: must be (low, high) with 0 < low < 1 < high (shares of the impedance "
                          f"scale, which is the start of the search), got {impedance_bounds!r}")
+    if not (np.isfinite(band_scale) and band_scale > 0):
+        raise ValueError(f"band_scale: must be a factor > 0, got {band_scale!r}")
+    if band_noise not in ("residual", "white"):
+        raise ValueError(f"band_noise: must be 'residual' or 'white', got {band_noise!r}")
     if bands not in ("laplace", "sampling", "none"):
         raise ValueError(f"bands: must be 'laplace', 'sampling' or 'none', got {bands!r}")
     pen = Penalty(penalty)
@@ -606,6 +648,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         return np.r_[np.zeros(m), [min(0.1, h) for h in soil_hi]]
 
     model = PileModel(dt, n, force, z_ref, toe, backend)
+    iterations = {"toe": 0}
+    phase0 = _time.perf_counter()
     if weight == "auto":
         best = choose_weight(model, vel, sigma, pen, theta_start(n), bounds_of(n), rule=rule, progress=progress)
     else:
@@ -618,27 +662,38 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     # the toe: read off the extended model, then profile likelihood over truncated models ending there
     # the toe: the soil below it makes the extended profile fall (soft toe) or rise (stiff toe), often as a ramp;
     # the two largest such changes of the mean of ln Z (toe_candidates) are candidates, and the profile
-    # likelihood Phi(j) of models truncated at element j (a spring-dashpot toe there) decides around them: steps of
-    # w/3 over +-w, single steps around the best, and on until the 90 % interval 2 (Phi(j) - Phi_min) <= 2.71 is
-    # closed on both sides. Elements below the toe imitate any toe better than its spring-dashpot does, so a
-    # deeper truncation always fits a little better: every element is charged ln(K) / 2, Schwarz's (1978) BIC
-    # price of a parameter, and the criterion compared is Phi(j) + j ln(K) / 2.
+    # likelihood Phi(j) of models truncated at element j (a spring-dashpot toe there) decides around them:
+    # screened at steps of w/3 over +-w (short fits from the extended one), the best two refitted in full, then
+    # single steps out from the best until the 90 % interval 2 (Phi(j) - Phi_min) <= 2.71 is closed on both sides.
+    # Elements below the toe imitate any toe better than its spring-dashpot does, so a deeper truncation always
+    # fits a little better: every element is charged ln(K) / 2, Schwarz's (1978) BIC price of a parameter, and the
+    # criterion compared is Phi(j) + j ln(K) / 2.
     weight_vec = np.full(vel.size, 1.0 / sigma ** 2)
+    phase1 = _time.perf_counter()
 
     def phi_of(m_model, theta):
         f, _, _ = m_model.misfit_gradient(theta, vel, weight_vec)
         return f + alpha * pen.value_gradient(theta[:m_model.n])[0]
 
-    cache: dict[int, tuple[float, Fit, PileModel]] = {}
+    cache: dict[int, tuple[float, Fit, PileModel, bool]] = {}     # j -> (criterion, fit, model, full)
 
-    def truncated(j):
+    def truncated(j, full=True):
         """Phi + j ln(K)/2 of the model truncated at j, refitted from the extended fit or the nearest refitted
-        model (at most 150 iterations: an upper bound of the converged Phi; the chosen model is polished)."""
-        key = j
-        if key not in cache:
+        model: the soil first, then everything, for at most :data:`TOE_COARSE` iterations (``full=False``, a
+        screening value, always started from the extended fit so that screening errors do not propagate: an upper
+        bound of the converged criterion) or :data:`TOE_FULL` from the nearest full fit (a screened entry asked
+        for in full is continued from where it stopped)."""
+        if j in cache and (cache[j][3] or not full):
+            return cache[j][0]
+        cap = TOE_FULL if full else TOE_COARSE
+        bnds = bounds_of(j)
+        if j in cache:
+            mm = cache[j][2]
+            f = fit(mm, vel, sigma, alpha, pen, cache[j][1].theta, bnds, max_iterations=cap)
+        else:
             mm = PileModel(dt, j, force, z_ref, toe, backend)
-            near = min(cache, key=lambda q: abs(q - j)) if cache else None
-            if near is not None and abs(near - j) <= w:
+            near = min((q for q in cache if cache[q][3]), key=lambda q: abs(q - j), default=None)
+            if full and near is not None and abs(near - j) <= w:
                 th = cache[near][1].theta
                 m_part = np.r_[th[:near], np.full(max(j - near, 0), th[near - 1])][:j]
                 start = np.r_[m_part, th[near:]]
@@ -648,25 +703,27 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
                 start = np.r_[best.theta[:j], best.theta[n:]]
                 if j < n and toe == "spring":
                     start[j + 3] = float(np.clip(np.mean(np.exp(best.theta[j:n])), 0.0, soil_hi[3]))
-            bnds = bounds_of(j)
             # the soil first, with the profile held (4 unknowns: a few iterations), then everything
             soil_first = fit(mm, vel, sigma, alpha, pen, start, [(v, v) for v in start[:j]] + bnds[j:],
                              max_iterations=100)
-            f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=150)
-            cache[key] = (phi_of(mm, f.theta) + per_element * j, f, mm)
-            if progress is not None:
-                progress(f"toe at element {j}: Phi = {cache[key][0]:.6g}")
-        return cache[key][0]
+            f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=cap)
+        iterations["toe"] += f.iterations
+        cache[j] = (phi_of(mm, f.theta) + per_element * j, f, mm, full)
+        if progress is not None:
+            progress(f"toe at element {j}: Phi = {cache[j][0]:.6g}" + ("" if full else " (screening)"))
+        return cache[j][0]
 
     per_element = 0.5 * np.log(vel.size)
     w = max(3, n_pile // 20)
-    best_full = lambda: min(cache, key=lambda q: cache[q][0])
+    best_full = lambda: min((q for q in cache if cache[q][3]), key=lambda q: cache[q][0])
     step = max(1, w // 3)
-    for j0 in toe_candidates(best.theta[:n], max(4, int(0.6 * n_pile)), w):
-        for j in range(max(4, j0 - w), min(n, j0 + w) + 1, step):
-            truncated(j)
-    jm = best_full()
-    for j in range(max(4, jm - step + 1), min(n, jm + step - 1) + 1):
+    # screening at steps of w/3 around each candidate; the best TOE_REFINE screened truncations in full, then the
+    # walk out from the best (a descent: it goes on while a neighbour is lower, and closes the 90 % interval)
+    scan = sorted({j for j0 in toe_candidates(best.theta[:n], max(4, int(0.6 * n_pile)), w)
+                   for j in range(max(4, j0 - w), min(n, j0 + w) + 1, step)})
+    for j in scan:
+        truncated(j, full=False)
+    for j in sorted(scan, key=lambda q: cache[q][0])[:TOE_REFINE]:
         truncated(j)
     for _ in range(n):           # walk out from the best to both sides until 2 (Phi - Phi_min) > 2.71
         jb = best_full()
@@ -678,15 +735,16 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
                     break
         if best_full() == jb:
             break
-    keys = list(cache)
+    keys = [j for j in cache if cache[j][3]]
     jb = best_full()
-    pmin, final, fmodel = cache[jb]
+    pmin, final, fmodel, _ = cache[jb]
     final = fit(fmodel, vel, sigma, alpha, pen, final.theta, bounds_of(jb))      # polish the chosen model
     inside = [j for j in keys if 2 * (cache[j][0] - pmin) <= PROFILE_90]
     h = c_w * dt
     toe_depth = jb * h
     toe_band = (min(inside) * h, max(inside) * h)
     theta = final.theta
+    phase2 = _time.perf_counter()
     if refit:
         B = blocks_of(theta[:jb], block_step)
         bmodel = BlockModel(fmodel, B)
@@ -706,26 +764,59 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     lower = upper = None
     samples_m = None
     diag_extra: dict[str, Any] = {"blocks": int(B.shape[1])}
+    nb = work_model.n
+
+    def gaussian_bands(C, rng):
+        """90 % bands (N s/m) of Z and ``draws`` draws of m from the Gaussian N(theta, C) of the work model."""
+        lo_m, up_m = unc.log_bands(m, B @ C[:nb, :nb] @ B.T)
+        idx = np.flatnonzero(np.diag(C)[:nb] > 0)
+        sd = np.zeros((draws, nb))
+        ev, V = np.linalg.eigh(C[np.ix_(idx, idx)])           # a square root that rounding cannot break
+        sd[:, idx] = rng.standard_normal((draws, idx.size)) @ (V * np.sqrt(np.maximum(ev, 0.0))).T
+        return z_ref * lo_m, z_ref * up_m, m + sd @ B.T
+
+    def anomaly_bands(ft, samples):
+        """5-95 % of the depth (m) and size of the feature matched to ``ft`` in every drawn profile."""
+        got = [unc.match_feature(unc.find_anomalies(np.exp(s), None, None, window=win, min_change=min_change), ft)
+               for s in samples]
+        got = [g for g in got if g is not None]
+        if not got:
+            return None, None
+        return (tuple(np.percentile([g.start * h for g in got], [5, 95])),
+                tuple(np.percentile([g.change for g in got], [5, 95])))
+
+    compare: dict[str, tuple] = {}
     if bands != "none":
-        nb = work_model.n
-        _, J = work_model.jacobian(work_theta)
+        y_work, J = work_model.jacobian(work_theta)
         bl = np.array([b[0] for b in work_bounds])
         bu = np.array([b[1] for b in work_bounds])
         free = bu > bl
         ph = pen.hessian(work_theta[:nb]) if work_alpha > 0 else np.zeros((nb, nb))
-        C = unc.laplace_covariance(J, sigma, ph, work_alpha, free)
+        C_white = unc.laplace_covariance(J, sigma, ph, work_alpha, free)
+        noise_model = None
+        C = C_white
+        if band_noise == "residual":
+            noise_model = unc.ar_noise_model(y_work - vel, fitted=int(free.sum()), max_order=min(20, vel.size // 4))
+            C = unc.laplace_covariance(J, sigma, ph, work_alpha, free, noise=noise_model)
+            compare["white"] = gaussian_bands(C_white, np.random.default_rng(seed))
+            diag_extra.update({"noise_model_order": noise_model.order,
+                               "noise_model_sd": float(np.sqrt(noise_model.variance())),
+                               "band_variance_ratio": float(np.median(np.diag(C)[:nb][free[:nb]]
+                                                                      / np.diag(C_white)[:nb][free[:nb]]))})
+        if band_scale != 1.0:
+            compare["uncalibrated"] = gaussian_bands(C, np.random.default_rng(seed))
+            C = band_scale ** 2 * C
         rng = np.random.default_rng(seed)
         if bands == "laplace":
-            Cm = B @ C[:nb, :nb] @ B.T
-            lo_m, up_m = unc.log_bands(m, Cm)
-            idx = np.flatnonzero(free[:nb])
-            sd = np.zeros((draws, nb))
-            Lc = np.linalg.cholesky(C[np.ix_(idx, idx)] + 1e-14 * np.eye(idx.size) * np.max(np.diag(C)))
-            sd[:, idx] = rng.standard_normal((draws, idx.size)) @ Lc.T
-            samples_m = m + sd @ B.T
+            lower, upper, samples_m = gaussian_bands(C, rng)
         else:
             def phi_work(t):
-                f, _, _ = work_model.misfit_gradient(t, vel, weight_vec)
+                r = work_model.simulate(t) - vel
+                if noise_model is not None:         # the likelihood of the AR noise model: whitened residual
+                    e = lfilter(np.r_[1.0, -noise_model.a], [1.0], r)
+                    f = 0.5 * float(e @ e) / noise_model.innovation
+                else:
+                    f = 0.5 * float(r @ r) / sigma ** 2
                 return f + (work_alpha * pen.value_gradient(t[:nb])[0] if work_alpha > 0 else 0.0)
 
             res = unc.sample(phi_work, work_theta, C, bl, bu, seed=seed, progress=progress,
@@ -733,26 +824,27 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             flat = res.draws.reshape(-1, work_theta.size)
             samples_m = flat[:, :nb] @ B.T
             lo_m, up_m = np.exp(np.percentile(samples_m, [5, 95], axis=0))
+            lower, upper = z_ref * lo_m, z_ref * up_m
             diag_extra.update({"sampling_acceptance": res.acceptance, "sampling_rhat": res.rhat,
                                "sampling_ess": res.ess, "sampling_converged": res.converged,
                                "sampling_evaluations": res.evaluations, "sampling_draws": int(flat.shape[0])})
-        lower, upper = z_ref * lo_m, z_ref * up_m
     feats = unc.find_anomalies(Z, lower, upper, window=win, min_change=min_change)
     anomalies = []
     for ft in feats:
-        depth_band = size_band = None
-        if samples_m is not None:
-            got = [unc.match_feature(unc.find_anomalies(np.exp(s), None, None, window=win, min_change=min_change), ft)
-                   for s in samples_m]
-            got = [g for g in got if g is not None]
-            if got:
-                depth_band = tuple(np.percentile([g.start * h for g in got], [5, 95]))
-                size_band = tuple(np.percentile([g.change for g in got], [5, 95]))
+        depth_band, size_band = anomaly_bands(ft, samples_m) if samples_m is not None else (None, None)
         beta = 1.0 + ft.change
         anomalies.append(Anomaly(ft.start * h, (ft.stop - ft.start) * h, ft.change, beta, beta_class(beta),
                                  depth_band, size_band))
+    # the bands before the residual noise model (white noise at the baseline's level) and before the calibration,
+    # on the same anomalies, for comparison
+    diag_extra["comparison_bands"] = {
+        name: {"lower": lo.tolist(), "upper": up.tolist(),
+               "anomaly_bands": [anomaly_bands(ft, smp) for ft in feats]} for name, (lo, up, smp) in compare.items()}
     y = final.y
     K = vel.size
+    diag_extra.update({"time_weight_s": phase1 - phase0, "time_toe_s": phase2 - phase1,
+                       "time_bands_s": _time.perf_counter() - phase2, "toe_fits": len(cache),
+                       "toe_iterations": iterations["toe"]})
     diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0, "penalty": penalty,
                    "weight_rule": rule, "alpha": alpha, "noise": sigma, "noise_given": sigma_known,
                    "chi2_per_sample": final.chi2 / K, "elements_model": n, "element_length_m": h,

@@ -7,6 +7,11 @@ preconditioned Crank-Nicolson method, and the reading of anomalies and the toe f
   H = J^T J / sigma^2 + alpha nabla^2 R (Vogel 2002, ch. 3.4; Kaipio and Somersalo 2005, ch. 3), J_kp = dy_k /
   dtheta_p from the forward sensitivities. Parameters on an active bound are held fixed (their rows dropped).
   The 90 % band of ln Z_j is m_j +- 1.645 sqrt(C_jj), mapped to Z by exp.
+* **Residual noise model** (:func:`ar_noise_model`): the noise the bands assume is read off the final fit's
+  residual as an autoregressive process (Yule-Walker, order by AIC), its variance with the fit's degrees of
+  freedom: coloured noise (1/f) and the misfit the model leaves enter the bands, not only the baseline's white
+  level. The covariance of the least-squares estimate is then the sandwich G^-1 J^T Sigma J G^-1 / sigma^4
+  (:func:`laplace_covariance` with ``noise``; Huber 1967, White 1982).
 * **Sampling** (:func:`sample`): the pCN proposal theta' = mu + sqrt(1 - b^2) (theta - mu) + b xi, xi ~ N(0, C)
   (Cotter, Roberts, Stuart and White 2013, "MCMC methods for functions", Stat. Sci. 28) with mu = theta* and C
   the Laplace covariance; the proposal is reversible with respect to N(mu, C), so the Metropolis-Hastings ratio
@@ -31,27 +36,98 @@ Z90 = 1.6448536269514722      # standard normal quantile of 0.95: a two-sided 90
 
 # ------------------------------------------------------------------------------------------------ Laplace
 def laplace_covariance(J: np.ndarray, sigma: float, penalty_hessian: np.ndarray, alpha: float,
-                       free: np.ndarray) -> np.ndarray:
-    """The covariance H^-1 (full size, zero rows and columns for the parameters not ``free``) with
-    H = J^T J / sigma^2 + alpha P, P the penalty Hessian padded to the size of theta."""
+                       free: np.ndarray, noise: Optional["NoiseModel"] = None) -> np.ndarray:
+    """The covariance (full size, zero rows and columns for the parameters not ``free``) of the estimate, with
+    G = J^T J / sigma^2 + alpha P (P the penalty Hessian padded to the size of theta): G^-1 for white noise of
+    standard deviation ``sigma`` (the Laplace posterior covariance), or, given the ``noise`` model of the residual
+    (:func:`ar_noise_model`), the sandwich G^-1 (J^T Sigma J / sigma^4) G^-1: the covariance of the estimate
+    linearised, delta theta = G^-1 J^T n / sigma^2, when the noise n has the covariance Sigma (coloured, or of
+    another level than ``sigma``; Huber 1967, White 1982). With Sigma = sigma^2 I and alpha = 0 the two agree."""
     P = J.shape[1]
-    H = J.T @ J / sigma ** 2
+    G = J.T @ J / sigma ** 2
     m = penalty_hessian.shape[0]
-    H[:m, :m] += alpha * penalty_hessian
+    G[:m, :m] += alpha * penalty_hessian
     idx = np.flatnonzero(free)
-    Hf = H[np.ix_(idx, idx)]
-    # symmetric inverse through the Cholesky factor; a tiny ridge only if rounding makes Hf indefinite
-    scale = np.sqrt(np.maximum(np.diag(Hf), 1e-300))
-    Hs = Hf / scale[:, None] / scale[None, :]
+    Gi = _spd_inverse(G[np.ix_(idx, idx)])
+    if noise is not None:
+        Jf = J[:, idx]
+        Gi = Gi @ (noise.jt_sigma_j(Jf) / sigma ** 4) @ Gi
+        Gi = 0.5 * (Gi + Gi.T)
+    C = np.zeros((P, P))
+    C[np.ix_(idx, idx)] = Gi
+    return C
+
+
+def _spd_inverse(H: np.ndarray) -> np.ndarray:
+    """Symmetric inverse through the Cholesky factor of the diagonally scaled matrix; a tiny ridge only if
+    rounding makes it indefinite."""
+    scale = np.sqrt(np.maximum(np.diag(H), 1e-300))
+    Hs = H / scale[:, None] / scale[None, :]
     try:
         L = np.linalg.cholesky(Hs)
     except np.linalg.LinAlgError:
-        L = np.linalg.cholesky(Hs + 1e-10 * np.eye(idx.size))
+        L = np.linalg.cholesky(Hs + 1e-10 * np.eye(H.shape[0]))
     Li = np.linalg.inv(L)
-    Cf = (Li.T @ Li) / scale[:, None] / scale[None, :]
-    C = np.zeros((P, P))
-    C[np.ix_(idx, idx)] = Cf
-    return C
+    return (Li.T @ Li) / scale[:, None] / scale[None, :]
+
+
+@dataclass(frozen=True)
+class NoiseModel:
+    """A stationary autoregressive noise model n_k = sum_{i=1..p} a_i n_{k-i} + e_k, e white of variance
+    ``innovation`` (units of the record squared): covariance Sigma = s2 W^-1 W^-T with W the whitening filter
+    e = W n (lower triangular Toeplitz, first column [1, -a_1, .., -a_p]); the process starts at rest at k = 0."""
+
+    a: np.ndarray
+    innovation: float
+
+    @property
+    def order(self) -> int:
+        return int(self.a.size)
+
+    def variance(self) -> float:
+        """The stationary variance of n: s2 sum h_k^2 over the impulse response h of 1 / (1 - sum a_i z^-i)."""
+        from scipy.signal import lfilter
+
+        h = lfilter([1.0], np.r_[1.0, -self.a], np.r_[1.0, np.zeros(4095)])
+        return float(self.innovation * np.sum(h * h))
+
+    def jt_sigma_j(self, J: np.ndarray) -> np.ndarray:
+        """J^T Sigma J = s2 (W^-T J)^T (W^-T J); W^-T J is the synthesis filter 1 / (1 - sum a_i z^-i) run
+        backwards in time over the columns of J."""
+        from scipy.signal import lfilter
+
+        X = lfilter([1.0], np.r_[1.0, -self.a], J[::-1], axis=0)[::-1]
+        return self.innovation * (X.T @ X)
+
+
+def ar_noise_model(residual: np.ndarray, fitted: int = 0, max_order: int = 20) -> NoiseModel:
+    """The AR noise model of a residual series: Yule-Walker equations on the biased sample autocovariance
+    (solved by the Levinson-Durbin recursion, which keeps the filter stable), the order p <= ``max_order`` that
+    minimises Akaike's (1974) AIC, K ln s2_p + 2 p. The innovation variance is scaled by K / (K - ``fitted``) for
+    the degrees of freedom the fit took from the residual (``fitted`` parameters; Draper and Smith ch. 2)."""
+    r = np.asarray(residual, dtype=float)
+    K = r.size
+    if K < 4 * max_order or not np.all(np.isfinite(r)):
+        raise ValueError(f"residual: needs >= {4 * max_order} finite samples for an AR({max_order}) model, "
+                         f"got {K}")
+    if not 0 <= fitted < K:
+        raise ValueError(f"fitted: must be in [0, {K}), got {fitted!r}")
+    x = r - r.mean()
+    f = np.fft.rfft(x, n=2 * K)
+    gamma = np.fft.irfft(f * np.conj(f))[:max_order + 1] / K
+    if gamma[0] <= 0:
+        return NoiseModel(np.zeros(0), 0.0)
+    a = np.zeros(0)
+    err = gamma[0]
+    best = (K * np.log(err), a, err)
+    for p in range(1, max_order + 1):                # Levinson-Durbin
+        kappa = (gamma[p] - a @ gamma[p - 1:0:-1]) / err if p > 1 else gamma[1] / err
+        a = np.r_[a - kappa * a[::-1], kappa]
+        err *= 1.0 - kappa * kappa
+        aic = K * np.log(err) + 2 * p
+        if aic < best[0]:
+            best = (aic, a.copy(), err)
+    return NoiseModel(best[1], float(best[2] * K / (K - fitted)))
 
 
 def log_bands(m: np.ndarray, C: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

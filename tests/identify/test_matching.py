@@ -191,6 +191,8 @@ def test_without_baseline_the_l_curve_is_used():
     (dict(elements=2), "elements"),
     (dict(toe="pinned"), "toe"),
     (dict(extension=-0.5), "extension"),
+    (dict(band_scale=0.0), "band_scale"),
+    (dict(band_noise="pink"), "band_noise"),
 ])
 def test_bad_arguments_are_refused_by_name(kwargs, match):
     record, c, length, z0, h = _synthetic(14, 0.01)
@@ -260,3 +262,18 @@ def test_sampling_bands_converge_and_agree_with_the_laplace_bands():
     w_lap = np.log(lap.upper / lap.lower)
     w_smp = np.log(smp.upper / smp.lower)
     assert np.all(w_smp < 1.5 * w_lap) and np.all(w_smp > w_lap / 1.5)
+
+
+def test_band_factor_widens_the_bands_and_keeps_the_uncalibrated_ones():
+    """band_scale k multiplies the width of every Laplace band in ln Z by k; the fit is the same, and the bands
+    without the factor (the k = 1 run's) are kept under comparison_bands["uncalibrated"]; the white-noise bands
+    of the same fit under ["white"]."""
+    record, c, length, z0, h = _synthetic(11, 0.03)
+    one = identify_by_matching(record, z0, c, length=1.05 * length)
+    two = identify_by_matching(record, z0, c, length=1.05 * length, band_scale=2.0)
+    np.testing.assert_array_equal(one.impedance, two.impedance)
+    np.testing.assert_allclose(np.log(two.upper / two.lower), 2.0 * np.log(one.upper / one.lower), rtol=1e-10)
+    unc_bands = two.diagnostics["comparison_bands"]["uncalibrated"]
+    np.testing.assert_allclose(unc_bands["lower"], one.lower, rtol=1e-12)
+    np.testing.assert_allclose(unc_bands["upper"], one.upper, rtol=1e-12)
+    assert "white" in one.diagnostics["comparison_bands"] and one.diagnostics["noise_model_order"] >= 0

@@ -41,6 +41,95 @@ def test_laplace_bands_cover_90_percent_on_a_linear_gaussian_problem():
     assert abs(hits / 16000 - 0.90) < 0.007
 
 
+def _ar_series(rng, a, size, burn=500):
+    """x_k = sum a_i x_{k-i} + e_k (e standard normal), from rest, the first ``burn`` samples dropped."""
+    from scipy.signal import lfilter
+
+    return lfilter([1.0], np.r_[1.0, -np.asarray(a)], rng.normal(size=size + burn))[burn:]
+
+
+def test_ar_noise_model_recovers_the_generating_process():
+    """Yule-Walker/Levinson with the order by AIC on 40000 samples of an AR(2) process: the coefficients and
+    the innovation variance of the generator to 0.02, the stationary variance of an AR(1) process equal to the
+    closed form s2 / (1 - a^2), and the degrees-of-freedom factor K / (K - fitted) on the innovation."""
+    rng = np.random.default_rng(3)
+    x = _ar_series(rng, [0.6, -0.2], 40000)
+    m = unc.ar_noise_model(x)
+    assert m.order >= 2
+    np.testing.assert_allclose(m.a[:2], [0.6, -0.2], atol=0.02)
+    assert np.all(np.abs(m.a[2:]) < 0.02) and abs(m.innovation - 1.0) < 0.02
+    assert unc.NoiseModel(np.array([0.8]), 2.0).variance() == pytest.approx(2.0 / (1.0 - 0.64), rel=1e-12)
+    m10 = unc.ar_noise_model(x, fitted=10000)
+    assert m10.innovation == pytest.approx(m.innovation * 40000 / 30000, rel=1e-12)
+    with pytest.raises(ValueError, match="residual"):
+        unc.ar_noise_model(np.ones(30))
+    with pytest.raises(ValueError, match="fitted"):
+        unc.ar_noise_model(x, fitted=-1)
+
+
+def test_noise_model_covariance_is_that_of_the_ar_process_from_rest():
+    """J^T Sigma J against Sigma built as a matrix: the AR(2) process from rest is n = W^-1 e with W the lower
+    triangular Toeplitz whitening matrix (first column 1, -a_1, -a_2), so Sigma = s2 W^-1 W^-T."""
+    from scipy.linalg import toeplitz
+
+    rng = np.random.default_rng(6)
+    K = 60
+    a = np.array([0.5, -0.3])
+    W = toeplitz(np.r_[1.0, -a, np.zeros(K - 3)], np.zeros(K))
+    Wi = np.linalg.inv(W)
+    J = rng.normal(size=(K, 4))
+    ref = J.T @ (1.7 * Wi @ Wi.T) @ J
+    np.testing.assert_allclose(unc.NoiseModel(a, 1.7).jt_sigma_j(J), ref, rtol=1e-10)
+
+
+def test_sandwich_with_white_noise_model_is_the_laplace_covariance():
+    rng = np.random.default_rng(4)
+    J = rng.normal(size=(50, 5))
+    free = np.ones(5, dtype=bool)
+    white = unc.NoiseModel(np.zeros(0), 0.3 ** 2)
+    np.testing.assert_allclose(unc.laplace_covariance(J, 0.3, np.zeros((5, 5)), 0.0, free, noise=white),
+                               unc.laplace_covariance(J, 0.3, np.zeros((5, 5)), 0.0, free), rtol=1e-10)
+    # a model of twice the variance: the covariance of the least-squares estimate doubles, whatever sigma says
+    double = unc.NoiseModel(np.zeros(0), 2 * 0.3 ** 2)
+    np.testing.assert_allclose(unc.laplace_covariance(J, 0.7, np.zeros((5, 5)), 0.0, free, noise=double),
+                               2 * unc.laplace_covariance(J, 0.3, np.zeros((5, 5)), 0.0, free), rtol=1e-10)
+
+
+@pytest.mark.parametrize("K, trials, estimated", [(400, 1500, False), (1600, 600, True)])
+def test_residual_noise_bands_cover_90_percent_under_coloured_noise(K, trials, estimated):
+    """y = J theta + n with strongly correlated AR(1) noise (a = 0.9) and slowly varying columns, least squares.
+    With the generator's noise model the sandwich band holds the truth in 90 % of the trials (3 x 1500: within
+    1.5 %, about 3 binomial sigma): the formula is right. With the model estimated from each residual (the
+    way identify_by_matching uses it) coverage is a little lower, as for every spectral estimate at low
+    frequencies from a short record (0.82 at K = 400, 0.88 at K = 1600 in a trial run): 0.85-0.93 at K = 1600.
+    White-noise bands at the residual's own level hold it far less often."""
+    rng = np.random.default_rng(5)
+    P = 3
+    t = np.linspace(0.0, 1.0, K)
+    J = np.column_stack([np.ones(K), np.sin(2 * np.pi * t), np.cos(3 * np.pi * t)])
+    theta = np.array([0.2, -0.1, 0.3])
+    free = np.ones(P, dtype=bool)
+    generator = unc.NoiseModel(np.array([0.9]), 0.05 ** 2)
+    hits = white_hits = 0
+    for _ in range(trials):
+        y = J @ theta + 0.05 * _ar_series(rng, [0.9], K)
+        est, *_ = np.linalg.lstsq(J, y, rcond=None)
+        r = J @ est - y
+        model = unc.ar_noise_model(r, fitted=P) if estimated else generator
+        C = unc.laplace_covariance(J, 1.0, np.zeros((0, 0)), 0.0, free, noise=model)
+        lo, up = unc.log_bands(est, C)
+        hits += np.sum((lo <= np.exp(theta)) & (np.exp(theta) <= up))
+        s = np.sqrt(r @ r / (K - P))
+        lo, up = unc.log_bands(est, unc.laplace_covariance(J, s, np.zeros((0, 0)), 0.0, free))
+        white_hits += np.sum((lo <= np.exp(theta)) & (np.exp(theta) <= up))
+    share = hits / (P * trials)
+    if estimated:
+        assert 0.85 <= share <= 0.93, share
+    else:
+        assert abs(share - 0.90) < 0.015, share
+    assert white_hits / (P * trials) < 0.6
+
+
 def test_rhat_and_ess_on_known_chains():
     rng = np.random.default_rng(2)
     iid = rng.normal(size=(4, 2000, 2))
