@@ -33,7 +33,9 @@ Defaults. The quake q = 2.54 mm (0.1 in), the shaft damping 0.05 s/ft = 0.164 s/
 and 12.8; the ``gec12`` set of :mod:`rodimpact.pile.soil_sets`, which a test keeps equal to them). Read at second
 hand, from quotations of GEC-12 in a third-party report (docs/pile-driving.md, "Soil parameters and their
 sources"); Smith (1960), to whom they are often attributed, could not be read. The toe's default quake, the
-same 0.1 in, has no source: the quoted sentences give no toe quake. The Case damping has no default (J_c must be
+same 0.1 in, is GRLWEAP's toe quake for non-displacement piles ("0.1"/2.5 mm non-displacement", Rausche,
+GRLWEAP Fundamentals, slide 40, read at second hand likewise: the ``grlweap`` set); displacement piles want D/120
+in very dense or hard soil and D/60 in soft or loose soil (``SoilDynamics.published``). The Case damping has no default (J_c must be
 given).
 """
 
@@ -62,7 +64,8 @@ DEFAULT_TOE_DAMPING = 0.15 / 0.3048
 
 _KIND_DOC = "Damping law: `smith` (J_s abs(R_s) V), `smith-viscous` (J_sv R_u V) or `case` (J_c Z V)."
 _DAMPING_DOC = ("Damping factor J: s/m for `smith` and `smith-viscous`, a pure number for `case`; default "
-                "the Smith value (0.164 s/m shaft, 0.492 s/m toe) except for `case`, which needs it.")
+                "GEC-12's for a non-cohesive soil (0.164 s/m shaft, 0.492 s/m toe) except for `case`, which "
+                "needs it.")
 
 
 def _check_kind(owner: str, kind: object) -> None:

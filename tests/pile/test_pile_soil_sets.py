@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import pytest
 
+import rodimpact as ri
+
 from rodimpact.io.pile_spec import TEMPLATE, loads_spec
 from rodimpact.io.quantities import ModelError
 from rodimpact.pile import SoilDynamics, soil_set, soil_set_names
@@ -73,6 +75,9 @@ def test_rods_soil_defaults_are_gec12_non_cohesive():
     assert rods_soil.DEFAULT_QUAKE == pytest.approx(s.shaft_quake, rel=1e-15)
     assert rods_soil.DEFAULT_SHAFT_DAMPING == pytest.approx(s.shaft_damping["non-cohesive"], rel=1e-15)
     assert rods_soil.DEFAULT_TOE_DAMPING == pytest.approx(s.toe_damping, rel=1e-15)
+    # the toe's default quake: GRLWEAP's toe quake of a non-displacement pile, quoted as '0.1"/2.5 mm' (slide 40)
+    assert ri.SoilToe(1e5).quake == pytest.approx(0.1 * 0.0254, rel=1e-15)
+    assert soil_set("grlweap").toe_quakes["non-displacement"] == pytest.approx(ri.SoilToe(1e5).quake, rel=0.02)
 
 
 def test_published_dynamics_from_python():
