@@ -34,8 +34,8 @@ booked per step (the elastic energy released by the softening), so that the work
 energy (1 - w) E eps_e^2 / 2 A0 L0, the plastic work and the damage work.
 
 Array layout per joint r: ``junction_par[r]`` = (k, c, compression_only, law code, L0, A0, true measure, 0,
-then the law's vector :meth:`rodimpact.rods.laws.Law.kernel`: parameters p0..p7 and, for a tabulated law, its
-table; the array is as wide as the widest law of the system); ``junction_q[r]`` = (eps_p, alpha, eps_max,
+then the law's vector :meth:`rodimpact.rods.laws.Law.kernel`: parameters p0..p9 (p8, p9 the failure) and, for a
+tabulated law, its table; the array is as wide as the widest law of the system); ``junction_q[r]`` = (eps_p, alpha, eps_max,
 plastic work, crushed, damage work): the plastic strain, the accumulated plastic strain, the largest strain
 reached (loading curves), the plastic work done so far, J (sigma dEps_p V0 in the law's strain measure), 1 once the
 shortening has reached the body's length (the run is then refused, :func:`rodimpact.direct.result.joint_outcomes`),
