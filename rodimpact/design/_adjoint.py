@@ -102,7 +102,7 @@ class ImpactProblem:
         struck = as_struck_system(struck)
         for i, j in enumerate(struck.junctions):
             if j.code == LAW_JOINT and isinstance(j, DeformableJoint):
-                why = law_refusal(int(j.law.code))
+                why = law_refusal(int(j.law.code), j.law.fails)
                 if why is not None:
                     raise ValueError(f"struck.junctions[{i}].law: {type(j.law).__name__}: {why}")
             elif j.code not in (Bonded.code, Contact.code):

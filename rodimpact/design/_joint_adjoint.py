@@ -259,8 +259,11 @@ def joint_vjp(par, q, n, fa, ga, fb, gb, za, zb, delta, dt, ln, lva, lvb, lstate
     return -2.0 * l_vaf / za, 2.0 * l_vbf / zb, lza, lzb
 
 
-def law_refusal(code: int) -> str | None:
-    """Why the adjoint cannot take a law of this code (None if it can)."""
+def law_refusal(code: int, fails: bool = False) -> str | None:
+    """Why the adjoint cannot take a law of this code, with failure if ``fails`` (None if it can)."""
+    if fails:
+        return ("a law with failure (failure_strain, softening_strain) has no derivatives in the adjoint: its "
+                "lagged softening w(alpha) is not differentiated; drop the failure or simulate without gradients")
     if code in DIFFERENTIATED:
         return None
     if code == TABULATED:

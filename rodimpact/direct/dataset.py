@@ -50,7 +50,8 @@ BIT_ROCK_FIELDS = {"loading_stiffness": "N/m", "unloading_stiffness": "N/m", "ma
 
 #: The fields of a :class:`~rodimpact.direct.result.JointOutcome` stored as ``joint_<field>``, with units.
 JOINT_FIELDS = {"junction": "", "shortening": "m", "strain": "1", "plastic_strain": "1",
-                "accumulated_plastic_strain": "1", "plastic_work": "J", "stored_energy": "J"}
+                "accumulated_plastic_strain": "1", "plastic_work": "J", "stored_energy": "J",
+                "damage_work": "J", "softening": "1"}
 
 
 #: The energies of a :class:`~rodimpact.direct.result.LumpedOutcome` stored as ``lumped_<field>`` (J) along

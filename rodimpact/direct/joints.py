@@ -23,12 +23,23 @@ The functions are compiled on their own, not inlined into the step loops: inlini
 multiplied the first run's compile time (50 s more CPU for the first example), and a joint costs one call per
 step.
 
+Failure (:class:`rodimpact.rods.laws.Failure`): a plastic law with a failure strain eps_f > 0 (``p[8]``) gives
+the stress (1 - w) sigma_law with the softening w(alpha) = min(1, max(0, (alpha - eps_f) / p[9])). Within a step
+w is LAGGED: taken at the accumulated plastic strain alpha_k of the step's start, and updated with the state after
+the step. A softening law evaluated at the midpoint would let F fall as the shortening grows, and g(N) could have
+several roots; with w fixed during the step F is (1 - w_k) times a non-decreasing function and the root stays
+unique. The lag costs one order: the force is first order in dt once softening has started (measured in
+tests/direct/test_joint_failure.py). The damage dissipation (w_k+1 - w_k) E (eps_k+1 - eps_p,k+1)^2 / 2 A0 L0 is
+booked per step (the elastic energy released by the softening), so that the work the joint absorbs is the stored
+energy (1 - w) E eps_e^2 / 2 A0 L0, the plastic work and the damage work.
+
 Array layout per joint r: ``junction_par[r]`` = (k, c, compression_only, law code, L0, A0, true measure, 0,
-then the law's vector :meth:`rodimpact.rods.laws.Law.kernel`: parameters p0..p7 and, for a tabulated law, its
-table; the array is as wide as the widest law of the system); ``junction_q[r]`` = (eps_p, alpha, eps_max,
-plastic work, crushed): the plastic strain, the accumulated plastic strain, the largest strain reached (loading
-curves), the plastic work done so far, J (sigma dEps_p V0 in the law's strain measure), and 1 once the
-shortening has reached the body's length (the run is then refused, :func:`rodimpact.direct.result.joint_outcomes`).
+then the law's vector :meth:`rodimpact.rods.laws.Law.kernel`: parameters p0..p9 (p8, p9 the failure) and, for a
+tabulated law, its table; the array is as wide as the widest law of the system); ``junction_q[r]`` = (eps_p, alpha, eps_max,
+plastic work, crushed, damage work): the plastic strain, the accumulated plastic strain, the largest strain
+reached (loading curves), the plastic work done so far, J (sigma dEps_p V0 in the law's strain measure), 1 once the
+shortening has reached the body's length (the run is then refused, :func:`rodimpact.direct.result.joint_outcomes`),
+and the damage dissipation so far, J (failure, above).
 """
 
 from __future__ import annotations
@@ -37,10 +48,20 @@ import math
 
 from numba import njit
 
-from ..rods.laws import ELASTIC, FREW, JOHNSON_COOK, N_PARAMS, PLASTIC, TABULATED
+from ..rods.laws import ELASTIC, FAILURE_STRAIN, FREW, JOHNSON_COOK, N_PARAMS, PLASTIC, SOFTENING_STRAIN, TABULATED
 
 #: columns of ``junction_par`` before the law's vector, and of ``junction_q``
-HEADER_COLUMNS, STATE_COLUMNS = 8, 5
+HEADER_COLUMNS, STATE_COLUMNS = 8, 6
+
+
+@njit(error_model="numpy", cache=True)
+def softening(code, p, alpha):
+    """The softening w in [0, 1] of a failing plastic law at accumulated plastic strain ``alpha``: 0 before the
+    failure strain p[8] (and for a law without failure, p[8] = 0), rising linearly to 1 over the softening strain
+    p[9]; the stress is (1 - w) times the law's."""
+    if code == ELASTIC or code == FREW or p[FAILURE_STRAIN] <= 0.0:
+        return 0.0
+    return min(1.0, max(0.0, (alpha - p[FAILURE_STRAIN]) / p[SOFTENING_STRAIN]))
 
 
 @njit(error_model="numpy", cache=True)
@@ -182,6 +203,7 @@ def joint_point(par, q, n, mu, s0, delta, dt):
     if par[2] != 0.0 and (e <= q[0] if code != FREW else e <= 0.0):
         return 0.0, 0.0, q[0], q[1], q[2], e   # compression only: the faces have lifted off the specimen
     sigma, ep, al, em = law_stress(code, par[HEADER_COLUMNS:], e, rate, q)
+    sigma *= 1.0 - softening(code, par[HEADER_COLUMNS:], q[1])     # lagged: the damage of the step's start
     f = sigma * area
     if par[2] != 0.0 and f < 0.0:
         return 0.0, 0.0, q[0], q[1], q[2], e
@@ -193,7 +215,8 @@ def joint_solve(par, q, mu, s0, delta, dt):
     """Solve g(N) = N + F(N) = 0 for the face force N of one step (see the module docstring) and advance the
     state ``q`` in place to the end of the step (implicit midpoint: q_k+1 = 2 q_mid - q_k; the largest strain
     to the midpoint's, where the law was evaluated; the plastic work by sigma_mid (eps_p,k+1 - eps_p,k) A0 L0;
-    the crushed flag when the shortening at the end of the step reaches L0). Returns N."""
+    the crushed flag when the shortening at the end of the step reaches L0; the damage work by (w_k+1 - w_k)
+    E eps_e,k+1^2 / 2 A0 L0, eps_e the elastic strain, 0 where a compression-only body is in tension). Returns N."""
     f0 = joint_point(par, q, 0.0, mu, s0, delta, dt)[0]
     if f0 == 0.0:
         n = 0.0
@@ -244,7 +267,18 @@ def joint_solve(par, q, mu, s0, delta, dt):
     ep_new = 2.0 * ep - q[0]
     q[3] += sigma * (ep_new - q[0]) * par[4] * par[5]
     q[0] = ep_new
+    code = int(par[3])
+    w_old = softening(code, par[HEADER_COLUMNS:], q[1])
     q[1] = 2.0 * al - q[1]
+    w_new = softening(code, par[HEADER_COLUMNS:], q[1])
+    if w_new != w_old:
+        e_end = (delta + dt * (mu * n + s0)) / par[4]
+        if par[6] != 0.0:
+            e_end = -math.log1p(-e_end) if e_end < 1.0 else math.inf
+        elastic = e_end - q[0]
+        if par[2] != 0.0 and elastic < 0.0:
+            elastic = 0.0
+        q[5] += (w_new - w_old) * 0.5 * par[HEADER_COLUMNS] * elastic * elastic * par[4] * par[5]
     q[2] = em                       # the largest strain at which the law was evaluated (a midpoint)
     if delta + dt * (mu * n + s0) >= par[4]:
         q[4] = 1.0                  # crushed: the shortening reached the body's length (checked after the run)

@@ -16,6 +16,7 @@ from ..rods.declared import rod as rod_index
 from ..rods.laws import FREW
 from ..rods.system import System
 from ._momentum import mean_velocities
+from .joints import softening
 from .lumped import chain_energies
 from .tables import SimulationTables
 
@@ -240,8 +241,11 @@ class JointOutcome:
     the plastic laws; ``plastic_work`` (J) the work dissipated in plastic flow, sum of sigma_mid (eps_p,k+1 -
     eps_p,k) A0 L0 over the steps; ``stored_energy`` (J) the elastic energy sigma^2 / (2 E) A0 L0 at the end
     (plastic laws and the elastic law; ``nan`` for a loading-curve law such as Frew's, whose absorbed work is not
-    split). For a joint alone between two rods, ``plastic_work + stored_energy`` equals minus the joints' work
-    in :attr:`EnergyHistory.work_joints` (to the root finder's tolerance with engineering measures, to second
+    split; a failing law's (:class:`~rodimpact.rods.laws.Failure`) times 1 - softening). ``softening`` w of a
+    failing law (0 intact, 1 failed: sigma = (1 - w) sigma_law) and ``damage_work`` (J) the elastic energy its
+    softening released, sum of (w_k+1 - w_k) E eps_e,k+1^2 / 2 A0 L0 (0 without failure). For a joint alone
+    between two rods, ``plastic_work + damage_work + stored_energy`` equals minus the joints' work in
+    :attr:`EnergyHistory.work_joints` (to the root finder's tolerance with engineering measures, to second
     order in dt with true measures).
     """
 
@@ -252,6 +256,8 @@ class JointOutcome:
     accumulated_plastic_strain: float
     plastic_work: float
     stored_energy: float
+    damage_work: float = 0.0
+    softening: float = 0.0
 
 
 def joint_outcomes(system: System, gap: np.ndarray, state: np.ndarray) -> tuple[JointOutcome, ...]:
@@ -270,15 +276,16 @@ def joint_outcomes(system: System, gap: np.ndarray, state: np.ndarray) -> tuple[
         e = delta / j.initial_length
         strain = -math.log1p(-e) if j.measure == "true" and e < 1.0 else e
         e_mod = j.law.modulus
+        w = softening.py_func(j.law.code, j.law.kernel(), float(state[r, 1]))
         if j.law.code == FREW:
             stored = math.nan
         else:
             sigma = e_mod * (strain - float(state[r, 0]))
             if j.compression_only and sigma < 0.0:
                 sigma = 0.0
-            stored = sigma * sigma / (2.0 * e_mod) * j.area * j.initial_length
+            stored = (1.0 - w) * sigma * sigma / (2.0 * e_mod) * j.area * j.initial_length
         out.append(JointOutcome(r, delta, strain, float(state[r, 0]), float(state[r, 1]), float(state[r, 3]),
-                                stored))
+                                stored, float(state[r, 5]), w))
     return tuple(out)
 
 

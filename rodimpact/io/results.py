@@ -802,9 +802,10 @@ def _from_dataset(ds: Any, nc: Path) -> SimulationResult:
     ends = [str(e) for e in ds["bit_rock"].values] if "bit_rock" in ds.coords else []
     bit_rock = tuple(BitRockOutcome(end=end, **{name: (int if name == "striker" else float)(v[f"bit_rock_{name}"][i])
                                                for name in BIT_ROCK_FIELDS}) for i, end in enumerate(ends))
+    # files written before the damage work keep JointOutcome's default there (0: no failure law existed)
     joints = tuple(JointOutcome(**{name: (int if name == "junction" else float)(v[f"joint_{name}"][i])
-                                   for name in JOINT_FIELDS}) for i in range(v["joint_junction"].size)) \
-        if "joint_junction" in v else ()
+                                   for name in JOINT_FIELDS if f"joint_{name}" in v})
+                   for i in range(v["joint_junction"].size)) if "joint_junction" in v else ()
     places = [str(p) for p in ds["lumped"].values] if "lumped" in ds.coords else []
     items = json.loads(ds.attrs.get("lumped_items", "[]"))
     lumped = tuple(LumpedOutcome(place=place, **{name: float(v[f"lumped_{name}"][i]) for name in LUMPED_FIELDS},

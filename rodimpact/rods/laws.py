@@ -31,8 +31,11 @@ from .declared import check, element, path, quantity
 #: law codes of the compiled solver (rodimpact.direct.joints)
 ELASTIC, PLASTIC, JOHNSON_COOK, COWPER_SYMONDS, FREW, TABULATED = 0, 1, 2, 3, 4, 5
 
-#: number of parameters a law passes to the kernel (unused ones are 0)
-N_PARAMS = 8
+#: number of parameters a law passes to the kernel (unused ones are 0); the last two are the failure strain and
+#: the softening strain of the damage extension (:class:`Failure`; 0 = no failure)
+N_PARAMS = 10
+#: indices of the failure strain eps_f and the softening strain in a law's kernel vector
+FAILURE_STRAIN, SOFTENING_STRAIN = 8, 9
 
 
 class Law:
@@ -47,6 +50,11 @@ class Law:
         raise NotImplementedError
 
     @property
+    def fails(self) -> bool:
+        """True if the law has a failure strain (:class:`Failure`)."""
+        return False
+
+    @property
     def modulus(self) -> float:
         """The elastic (unloading) modulus E, Pa."""
         return float(self.youngs_modulus)  # type: ignore[attr-defined]
@@ -56,6 +64,49 @@ def _params(*values: float) -> np.ndarray:
     p = np.zeros(N_PARAMS)
     p[:len(values)] = values
     return p
+
+
+class Failure:
+    """Ductile damage of the plastic laws: Johnson and Cook's cumulative damage (G. R. Johnson, W. H. Cook, Eng.
+    Fract. Mech. 21 (1985) 31-48, eq. 5) D = sum(d eps_p / eps_f) with their failure strain eps_f = [D1 + D2
+    exp(D3 sigma*)][1 + D4 ln eps_dot*][1 + D5 T*] reduced to the constant D1 = ``failure_strain`` (no triaxiality,
+    rate or temperature dependence), so D = alpha / eps_f with alpha the accumulated plastic strain. Instead of
+    removing the body at D = 1, the stress softens linearly to zero over a further plastic strain
+    ``softening_strain``: sigma = (1 - w) sigma_law, w = min(1, max(0, (alpha - eps_f) / softening_strain)), the
+    undamaged law's stress sigma_law (effective stress) still following the return mapping. A fully failed body
+    (w = 1) carries no force, in compression or tension. Both None (default): no failure. The solver lags w by
+    one step (:func:`rodimpact.direct.joints.joint_point`)."""
+
+    failure_strain: Optional[float]
+    softening_strain: Optional[float]
+
+    def _check_failure(self) -> None:
+        name = type(self).__name__
+        if (self.failure_strain is None) != (self.softening_strain is None):
+            raise ValueError(f"{name}.softening_strain: failure needs both failure_strain and softening_strain "
+                             f"(got failure_strain = {self.failure_strain!r}, softening_strain = "
+                             f"{self.softening_strain!r})")
+
+    def _failure_params(self, p: np.ndarray) -> np.ndarray:
+        if self.failure_strain is not None:
+            p[FAILURE_STRAIN], p[SOFTENING_STRAIN] = self.failure_strain, self.softening_strain
+        return p
+
+    @property
+    def fails(self) -> bool:
+        """True if the law has a failure strain."""
+        return self.failure_strain is not None
+
+
+def _failure_strain() -> Any:
+    return quantity("dimensionless", "Failure strain eps_f: the accumulated plastic strain at which damage D = "
+                    "alpha / eps_f reaches 1 and softening starts (Johnson and Cook 1985's D1; None: no failure).",
+                    default=None)
+
+
+def _softening_strain() -> Any:
+    return quantity("dimensionless", "Further plastic strain over which the stress of a failing body falls "
+                    "linearly to zero (needed with failure_strain).", default=None)
 
 
 @element("law", "elastic")
@@ -75,30 +126,36 @@ class LinearElastic(Law):
 
 @element("law", "elastic-plastic")
 @dataclass(frozen=True)
-class ElasticPlastic(Law):
+class ElasticPlastic(Failure, Law):
     """Elastic with linear isotropic hardening: yield stress sigma_y + H alpha (rate independent; H = 0 is
-    elastic-perfectly plastic, and a large E approaches the rigid-perfectly-plastic specimen)."""
+    elastic-perfectly plastic, and a large E approaches the rigid-perfectly-plastic specimen); optional failure:
+    damage D = alpha / failure_strain, then the stress falls linearly to 0 over softening_strain (Failure)."""
 
     youngs_modulus: float = quantity("pressure", "Young's modulus E.")
     yield_stress: float = quantity("pressure", "Initial yield stress sigma_y.")
     hardening: float = quantity("pressure", "Plastic hardening modulus H (slope of stress over plastic strain).",
                                 bound="non_negative", default=0.0)
+    failure_strain: Optional[float] = _failure_strain()
+    softening_strain: Optional[float] = _softening_strain()
     code = PLASTIC
 
     def __post_init__(self) -> None:
         check(self)
+        self._check_failure()
 
     def kernel(self) -> np.ndarray:
-        return _params(self.youngs_modulus, self.yield_stress, self.hardening)
+        return self._failure_params(_params(self.youngs_modulus, self.yield_stress, self.hardening))
 
 
 @element("law", "johnson-cook")
 @dataclass(frozen=True)
-class JohnsonCook(Law):
+class JohnsonCook(Failure, Law):
     """Johnson-Cook flow stress (G. R. Johnson, W. H. Cook, Proc. 7th Int. Symp. Ballistics, The Hague 1983,
     pp. 541-547): sigma_y = (A + B alpha^n) (1 + C ln(rate / reference_rate)) (1 - T*^m), T* = (T - T_room) /
     (T_melt - T_room); the rate term is 1 below the reference rate. The temperature is constant during a test
-    (no adiabatic heating); below room temperature the thermal factor is 1 (T* <= 0)."""
+    (no adiabatic heating); below room temperature the thermal factor is 1 (T* <= 0). Optional failure: Johnson and
+    Cook's 1985 damage D = alpha / failure_strain (a constant failure strain), then the stress falls linearly to
+    0 over softening_strain (Failure)."""
 
     youngs_modulus: float = quantity("pressure", "Young's modulus E.")
     a: float = quantity("pressure", "Yield stress A.")
@@ -110,10 +167,13 @@ class JohnsonCook(Law):
     temperature: float = quantity("temperature", "Test temperature.", default=293.15)
     room_temperature: float = quantity("temperature", "Reference (room) temperature.", default=293.15)
     melting_temperature: float = quantity("temperature", "Melting temperature.", default=1356.0)
+    failure_strain: Optional[float] = _failure_strain()
+    softening_strain: Optional[float] = _softening_strain()
     code = JOHNSON_COOK
 
     def __post_init__(self) -> None:
         check(self)
+        self._check_failure()
         if not self.room_temperature < self.melting_temperature:
             raise ValueError(f"JohnsonCook.melting_temperature: must be above room_temperature = "
                              f"{self.room_temperature:.6g} K, got {self.melting_temperature:.6g} K")
@@ -129,8 +189,8 @@ class JohnsonCook(Law):
         return 1.0 - t_star ** self.m if t_star > 0.0 else 1.0
 
     def kernel(self) -> np.ndarray:
-        return _params(self.youngs_modulus, self.a, self.b, self.n, self.c, self.reference_rate,
-                       self.thermal_factor)
+        return self._failure_params(_params(self.youngs_modulus, self.a, self.b, self.n, self.c,
+                                            self.reference_rate, self.thermal_factor))
 
 
 @element("law", "cowper-symonds")

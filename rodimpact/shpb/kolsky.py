@@ -362,7 +362,7 @@ def incident_for_constant_rate(specimen: Specimen, rate: float, time: Sequence[f
     F_T = -sigma(rate t, rate) A(t), and the face relations give the incident force F_I = F_T - Z L0 rate / 2,
     i.e. eps_I = eps_T - L0 rate / (2 c0) with strains (Chen and Song, Split Hopkinson (Kolsky) Bar, Springer
     2011, sec. 2.4; tension-positive strains here)."""
-    from ..direct.joints import STATE_COLUMNS, law_stress
+    from ..direct.joints import STATE_COLUMNS, law_stress, softening
 
     t = finite_array("time", time)
     rate = positive("rate", rate, "1/s")
@@ -382,6 +382,7 @@ def incident_for_constant_rate(specimen: Specimen, rate: float, time: Sequence[f
         if specimen.measure == "true":
             strain, r, area = -math.log1p(-e), rate / (1.0 - e), a0 / (1.0 - e)
         sigma, ep, al, em = law_stress.py_func(law.code, law.kernel(), strain, r, q)
+        sigma *= 1.0 - softening.py_func(law.code, law.kernel(), q[1])   # a failing law, lagged as in the solver
         q[:3] = ep, al, em
         out[i] = -sigma * area - 0.5 * z * l0 * rate
     return out

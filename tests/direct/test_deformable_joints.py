@@ -233,9 +233,10 @@ def test_a_rate_law_unloading_at_rest_is_solved_not_clamped() -> None:
     # a yielded Cowper-Symonds specimen whose loading has just stopped (free faces at rest): the step's force
     # must solve g(N) = N + F(N) = 0; with the flow stress at |rate| the bracket missed the root (g = +6679 N)
     from rodimpact.direct.joints import HEADER_COLUMNS, STATE_COLUMNS, joint_point, joint_solve
+    from rodimpact.rods.laws import N_PARAMS
 
     law = ri.CowperSymonds(200e9, 200e6, 40.4, 5.0)
-    par = np.zeros(HEADER_COLUMNS + 8)
+    par = np.zeros(HEADER_COLUMNS + N_PARAMS)
     par[2:7] = 1.0, law.code, L0, A0, 0.0
     par[HEADER_COLUMNS:] = law.kernel()
     q = np.zeros(STATE_COLUMNS)

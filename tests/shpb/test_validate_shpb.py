@@ -1,6 +1,7 @@
 """scripts/validate_shpb.py on the LANL copper shot: the prediction from the measured incident pulse meets the goal of
 issue 22 (NRMSE <= 10 % for the reflected and the transmitted gauge signal), and docs/validation-shpb.md holds the
-numbers this run gives (the page is current). The mini-Kolsky shot reads from the repository's excerpts alone."""
+numbers this run gives (the page is current). The mini-Kolsky shot reads from the repository's excerpts alone; its
+rows with failure are this run's, and their failure strain lies on the fitted flow curve."""
 
 import importlib.util
 import sys
@@ -62,3 +63,19 @@ def test_mini_kolsky_shot_reads_from_the_repository():
     shot = validate_shpb.mini_shot()
     assert shot.signals.time.size == 2250 and np.isclose(shot.signals.dt, 40e-9)
     assert np.min(shot.signals.transmitted) < -1e-3                 # the transmitted pulse is in the excerpt
+
+
+def test_the_pmma_failure_rows_are_this_runs_and_eps_f_lies_on_the_fitted_curve():
+    # the failure strain: the fitted Johnson-Cook flow stress at eps_f and the loading part's mean rate equals the
+    # largest 3-wave true stress (checked here with the compiled law's own flow stress, an independent evaluation);
+    # the page holds the rows this run gives
+    from rodimpact.direct.joints import flow_stress
+
+    intact, ff, runs = validate_shpb.validate_failure()
+    law = validate_shpb.johnson_cook(intact.shot, intact.fit.a, intact.fit.b, intact.fit.n)
+    stress = flow_stress.py_func(law.code, law.kernel(), ff.failure_strain, ff.rate)
+    assert stress == pytest.approx(ff.peak_stress, rel=1e-9)
+    assert ff.softening_strain == pytest.approx(ff.rate * ff.collapse, rel=1e-12)
+    page = (ROOT / "docs" / "validation-shpb.md").read_text(encoding="utf-8")
+    for row in validate_shpb.failure_section(intact, ff, runs):
+        assert row in page
