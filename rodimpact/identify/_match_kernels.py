@@ -33,7 +33,7 @@ from numba import njit
 
 
 # ------------------------------------------------------------------------------------------------ forward
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def forward_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us):
     """Head velocity y (len(F)) of the pile at rest driven by the head force F; if ``Ns`` has rows, the state
     before every step is stored into ``Ns``, ``vs``, ``us`` (shapes (K, n), (K, n), (K, n+1))."""
@@ -52,6 +52,10 @@ def forward_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us):
     for i in range(1, n):
         inv_D[i] = 1.0 / (Z[i - 1] + Z[i] + c[i] + k[i] * h)
     for s in range(K):
+        # the front: before step s only elements < s and nodes < s have left rest (the head is driven from step
+        # 0, a wave crosses one element per step), so nodes and elements beyond s + 1 stay exactly zero and their
+        # formulas are skipped
+        top = min(s + 1, n - 1)
         if store:
             for j in range(n):
                 Ns[s, j] = N[j]
@@ -60,7 +64,7 @@ def forward_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us):
                 us[s, i] = u[i]
         Vn[0] = v[0] + (N[0] - F[s]) / Z[0]
         Nm[0] = F[s]
-        for i in range(1, n):
+        for i in range(1, top + 1):
             a = i - 1
             q = c[i] + k[i] * h
             num = -q * v[a] - k[i] * u[i] + N[i] - N[a] + Z[i] * (v[i] - v[a])
@@ -69,20 +73,24 @@ def forward_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us):
             Vn[i] = V
             Np[a] = N[a] + Z[a] * d
             Nm[i] = N[i] - Z[i] * (V - v[i])
-        a = n - 1
-        A = N[a] - Z[a] * v[a]
-        if fixed_toe:
-            Vn[n] = 0.0
-            Np[a] = A
-        else:
-            w = -(A + kt * u[n]) / (Z[a] + ct + kt * h)
-            Vn[n] = w
-            Np[a] = A + Z[a] * w
+        if top == n - 1:
+            a = n - 1
+            A = N[a] - Z[a] * v[a]
+            if fixed_toe:
+                Vn[n] = 0.0
+                Np[a] = A
+            else:
+                w = -(A + kt * u[n]) / (Z[a] + ct + kt * h)
+                Vn[n] = w
+                Np[a] = A + Z[a] * w
         y[s] = Vn[0]
-        for j in range(n):
+        for j in range(top):            # element top (if not the last) has Np from node top + 1: still at rest
             N[j] = Nm[j] + Np[j] - N[j]
             v[j] = Vn[j] + Vn[j + 1] - v[j]
-        for i in range(n + 1):
+        if top == n - 1:
+            N[top] = Nm[top] + Np[top] - N[top]
+            v[top] = Vn[top] + Vn[top + 1] - v[top]
+        for i in range(top + 1 if top < n - 1 else n + 1):
             u[i] += Vn[i] * dt
     return y
 
@@ -124,7 +132,7 @@ def forward_numpy(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us):
 
 
 # ------------------------------------------------------------------------------------------------ reverse
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
     """Gradient of J(y) with respect to (Z, c, k, k_t, c_t) given by = dJ/dy and the stored forward states.
 
@@ -154,17 +162,22 @@ def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
     svb = np.empty(n)
     sZb = np.empty(n)
     for s in range(K - 1, -1, -1):
+        # the two cones: the forward states of step s are zero beyond element s (the front), the adjoint ones
+        # beyond element K - 1 - s (what the head records from step s on has come from no deeper); the gradient
+        # needs both nonzero, and neither cone takes values from outside itself, so the step's nodes and elements
+        # beyond top (each cone with a margin) are skipped. Outside, bN, bv, bu keep stale values never read again.
+        top = min(n - 1, s + 1, K - s + 1)
         # element update: N^- and N^+ of element j both receive bN'_j; node i receives bv' of elements i-1, i
-        for j in range(n):
+        for j in range(top + 1):
             bNe[j] = bN[j]
-        for i in range(n + 1):
+        for i in range(top + 2):
             t = bu[i] * dt
             if i < n:
                 t += bv[i]
             if i > 0:
                 t += bv[i - 1]
             bV[i] = t
-        for j in range(n):
+        for j in range(top + 1):
             bN[j] = -bN[j]
             bv[j] = -bv[j]
         bV[0] += by[s]
@@ -175,7 +188,7 @@ def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
         gZ[0] -= g * (Ns[s, 0] - F[s]) / (Z[0] * Z[0])
         # shaft nodes, in two passes so that both vectorise: node i's partials into per-node scratch (pass 1, no
         # node writes a neighbour's entry), then every element collects from its two nodes (pass 2)
-        for i in range(1, n):
+        for i in range(1, top + 1):
             a = i - 1
             va = vs[s, a]
             vb = vs[s, i]
@@ -200,14 +213,16 @@ def adjoint_numba(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
             bu[i] -= k[i] * bnum
             gk[i] += h * bq - ui * bnum
             gc[i] += bq
-        for j in range(n - 1):
+        for j in range(top):
             bN[j] += sNa[j + 1]
             bv[j] += sva[j + 1]
             gZ[j] += sZa[j + 1]
-        for j in range(1, n):
+        for j in range(1, top + 1):
             bN[j] += sNb[j]
             bv[j] += svb[j]
             gZ[j] += sZb[j]
+        if top < n - 1:
+            continue
         # toe
         a = n - 1
         Na = Ns[s, a]
@@ -301,7 +316,7 @@ def adjoint_numpy(Z, c, k, kt, ct, fixed_toe, F, dt, Ns, vs, us, by):
 
 
 # ------------------------------------------------------------------------------------------------ tangent
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def tangent_numba(Z, c, k, kt, ct, fixed_toe, F, dt, tZ, tc, tk, tkt, tct):
     """Forward sensitivities: J[s, p] = dy_s along the parameter direction p = (tZ[p], tc[p], tk[p], tkt[p],
     tct[p]) (the Jacobian of the record for the Gauss-Newton covariance). The primal run of

@@ -39,13 +39,15 @@ Penalty weight alpha (:func:`choose_weight`):
 
 from __future__ import annotations
 
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, Callable, Optional
 
 import numpy as np
 from scipy.optimize import minimize
-from scipy.signal import lfilter
 
 from . import _match_kernels as mk
 
@@ -273,20 +275,29 @@ def _one_blas_thread():
     """Run scipy's bundled OpenBLAS on one thread inside the block (restored after). L-BFGS-B's small dense
     products with a few hundred unknowns spend far more time starting threads than computing: on the 2-core test
     machine one fit of 164 unknowns took 7 ms per iteration with the default threads, 0.3 ms with one
-    (benchmarks/bench_identify.py). A no-op where the library is not found."""
+    (benchmarks/bench_identify.py). A no-op where the library is not found. Reentrant and safe across threads
+    (the toe scan fits on several): the first block to enter sets one thread, the last to leave restores."""
     lib = _scipy_openblas()
     if lib is None:
         yield
         return
-    before = lib.scipy_openblas_get_num_threads()
-    lib.scipy_openblas_set_num_threads(1)
+    with _BLAS_LOCK:
+        if _BLAS_STATE["depth"] == 0:
+            _BLAS_STATE["before"] = lib.scipy_openblas_get_num_threads()
+            lib.scipy_openblas_set_num_threads(1)
+        _BLAS_STATE["depth"] += 1
     try:
         yield
     finally:
-        lib.scipy_openblas_set_num_threads(before)
+        with _BLAS_LOCK:
+            _BLAS_STATE["depth"] -= 1
+            if _BLAS_STATE["depth"] == 0:
+                lib.scipy_openblas_set_num_threads(_BLAS_STATE["before"])
 
 
 _OPENBLAS: list = []
+_BLAS_LOCK = threading.Lock()
+_BLAS_STATE = {"depth": 0, "before": 1}
 
 
 def _scipy_openblas():
@@ -517,6 +528,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
                          penalty: str = "tv", weight: Any = "auto", impedance_bounds: tuple[float, float] = (0.02, 3.0),
                          soil: bool = True, toe: str = "spring", bands: str = "laplace", min_change: float = 0.08,
                          window: Optional[int] = None, draws: int = 300, seed: int = 0, max_toe_scan: int = 12,
+                         threads: Optional[int] = None,
                          refit: bool = True, block_step: float = 0.03, band_noise: str = "residual",
                          band_scale: float = 1.0,
                          progress: Optional[Callable[[str], None]] = None, backend: str = "numba"):
@@ -563,6 +575,9 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     band_scale:
         A factor on the band widths (the covariance times its square), for an empirical calibration (default 1:
         none); the uncalibrated bands are then in ``diagnostics["comparison_bands"]["uncalibrated"]``.
+    threads:
+        Threads for the toe scan's independent fits (default: the cores this process may use); the result does
+        not depend on it.
     min_change, window:
         An anomaly departs from the running median of ``window`` elements (default a quarter of the pile) by
         more than ``min_change`` (share) and its band excludes that median.
@@ -593,6 +608,12 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     if bands not in ("laplace", "sampling", "none"):
         raise ValueError(f"bands: must be 'laplace', 'sampling' or 'none', got {bands!r}")
     pen = Penalty(penalty)
+    if threads is None:
+        workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    elif int(threads) == threads and threads >= 1:
+        workers = int(threads)
+    else:
+        raise ValueError(f"threads: must be an integer >= 1 (or None: the cores available), got {threads!r}")
     time_ = np.asarray(record.time, dtype=float)
     force = np.asarray(record.force, dtype=float)
     vel = np.asarray(record.velocity, dtype=float)
@@ -677,14 +698,13 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
 
     cache: dict[int, tuple[float, Fit, PileModel, bool]] = {}     # j -> (criterion, fit, model, full)
 
-    def truncated(j, full=True):
-        """Phi + j ln(K)/2 of the model truncated at j, refitted from the extended fit or the nearest refitted
-        model: the soil first, then everything, for at most :data:`TOE_COARSE` iterations (``full=False``, a
-        screening value, always started from the extended fit so that screening errors do not propagate: an upper
-        bound of the converged criterion) or :data:`TOE_FULL` from the nearest full fit (a screened entry asked
-        for in full is continued from where it stopped)."""
-        if j in cache and (cache[j][3] or not full):
-            return cache[j][0]
+    def refit(j: int, full: bool) -> tuple[float, Fit, PileModel]:
+        """Phi + j ln(K)/2 of the model truncated at j, its fit and model: refitted from the extended fit or the
+        nearest refitted model, the soil first, then everything, for at most :data:`TOE_COARSE` iterations
+        (``full=False``, a screening value, always started from the extended fit so that screening errors do not
+        propagate: an upper bound of the converged criterion) or :data:`TOE_FULL` from the nearest full fit (a
+        screened entry asked for in full is continued from where it stopped). Reads the cache, does not write it
+        (several run at once in :func:`prefetch`)."""
         cap = TOE_FULL if full else TOE_COARSE
         bnds = bounds_of(j)
         if j in cache:
@@ -707,42 +727,64 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             soil_first = fit(mm, vel, sigma, alpha, pen, start, [(v, v) for v in start[:j]] + bnds[j:],
                              max_iterations=100)
             f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=cap)
-        iterations["toe"] += f.iterations
-        cache[j] = (phi_of(mm, f.theta) + per_element * j, f, mm, full)
+        return phi_of(mm, f.theta) + per_element * j, f, mm
+
+    def store(j: int, full: bool, got: tuple[float, Fit, PileModel]) -> float:
+        iterations["toe"] += got[1].iterations
+        cache[j] = (got[0], got[1], got[2], full)
         if progress is not None:
-            progress(f"toe at element {j}: Phi = {cache[j][0]:.6g}" + ("" if full else " (screening)"))
-        return cache[j][0]
+            progress(f"toe at element {j}: Phi = {got[0]:.6g}" + ("" if full else " (screening)"))
+        return got[0]
+
+    def wanted(j: int, full: bool) -> bool:
+        return not (j in cache and (cache[j][3] or not full))
+
+    def truncated(j: int, full: bool = True) -> float:
+        """The criterion of the model truncated at j (:func:`refit`), cached."""
+        return store(j, full, refit(j, full)) if wanted(j, full) else cache[j][0]
+
+    def prefetch(js: list[int], full: bool) -> None:
+        """:func:`truncated` for every j of ``js`` at once, on ``threads`` threads (the fits are independent: the
+        compiled kernels release the GIL); stored in the order of ``js``, so the result does not depend on the
+        threads."""
+        todo = [j for j in js if wanted(j, full)]
+        with ThreadPoolExecutor(max_workers=max(1, min(workers, len(todo)))) as pool, _one_blas_thread():
+            for j, got in zip(todo, list(pool.map(lambda q: refit(q, full), todo))):
+                store(j, full, got)
 
     per_element = 0.5 * np.log(vel.size)
     w = max(3, n_pile // 20)
-    best_full = lambda: min((q for q in cache if cache[q][3]), key=lambda q: cache[q][0])
     step = max(1, w // 3)
     # screening at steps of w/3 around each candidate; the best TOE_REFINE screened truncations in full, then the
     # walk out from the best (a descent: it goes on while a neighbour is lower, and closes the 90 % interval)
     scan = sorted({j for j0 in toe_candidates(best.theta[:n], max(4, int(0.6 * n_pile)), w)
                    for j in range(max(4, j0 - w), min(n, j0 + w) + 1, step)})
-    for j in scan:
-        truncated(j, full=False)
-    for j in sorted(scan, key=lambda q: cache[q][0])[:TOE_REFINE]:
-        truncated(j)
-    for _ in range(n):           # walk out from the best to both sides until 2 (Phi - Phi_min) > 2.71
-        jb = best_full()
-        pmin = cache[jb][0]
-        for side in (-1, 1):
-            for d in range(1, max_toe_scan + 1):
-                j = jb + side * d
-                if not 4 <= j <= n or 2 * (truncated(j) - pmin) > PROFILE_90:
+    prefetch(scan, full=False)
+    prefetch(sorted(scan, key=lambda q: cache[q][0])[:TOE_REFINE], full=True)
+
+    def walk(crit: Callable[[int], float], limit: float = PROFILE_90) -> tuple[int, int, int]:
+        """From the lowest ``crit`` over the full fits, single steps out to both sides (refitting in full) until
+        2 (crit - min) > ``limit`` on each, repeated while the lowest moves: the best j and the interval's ends."""
+        for _ in range(n):
+            jb = min((q for q in cache if cache[q][3]), key=crit)
+            pmin = crit(jb)
+            sides = [-1, 1]
+            for d in range(1, max_toe_scan + 1):          # both sides a step at a time, their fits at once
+                prefetch([jb + s * d for s in sides if 4 <= jb + s * d <= n], full=True)
+                sides = [s for s in sides if 4 <= jb + s * d <= n and 2 * (crit(jb + s * d) - pmin) <= limit]
+                if not sides:
                     break
-        if best_full() == jb:
-            break
-    keys = [j for j in cache if cache[j][3]]
-    jb = best_full()
+            if min((q for q in cache if cache[q][3]), key=crit) == jb:
+                break
+        inside = [j for j in cache if cache[j][3] and 2 * (crit(j) - pmin) <= limit]
+        return jb, min(inside), max(inside)
+
+    jb, lo_j, hi_j = walk(truncated)
     pmin, final, fmodel, _ = cache[jb]
     final = fit(fmodel, vel, sigma, alpha, pen, final.theta, bounds_of(jb))      # polish the chosen model
-    inside = [j for j in keys if 2 * (cache[j][0] - pmin) <= PROFILE_90]
     h = c_w * dt
     toe_depth = jb * h
-    toe_band = (min(inside) * h, max(inside) * h)
+    toe_band = toe_band_white = (lo_j * h, hi_j * h)
     theta = final.theta
     phase2 = _time.perf_counter()
     if refit:
@@ -785,6 +827,29 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         return (tuple(np.percentile([g.start * h for g in got], [5, 95])),
                 tuple(np.percentile([g.change for g in got], [5, 95])))
 
+    def toe_band_of(nm: Optional["unc.NoiseModel"], limit: float) -> tuple[float, float]:
+        """The toe's interval 2 (crit - min) <= ``limit`` over the truncated models (:func:`walk`), holding the
+        chosen toe. ``nm`` ``None``: the criterion of the scan (white noise at ``sigma``); else the misfit of the
+        AR noise model ``nm``, the whitened residual 1/2 |W r|^2 / s2 for 1/2 |r / sigma|^2, the penalty keeping
+        its weight relative to the misfit (alpha sigma^2 / var(nm)), the same price per element. The criterion's
+        values are kept in ``diagnostics["toe_profile"]``."""
+        memo: dict[int, float] = {}
+
+        def crit(j):
+            value = truncated(j)
+            if j not in memo:
+                if nm is not None:
+                    f = cache[j][1]
+                    value = (nm.misfit(f.y - vel) + per_element * j
+                             + alpha * sigma ** 2 / nm.variance() * pen.value_gradient(f.theta[:j])[0])
+                memo[j] = value
+            return memo[j]
+
+        _, lo, hi = walk(crit, limit)
+        diag_extra["toe_profile"] = {"depth_m": [j * h for j in sorted(memo)],
+                                     "criterion": [memo[j] for j in sorted(memo)]}
+        return min(lo, jb) * h, max(hi, jb) * h
+
     compare: dict[str, tuple] = {}
     if bands != "none":
         y_work, J = work_model.jacobian(work_theta)
@@ -799,13 +864,18 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             noise_model = unc.ar_noise_model(y_work - vel, fitted=int(free.sum()), max_order=min(20, vel.size // 4))
             C = unc.laplace_covariance(J, sigma, ph, work_alpha, free, noise=noise_model)
             compare["white"] = gaussian_bands(C_white, np.random.default_rng(seed))
+            diag_extra["toe_band_white"] = toe_band_white
             diag_extra.update({"noise_model_order": noise_model.order,
                                "noise_model_sd": float(np.sqrt(noise_model.variance())),
                                "band_variance_ratio": float(np.median(np.diag(C)[:nb][free[:nb]]
                                                                       / np.diag(C_white)[:nb][free[:nb]]))})
         if band_scale != 1.0:
             compare["uncalibrated"] = gaussian_bands(C, np.random.default_rng(seed))
+            diag_extra["toe_band_uncalibrated"] = toe_band_of(noise_model, PROFILE_90)
             C = band_scale ** 2 * C
+        # the calibration widens the toe's interval as it widens the other bands: a band k times wider is a
+        # likelihood tempered by 1 / k^2, whose interval is 2 Delta crit <= 2.71 k^2
+        toe_band = toe_band_of(noise_model, PROFILE_90 * band_scale ** 2)
         rng = np.random.default_rng(seed)
         if bands == "laplace":
             lower, upper, samples_m = gaussian_bands(C, rng)
@@ -813,8 +883,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             def phi_work(t):
                 r = work_model.simulate(t) - vel
                 if noise_model is not None:         # the likelihood of the AR noise model: whitened residual
-                    e = lfilter(np.r_[1.0, -noise_model.a], [1.0], r)
-                    f = 0.5 * float(e @ e) / noise_model.innovation
+                    f = noise_model.misfit(r)
                 else:
                     f = 0.5 * float(r @ r) / sigma ** 2
                 return f + (work_alpha * pen.value_gradient(t[:nb])[0] if work_alpha > 0 else 0.0)

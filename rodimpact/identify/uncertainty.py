@@ -91,6 +91,14 @@ class NoiseModel:
         h = lfilter([1.0], np.r_[1.0, -self.a], np.r_[1.0, np.zeros(4095)])
         return float(self.innovation * np.sum(h * h))
 
+    def misfit(self, residual: np.ndarray) -> float:
+        """1/2 r^T Sigma^-1 r = 1/2 |W r|^2 / s2: the negative log-likelihood of the residual r under the model
+        (up to a constant), with W r the filter e_k = r_k - sum_i a_i r_{k-i} from rest."""
+        from scipy.signal import lfilter
+
+        e = lfilter(np.r_[1.0, -self.a], [1.0], np.asarray(residual, dtype=float))
+        return 0.5 * float(e @ e) / self.innovation
+
     def jt_sigma_j(self, J: np.ndarray) -> np.ndarray:
         """J^T Sigma J = s2 (W^-T J)^T (W^-T J); W^-T J is the synthesis filter 1 / (1 - sum a_i z^-i) run
         backwards in time over the columns of J."""

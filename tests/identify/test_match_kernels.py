@@ -65,6 +65,30 @@ def test_numpy_twin_equals_numba_forward_and_adjoint():
             np.testing.assert_allclose(b, a, rtol=0, atol=1e-12 * max(np.abs(a).max(), 1e-300))
 
 
+@pytest.mark.parametrize("n, K", [(30, 12), (30, 29), (30, 31), (30, 59), (30, 61), (2, 9), (1, 5)])
+def test_numba_kernels_equal_the_twin_when_the_record_ends_before_or_after_the_toe_echo(n, K):
+    """The compiled kernels skip what lies beyond the wave front (forward) and beyond what the record can still
+    see (adjoint): against the numpy twin, which runs every node of every step, on records shorter than the
+    travel to the toe, about one or two travel times, and longer; stored states from NaN-filled buffers."""
+    rng = np.random.default_rng(n * 100 + K)
+    Z = 1.0e5 * np.exp(rng.normal(0.0, 0.25, n))
+    c = np.r_[0.0, rng.uniform(0.0, 3e3, n - 1), 0.0] if n > 1 else np.zeros(2)
+    k = np.r_[0.0, rng.uniform(0.0, 2e7, n - 1), 0.0] if n > 1 else np.zeros(2)
+    F = -2e4 * rng.uniform(size=K)
+    by = rng.normal(size=K)
+    for fixed in (False, True):
+        st = [np.full((K, n), np.nan), np.full((K, n), np.nan), np.full((K, n + 1), np.nan)]
+        y = mk.forward_numba(Z, c, k, 3e8, 2e4, fixed, F, DT, *st)
+        ref = [np.empty_like(a) for a in st]
+        y2 = mk.forward_numpy(Z, c, k, 3e8, 2e4, fixed, F, DT, *ref)
+        np.testing.assert_allclose(y, y2, rtol=0, atol=1e-12 * np.abs(y2).max())
+        g = mk.adjoint_numba(Z, c, k, 3e8, 2e4, fixed, F, DT, *st, by)
+        g2 = mk.adjoint_numpy(Z, c, k, 3e8, 2e4, fixed, F, DT, *ref, by)
+        for a, b in zip(g, g2):
+            a, b = np.atleast_1d(a), np.atleast_1d(b)
+            np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * max(np.abs(b).max(), 1e-300))
+
+
 def test_energy_balance_with_shaft_and_toe_soil():
     """Work of the head force = element energy + spring energy + energy dissipated by the dashpots, with the
     lattice energy 1/2 dt sum(Z v^2 + N^2 / Z) (thesis eq. 3.25); exact for the midpoint spring."""

@@ -118,9 +118,10 @@ def test_baseline_noise_is_the_spread_before_the_blow():
     assert baseline_noise(rec, half_sine(t, 1e4, 10 * DT)) is None     # no baseline before the blow
 
 
-def _synthetic(seed: int, noise: float):
+def _synthetic(seed: int, noise: float, toe: tuple[float, float] = (8.0, 0.4)):
     """A pile of 48 elements computed on a lattice twice as fine (96 elements, dt/2), a 30 % neck at elements
-    12-17 and a 25 % bulge at 30-33, shaft and toe soil; the record averaged over pairs of fine samples."""
+    12-17 and a 25 % bulge at 30-33, shaft and toe soil (``toe``: k_t T / Z, c_t / Z); the record averaged over
+    pairs of fine samples."""
     n, c, length = 48, 4000.0, 6.0
     dt = length / (c * n)
     z0 = 3e5
@@ -131,7 +132,7 @@ def _synthetic(seed: int, noise: float):
     tf = np.arange(2 * steps) * dt / 2
     ff = half_sine(tf, 1e4, 6 * dt, pre * dt)
     fine = PileModel(dt / 2, 2 * n, ff, z0)
-    y = fine.simulate(np.r_[np.log(zf / z0), 0.4, 0.4, 8.0, 0.4]).reshape(-1, 2).mean(axis=1)
+    y = fine.simulate(np.r_[np.log(zf / z0), 0.4, 0.4, *toe]).reshape(-1, 2).mean(axis=1)
     force = ff.reshape(-1, 2).mean(axis=1)
     rng = np.random.default_rng(seed)
     y = y + rng.normal(0.0, noise * np.sqrt(np.mean(y[pre:] ** 2)), y.size)
@@ -277,3 +278,42 @@ def test_band_factor_widens_the_bands_and_keeps_the_uncalibrated_ones():
     np.testing.assert_allclose(unc_bands["lower"], one.lower, rtol=1e-12)
     np.testing.assert_allclose(unc_bands["upper"], one.upper, rtol=1e-12)
     assert "white" in one.diagnostics["comparison_bands"] and one.diagnostics["noise_model_order"] >= 0
+
+
+def test_toe_interval_is_the_tempered_profile_likelihood_of_the_residual_noise():
+    """The toe band: the truncated models whose criterion (the AR residual model's misfit, the penalty, ln K / 2
+    per element) lies within 2 Delta <= 2.71 k^2 of the lowest, with k the band factor (a band k times wider is a
+    likelihood tempered by 1 / k^2); the band factor widens it and keeps the k = 1 interval and the white one."""
+    from rodimpact.identify.matching import PROFILE_90
+
+    # a weak toe (its dashpot matches the pile, c_t = Z) under 10 % noise: the k = 1 interval is one element,
+    # short of the true toe; k = 2 holds it
+    record, c, length, z0, h = _synthetic(13, 0.10, toe=(2.0, 1.0))
+    for k in (1.0, 2.0):
+        res = identify_by_matching(record, z0, c, length=1.05 * length, band_scale=k)
+        prof = res.diagnostics["toe_profile"]
+        depth, crit = np.array(prof["depth_m"]), np.array(prof["criterion"])
+        inside = depth[2 * (crit - crit.min()) <= PROFILE_90 * k ** 2]
+        assert res.toe_band == pytest.approx((min(inside.min(), res.toe), max(inside.max(), res.toe)), abs=1e-12)
+        # the walk went one model past each end of the interval (unless it met the model's ends)
+        assert depth.min() < res.toe_band[0] or depth.min() <= 4 * h + 1e-9
+        assert depth.max() > res.toe_band[1]
+        if k == 2.0:
+            assert res.diagnostics["toe_band_uncalibrated"] == pytest.approx(one_band)
+            assert res.toe_band[0] < one_band[0] and res.toe_band[1] > one_band[1]
+            assert res.toe_band[0] <= length <= res.toe_band[1] and not one_band[0] <= length <= one_band[1]
+        else:
+            one_band = res.toe_band
+            assert "toe_band_white" in res.diagnostics
+
+
+def test_toe_scan_on_threads_gives_the_one_thread_result():
+    """The toe scan's fits run on several threads; the result does not depend on how many."""
+    record, c, length, z0, h = _synthetic(13, 0.10, toe=(2.0, 1.0))
+    one = identify_by_matching(record, z0, c, length=1.05 * length, threads=1)
+    two = identify_by_matching(record, z0, c, length=1.05 * length, threads=2)
+    np.testing.assert_array_equal(one.impedance, two.impedance)
+    np.testing.assert_array_equal(one.upper, two.upper)
+    assert one.toe_band == two.toe_band and one.diagnostics["toe_candidates"] == two.diagnostics["toe_candidates"]
+    with pytest.raises(ValueError, match="threads"):
+        identify_by_matching(record, z0, c, length=1.05 * length, threads=0)

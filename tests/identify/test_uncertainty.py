@@ -82,6 +82,22 @@ def test_noise_model_covariance_is_that_of_the_ar_process_from_rest():
     np.testing.assert_allclose(unc.NoiseModel(a, 1.7).jt_sigma_j(J), ref, rtol=1e-10)
 
 
+def test_noise_model_misfit_is_the_gaussian_negative_log_likelihood():
+    """1/2 r^T Sigma^-1 r with Sigma = s2 W^-1 W^-T built as a matrix (the AR(2) process from rest), against the
+    filter form; for the white model (no coefficients) 1/2 |r|^2 / s2."""
+    from scipy.linalg import toeplitz
+
+    rng = np.random.default_rng(9)
+    K = 50
+    a = np.array([0.6, -0.25])
+    W = toeplitz(np.r_[1.0, -a, np.zeros(K - 3)], np.zeros(K))
+    Wi = np.linalg.inv(W)
+    r = rng.normal(size=K)
+    ref = 0.5 * r @ np.linalg.solve(2.3 * Wi @ Wi.T, r)
+    assert unc.NoiseModel(a, 2.3).misfit(r) == pytest.approx(ref, rel=1e-10)
+    assert unc.NoiseModel(np.zeros(0), 2.3).misfit(r) == pytest.approx(0.5 * r @ r / 2.3, rel=1e-14)
+
+
 def test_sandwich_with_white_noise_model_is_the_laplace_covariance():
     rng = np.random.default_rng(4)
     J = rng.normal(size=(50, 5))
