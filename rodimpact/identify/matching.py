@@ -935,9 +935,9 @@ def identify(record: Any, impedance: Optional[float], wave_speed: float, *, meth
     """The impedance profile below the head by one of the identification methods, as an
     :class:`~rodimpact.identify.IdentificationResult`: ``"matching"`` (:func:`identify_by_matching`, the default:
     soil, damping and noise, with bands), ``"peeling"`` (:func:`~rodimpact.identify.identify_by_peeling`: exact
-    for clean lossless records with a sharp onset) or ``"beta"`` (:func:`~rodimpact.identify.identify_by_beta`:
-    reflectors and their integrity factors). ``options`` go to the method (e.g. ``length`` for matching and
-    beta)."""
+    for clean lossless records with a sharp onset, or any blow with ``deconvolve=True``) or ``"beta"``
+    (:func:`~rodimpact.identify.identify_by_beta`: reflectors and their integrity factors). ``options`` go to the
+    method (e.g. ``length`` for matching, beta and deconvolved peeling)."""
     from .peeling import identify_by_peeling
     from .reflectors import identify_by_beta
 
