@@ -8,10 +8,13 @@ none to strong (total C_s / Z in [0, 1]), shaft and toe springs, a toe dashpot. 
 twice as fine (dt/2, anomaly edges anywhere on it) and averaged over pairs of samples, so the truth is not the
 identification's own model. Hammer: a half-sine of 2 D / c (known force). Noise: white or 1/f (power ~ 1/f), its
 energy 1 %, 3 % or 10 % of the signal's energy over the record after the onset, also in the 50-sample
-pre-trigger baseline. The methods get the nominal head impedance and a pile length off by up to 10 %.
+pre-trigger baseline. The methods get the nominal head impedance and a pile length off by up to 10 %. Peeling
+runs on the deconvolved record (the half-sine is too smooth to be peeled as it is).
 
     python benchmarks/bench_identify.py --quick          # 6 small piles (what tests/identify runs)
     python benchmarks/bench_identify.py --piles 1000 --write
+    python benchmarks/bench_identify.py --piles 1000 --shard 0/2 --rows a.jsonl --threads 1   # and 1/2, b.jsonl,
+    python benchmarks/bench_identify.py --merge a.jsonl b.jsonl --write                      # on two cores
     python benchmarks/bench_identify.py --calibrate --piles 36 --seed 7   # the band factor, on other seeds
     python benchmarks/bench_identify.py --timing         # one 256-element pile into docs/performance.md
 
@@ -22,6 +25,7 @@ the benchmark's seed 2024); the page also shows the coverage without it and with
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import sys
 import time
@@ -119,7 +123,7 @@ def true_profile(pile: Pile, depth_mid: np.ndarray) -> np.ndarray:
     return pile.zf[j]
 
 
-def run_method(method: str, record, onset: int, pile: Pile, band_scale: float = 1.0):
+def run_method(method: str, record, onset: int, pile: Pile, band_scale: float = 1.0, threads: Optional[int] = None):
     from rodimpact.identify import identify_by_beta, identify_by_peeling
     from rodimpact.identify.matching import identify_by_matching
 
@@ -127,10 +131,11 @@ def run_method(method: str, record, onset: int, pile: Pile, band_scale: float = 
         warnings.simplefilter("ignore")
         if method == "matching":
             return identify_by_matching(record, Z_NOMINAL, C_WAVE, length=pile.expected_length,
-                                        min_change=THRESHOLD, band_scale=band_scale)
+                                        min_change=THRESHOLD, band_scale=band_scale, threads=threads)
         rec = record.from_onset(onset)
-        if method == "peeling":
-            return identify_by_peeling(rec, Z_NOMINAL, C_WAVE, threshold=THRESHOLD)
+        if method == "peeling":        # deconvolved first: the hammer's half-sine is too smooth to peel as it is
+            return identify_by_peeling(rec, Z_NOMINAL, C_WAVE, threshold=THRESHOLD, deconvolve=True,
+                                       length=pile.expected_length)
         return identify_by_beta(rec, Z_NOMINAL, C_WAVE, threshold=THRESHOLD, length=pile.expected_length)
 
 
@@ -187,8 +192,13 @@ def score(pile: Pile, res) -> dict[str, Any]:
     out = {"depth_err": depth_err, "size_err": size_err, "missed": missed, "false": false,
            "true_count": len(pile.anomalies), "depth_cov": depth_cov, "size_cov": size_cov,
            "toe_err": None if res.toe is None else abs(res.toe - LENGTH), "toe_cov": None, "z_cov": None}
+    toe_in = lambda band: bool(band[0] - 1e-9 <= LENGTH <= band[1] + 1e-9)
     if res.toe_band is not None:
-        out["toe_cov"] = bool(res.toe_band[0] - 1e-9 <= LENGTH <= res.toe_band[1] + 1e-9)
+        out["toe_cov"] = toe_in(res.toe_band)
+    for name in ("uncalibrated", "white"):
+        band = res.diagnostics.get(f"toe_band_{name}")
+        if band is not None:
+            cmp.setdefault(name, {"depth_cov": [], "size_cov": []})["toe_cov"] = toe_in(band)
     if res.lower is not None:
         mid = 0.5 * (res.depth[1:] + res.depth[:-1])
         keep = mid < min(LENGTH, res.depth[-1])
@@ -231,7 +241,8 @@ def summarise(rows: list[dict]) -> dict[tuple, dict]:
                                "depth_cov": _mean([x for r in sel if name in r["cmp"]
                                                    for x in r["cmp"][name]["depth_cov"]]),
                                "size_cov": _mean([x for r in sel if name in r["cmp"]
-                                                  for x in r["cmp"][name]["size_cov"]])}
+                                                  for x in r["cmp"][name]["size_cov"]]),
+                               "toe_cov": _mean([r["cmp"][name].get("toe_cov") for r in sel if name in r["cmp"]])}
                         for name in ("uncalibrated", "white")}}
     return table
 
@@ -242,20 +253,31 @@ def _mean(values) -> float:
 
 
 def run(piles: int, seed: int = 2024, quick: bool = False, progress: bool = True,
-        write_every: Optional[int] = None, band_scale: float = 1.0,
-        methods: tuple = METHODS) -> tuple[list[dict], dict]:
+        write_every: Optional[int] = None, band_scale: float = 1.0, methods: tuple = METHODS,
+        shard: tuple[int, int] = (0, 1), rows_file: Optional[Path] = None,
+        threads: Optional[int] = None) -> tuple[list[dict], dict]:
     """Identify ``piles`` random piles with every method; with ``write_every``, the page is rewritten after every
-    so many piles (a long run that is stopped keeps what it has, with its count)."""
+    so many piles (a long run that is stopped keeps what it has, with its count). ``shard = (k, m)``: only the
+    piles i with i mod m = k (all piles are drawn, so each keeps its record). ``rows_file``: every pile's rows
+    are appended to it as JSON lines, and piles found there are not run again (a stopped run resumes)."""
     rng = np.random.default_rng(seed)
-    rows = []
+    done = {}
+    if rows_file is not None and rows_file.exists():
+        for row in load_rows([rows_file]):
+            done.setdefault(row["pile"], []).append(row)
+    rows = [r for i in sorted(done) for r in done[i]]
     t0 = time.perf_counter()
+    mine = [i for i in range(piles) if i % shard[1] == shard[0]]
     for i in range(piles):
         pile = make_pile(rng, i, quick)
         record, onset = make_record(pile, rng)
+        if i % shard[1] != shard[0] or i in done:
+            continue
+        new = []
         for method in methods:
             w0 = time.perf_counter()
             try:
-                res = run_method(method, record, onset, pile, band_scale)
+                res = run_method(method, record, onset, pile, band_scale, threads)
             except ValueError as err:        # a method that refuses the record scores nothing found, no toe
                 res = None
                 why = str(err)
@@ -263,28 +285,50 @@ def run(piles: int, seed: int = 2024, quick: bool = False, progress: bool = True
                 "depth_err": [], "size_err": [], "missed": len(pile.anomalies), "false": 0,
                 "true_count": len(pile.anomalies), "depth_cov": [], "size_cov": [], "toe_err": None,
                 "toe_cov": None, "z_cov": None, "cmp": {}, "refused": why}
-            rows.append({"pile": i, "method": method, "noise": pile.noise, "colour": pile.colour, "n": pile.n,
-                         "seconds": time.perf_counter() - w0, **s})
+            new.append({"pile": i, "method": method, "noise": pile.noise, "colour": pile.colour, "n": pile.n,
+                        "seconds": time.perf_counter() - w0, **s})
+        rows += new
+        if rows_file is not None:
+            with open(rows_file, "a") as fh:
+                fh.write("".join(json.dumps(r, default=_plain) + "\n" for r in new))
         if write_every and (i + 1) % write_every == 0:
-            DOC.write_text(report(summarise(rows), i + 1, seed, time.perf_counter() - t0, band_scale,
+            DOC.write_text(report(summarise(rows), len({r["pile"] for r in rows}), seed, band_scale,
                                   CALIBRATION if band_scale == BAND_SCALE else " (given on the command line)"))
         if progress:
-            done = i + 1
+            count = sum(1 for q in mine if q <= i)
             el = time.perf_counter() - t0
-            print(f"pile {done}/{piles} (n={pile.n}, noise {pile.noise:.0%} {pile.colour}, "
-                  f"{len(pile.anomalies)} anomalies) {el:.0f} s, eta {el / done * (piles - done):.0f} s",
-                  file=sys.stderr, flush=True)
+            print(f"pile {i + 1}/{piles} ({count} of this shard's {len(mine)}; n={pile.n}, noise {pile.noise:.0%} "
+                  f"{pile.colour}, {len(pile.anomalies)} anomalies) {el:.0f} s", file=sys.stderr, flush=True)
     return rows, summarise(rows)
 
 
-def report(table: dict, piles: int, seed: int, wall: float, band_scale: float = 1.0,
-           calibration: str = "") -> str:
+def _plain(value: Any) -> Any:
+    """numpy scalars (the scores' booleans and floats) as Python ones, for JSON."""
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"not JSON serializable: {type(value).__name__}")
+
+
+def load_rows(paths: list[Path]) -> list[dict]:
+    """The rows saved by :func:`run` with ``rows_file`` (JSON lines), in pile order."""
+    rows = [json.loads(line) for p in paths for line in Path(p).read_text().splitlines() if line.strip()]
+    return sorted(rows, key=lambda r: (r["pile"], METHODS.index(r["method"])))
+
+
+def report(table: dict, piles: int, seed: int, band_scale: float = 1.0, calibration: str = "") -> str:
+    """The page docs/validation-identification.md from the :func:`summarise` table of ``piles`` piles."""
     lines = ["# Validation: identification benchmark", "",
-             "Generated by `python benchmarks/bench_identify.py --piles N --write` (do not edit by hand). "
-             "The set-up is in the script's docstring and in [identification-matching.md](identification-matching.md).",
+             "Generated by `python benchmarks/bench_identify.py --piles N --write` (do not edit by hand; a long run "
+             "in shards: `--shard K/M --rows FILE`, then `--merge FILE ... --write`). The set-up is in the script's "
+             "docstring and in [identification-matching.md](identification-matching.md).",
              "", f"{piles} random piles (seed {seed}), each identified by the three methods on the same record; "
-             f"noise levels assigned in turn (1 %, 3 %, 10 % of the signal energy), white and 1/f alternating "
-             f"every three piles. Wall time {wall:.0f} s on the shared 2-core machine.", "",
+             "noise levels assigned in turn (1 %, 3 %, 10 % of the signal energy), white and 1/f alternating "
+             "every three piles. `s/pile` is the compute time of one identification on the shared 2-core machine. "
+             "Methods: `matching` (regularised matching with Laplace bands, "
+             "[identification-matching.md](identification-matching.md)); `peeling` (layer peeling after "
+             "deconvolving the hammer's blow, `identify_by_peeling(deconvolve=True)`: the half-sine is too smooth "
+             "to be peeled as it is); `beta` (reflectogram and integrity factors). All read anomalies at the same "
+             "threshold of 8 % and get the expected length, off by up to 10 %.", "",
              "Columns: anomalies found / present (top within one diameter, same sign); depth error (m, mean over "
              "found); size error (mean |relative change - true|); false alarms per pile; toe error (m, median and "
              "mean; `no toe` counts results without a toe); coverage of the 90 % bands (matching only): the "
@@ -302,21 +346,24 @@ def report(table: dict, piles: int, seed: int, wall: float, band_scale: float = 
     lines += ["", "## Band coverage before the calibration and with white noise", "",
               "The matching bands assume the noise of an autoregressive model of the final fit's residual (its level "
               "with the fit's degrees of freedom and its colour) and carry an empirical band factor "
-              f"k = {band_scale:g} on their widths{calibration}. On the same fits and anomalies: the coverage with "
-              "that model before the factor (`uncalibrated`), and with white noise at the baseline's level, no "
-              "factor (`white`: the bands of the earlier version). The toe band (a profile-likelihood interval) "
-              "has no factor.", "",
+              f"k = {band_scale:g} on their widths{calibration}. The toe band is the profile-likelihood interval "
+              "of the truncated models under the same noise model, tempered by the same factor (2 Delta <= "
+              "2.71 k^2: a band k times wider is a likelihood tempered by 1 / k^2). On the same fits and anomalies: "
+              "the coverage with that model before the factor (`uncal.`), and with white noise at the baseline's "
+              "level, no factor (`white`: the bands of the earlier version).", "",
               "| noise | piles | Z cov | Z uncal. | Z white | depth cov | depth uncal. | depth white | size cov "
-              "| size uncal. | size white |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+              "| size uncal. | size white | toe cov | toe uncal. | toe white |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for (level, method), r in table.items():
         if method != "matching":
             continue
         u, w = r["cmp"]["uncalibrated"], r["cmp"]["white"]
         if band_scale == 1.0:
-            u = {k: r[k] for k in ("z_cov", "depth_cov", "size_cov")}
+            u = {k: r[k] for k in ("z_cov", "depth_cov", "size_cov", "toe_cov")}
         lines.append(f"| {level:.0%} | {r['piles']} | {f(r['z_cov'], 2)} | {f(u['z_cov'], 2)} | {f(w['z_cov'], 2)} "
                      f"| {f(r['depth_cov'], 2)} | {f(u['depth_cov'], 2)} | {f(w['depth_cov'], 2)} "
-                     f"| {f(r['size_cov'], 2)} | {f(u['size_cov'], 2)} | {f(w['size_cov'], 2)} |")
+                     f"| {f(r['size_cov'], 2)} | {f(u['size_cov'], 2)} | {f(w['size_cov'], 2)} "
+                     f"| {f(r['toe_cov'], 2)} | {f(u['toe_cov'], 2)} | {f(w['toe_cov'], 2)} |")
     return "\n".join(lines) + "\n"
 
 
@@ -387,23 +434,42 @@ def main(argv: Optional[list[str]] = None) -> None:
     ap.add_argument("--calibrate", action="store_true",
                     help="matching only, band factor 1: print the factor that gives 90 %% profile coverage")
     ap.add_argument("--band-scale", type=float, default=BAND_SCALE, help="band factor of the matching runs")
+    ap.add_argument("--shard", default="0/1", help="K/M: run only the piles i with i mod M = K (default 0/1)")
+    ap.add_argument("--rows", type=Path, help="append every pile's rows to this JSON-lines file; piles in it are "
+                                              "skipped (resume)")
+    ap.add_argument("--merge", type=Path, nargs="+", help="no runs: the page from these rows files")
+    ap.add_argument("--threads", type=int, help="threads of each matching run (default: the cores available)")
     args = ap.parse_args(argv)
     if args.timing:
         sys.path.insert(0, str(Path(__file__).resolve().parent))
         from _report import write_section
         write_section("identify", timing_section())
         return
+    calibration = CALIBRATION if args.band_scale == BAND_SCALE else " (given on the command line)"
+    if args.merge:
+        rows = load_rows(args.merge)
+        text = report(summarise(rows), len({r["pile"] for r in rows}), args.seed, args.band_scale, calibration)
+        print(text)
+        if args.write:
+            DOC.write_text(text)
+        return
+    try:
+        k, m = (int(x) for x in args.shard.split("/"))
+        if not 0 <= k < m:
+            raise ValueError
+    except ValueError:
+        ap.error(f"--shard: must be K/M with 0 <= K < M, got {args.shard!r}")
+    if m > 1 and args.write:
+        ap.error("--write with --shard: write the page once, with --merge, from the shards' --rows files")
     piles = 6 if args.quick else args.piles
-    w0 = time.perf_counter()
     if args.calibrate:
-        rows, table = run(piles, args.seed, args.quick, methods=("matching",))
-        print(report(table, piles, args.seed, time.perf_counter() - w0))
+        rows, table = run(piles, args.seed, args.quick, methods=("matching",), threads=args.threads)
+        print(report(table, piles, args.seed))
         print(f"band factor for 90 % profile coverage on {piles} piles of seed {args.seed}: {calibrate(rows):.4g}")
         return
-    calibration = CALIBRATION if args.band_scale == BAND_SCALE else " (given on the command line)"
     rows, table = run(piles, args.seed, args.quick, write_every=3 if args.write else None,
-                      band_scale=args.band_scale)
-    text = report(table, piles, args.seed, time.perf_counter() - w0, args.band_scale, calibration)
+                      band_scale=args.band_scale, shard=(k, m), rows_file=args.rows, threads=args.threads)
+    text = report(table, len({r["pile"] for r in rows}), args.seed, args.band_scale, calibration)
     print(text)
     if args.write:
         DOC.write_text(text)
