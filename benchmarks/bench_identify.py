@@ -155,7 +155,8 @@ def score(pile: Pile, res) -> dict[str, Any]:
     def depth_in(band, top):
         return band[0] - 0.5 * DIAMETER / 4 <= top <= band[1] + 0.5 * DIAMETER / 4
 
-    for top, ln, change in pile.anomalies:
+    hits = {}                       # index of the true anomaly (a string, as in JSON) -> (depth error, size error)
+    for t_index, (top, ln, change) in enumerate(pile.anomalies):
         best = None
         for i in found:
             a = res.anomalies[i]
@@ -171,6 +172,7 @@ def score(pile: Pile, res) -> dict[str, Any]:
         a = res.anomalies[best]
         depth_err.append(abs(a.depth - top))
         size_err.append(abs(a.relative_change - change))
+        hits[str(t_index)] = (depth_err[-1], size_err[-1])
         if a.depth_band is not None:
             depth_cov.append(depth_in(a.depth_band, top))
         if a.size_band is not None:
@@ -189,7 +191,7 @@ def score(pile: Pile, res) -> dict[str, Any]:
                    for t, ln, c in pile.anomalies)
         if not edge:
             false += 1
-    out = {"depth_err": depth_err, "size_err": size_err, "missed": missed, "false": false,
+    out = {"depth_err": depth_err, "size_err": size_err, "hits": hits, "missed": missed, "false": false,
            "true_count": len(pile.anomalies), "depth_cov": depth_cov, "size_cov": size_cov,
            "toe_err": None if res.toe is None else abs(res.toe - LENGTH), "toe_cov": None, "z_cov": None}
     toe_in = lambda band: bool(band[0] - 1e-9 <= LENGTH <= band[1] + 1e-9)
@@ -216,6 +218,12 @@ def score(pile: Pile, res) -> dict[str, Any]:
 
 def summarise(rows: list[dict]) -> dict[tuple, dict]:
     table = {}
+    by_pile: dict[int, list[dict]] = {}
+    for r in rows:
+        by_pile.setdefault(r["pile"], []).append(r)
+    # the anomalies every method found (on piles all three ran): errors on the same anomalies
+    common = {p: set.intersection(*(set(r["hits"]) for r in rs)) for p, rs in by_pile.items()
+              if len(rs) == len(METHODS)}
     for level in NOISE_LEVELS:
         for method in METHODS:
             sel = [r for r in rows if r["noise"] == level and r["method"] == method]
@@ -237,6 +245,11 @@ def summarise(rows: list[dict]) -> dict[tuple, dict]:
                 "depth_cov": _mean(cat("depth_cov")), "size_cov": _mean(cat("size_cov")),
                 "toe_cov": _mean([r["toe_cov"] for r in sel]),
                 "seconds": float(np.mean([r["seconds"] for r in sel])),
+                "common": sum(len(common[r["pile"]]) for r in sel if r["pile"] in common),
+                "depth_err_common": _mean([r["hits"][i][0] for r in sel if r["pile"] in common
+                                           for i in common[r["pile"]]]),
+                "size_err_common": _mean([r["hits"][i][1] for r in sel if r["pile"] in common
+                                          for i in common[r["pile"]]]),
                 "cmp": {name: {"z_cov": _mean([r["cmp"][name].get("z_cov") for r in sel if name in r["cmp"]]),
                                "depth_cov": _mean([x for r in sel if name in r["cmp"]
                                                    for x in r["cmp"][name]["depth_cov"]]),
@@ -282,7 +295,7 @@ def run(piles: int, seed: int = 2024, quick: bool = False, progress: bool = True
                 res = None
                 why = str(err)
             s = score(pile, res) if res is not None else {
-                "depth_err": [], "size_err": [], "missed": len(pile.anomalies), "false": 0,
+                "depth_err": [], "size_err": [], "hits": {}, "missed": len(pile.anomalies), "false": 0,
                 "true_count": len(pile.anomalies), "depth_cov": [], "size_cov": [], "toe_err": None,
                 "toe_cov": None, "z_cov": None, "cmp": {}, "refused": why}
             new.append({"pile": i, "method": method, "noise": pile.noise, "colour": pile.colour, "n": pile.n,
@@ -343,6 +356,13 @@ def report(table: dict, piles: int, seed: int, band_scale: float = 1.0, calibrat
                      f"{f(r['size_err'])} | {f(r['false_per_pile'])} | {f(r['toe_err'])} | {f(r['toe_err_mean'])} | "
                      f"{r['no_toe']} | {f(r['z_cov'], 2)} | {f(r['depth_cov'], 2)} | {f(r['size_cov'], 2)} | "
                      f"{f(r['toe_cov'], 2)} | {f(r['seconds'], 2)} |")
+    lines += ["", "## Errors on the same anomalies", "",
+              "The errors above are means over the anomalies each method found, and a method that finds fewer "
+              "finds the larger ones. Here: the mean errors over the anomalies all three methods found.", "",
+              "| noise | method | anomalies | depth err | size err |", "|---|---|---|---|---|"]
+    for (level, method), r in table.items():
+        lines.append(f"| {level:.0%} | {method} | {r['common']} | {f(r['depth_err_common'])} | "
+                     f"{f(r['size_err_common'])} |")
     lines += ["", "## Band coverage before the calibration and with white noise", "",
               "The matching bands assume the noise of an autoregressive model of the final fit's residual (its level "
               "with the fit's degrees of freedom and its colour) and carry an empirical band factor "

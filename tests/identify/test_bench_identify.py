@@ -29,6 +29,7 @@ def test_quick_benchmark_metrics_are_sane():
     for (level, method), s in table.items():
         assert level in bench.NOISE_LEVELS and method in bench.METHODS
         assert s["piles"] == 2 and 0 <= s["found"] <= s["true"]
+        assert 0 <= s["common"] <= s["found"]       # found by all three methods, so by this one
         for key in ("z_cov", "depth_cov", "size_cov", "toe_cov"):
             assert np.isnan(s[key]) or 0.0 <= s[key] <= 1.0
     matching = [r for r in rows if r["method"] == "matching"]
