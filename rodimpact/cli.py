@@ -430,7 +430,9 @@ def cmd_identify(args: argparse.Namespace) -> int:
         spec = _input_phase(lambda: spec_io.load_spec(args.spec, _overrides(args)))
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            result = _input_phase(lambda: spec_io.run(spec, args.record))
+            # the matching method's progress lines on stderr when it is a terminal (never with --quiet)
+            lines = None if args.quiet or not sys.stderr.isatty() else (lambda m: print(m, file=sys.stderr))
+            result = _input_phase(lambda: spec_io.run(spec, args.record, progress=lines))
         files = list(args.record) or [str(spec.base / f) for f in spec.values["record"]["files"] or ()]
         summary = spec_io.summarize(result, spec, files)
         summary["warnings"] = list(dict.fromkeys(summary["warnings"] + [str(w.message) for w in caught]))
@@ -604,8 +606,8 @@ def build_parser() -> argparse.ArgumentParser:
     n = sub.add_parser("identify", help="identify the impedance profile of a pile, rod or striker from a record",
                        description="Identify the impedance profile below the measured face from a head record "
                                    "(CSV of time, force, velocity; several files are blows, averaged) or a striker "
-                                   "from a LANL shot's incident pulse: layer peeling, beta reflectors or striker "
-                                   "identification (docs/identification.md; keys: rodimpact docs identify; "
+                                   "from a LANL shot's incident pulse: regularised signal matching with bands, layer "
+                                   "peeling, beta reflectors or striker identification (docs/identification.md; keys: rodimpact docs identify; "
                                    "rodimpact init identify writes a template). Writes profile.csv, "
                                    "identification.nc, plots and summary.json to OUTDIR.")
     n.add_argument("record", nargs="*", metavar="RECORD", help="CSV head record(s) or one LANL .raw shot; or name "

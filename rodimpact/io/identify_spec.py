@@ -14,12 +14,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping, Optional, Sequence
+from typing import Any, Callable, Mapping, Optional, Sequence
 
 import numpy as np
 
 from ..identify import (HeadRecord, IdentificationResult, average_blows, band_limited, identify_by_beta,
                         identify_by_peeling, identify_striker)
+from ..identify.matching import identify_by_matching
 from .identification import read_head_csv, save_identification_csv
 from .model import parse_toml, read_text_file
 from .overrides import spec_with_overrides
@@ -27,7 +28,7 @@ from .quantities import ModelError, parse_quantity
 from .recordings import hoppybar_bar, read_csv_recording, read_lanl_raw, read_tdms, read_tektronix_csv
 from .schema import Field, Table, _q, _table_md, validate_table
 
-METHODS = ("peeling", "beta", "striker")
+METHODS = ("matching", "peeling", "beta", "striker")
 CSV_FILE, NETCDF_FILE, SPEC_FILE = "profile.csv", "identification.nc", "spec.toml"
 
 RECORD = Table("record", "The measured record. Files given on the command line take the place of `files`.", (
@@ -56,19 +57,46 @@ RECORD = Table("record", "The measured record. Files given on the command line t
 
 ROD = Table("rod", "The rod below the measured face (the bar, for method striker).", (
     _q("impedance", "impedance", "Impedance at the head Z = E A / c (default for a LANL shot: the incident "
-                                 "bar's from the sheet)", required=False),
+                                 "bar's from the sheet; method matching: estimated from the rise of the blow, "
+                                 "Z = -F / v).", required=False),
     _q("wave_speed", "velocity", "Wave speed c: turns travel time into depth (default for a LANL shot: the "
                                  "sheet's calibrated speed).", required=False),
     _q("diameter", "length", "Diameter, for the 1D-validity checks (methods peeling and beta).", required=False),
-    _q("length", "length", "Known length (method beta: the toe is the echo nearest to it).", required=False),
+    _q("length", "length", "Known or expected length (method beta: the toe is the echo nearest to it; matching: "
+                           "required, the toe is identified within 1 + extension times it; deconvolved peeling: "
+                           "the toe is the largest drop near it).", required=False),
 ), '[rod]\nimpedance = "1.2 MN s/m"\nwave_speed = "4000 m/s"\ndiameter = "0.4 m"\nlength = "12 m"')
 
 SETTINGS = Table("identify", "The method and its settings.", (
-    Field("method", "string", "`peeling` (clean lossless force and velocity), `beta` (reflectors and integrity "
-                              "factors from the reflectogram) or `striker` (the striker from an incident pulse).",
-          choices=METHODS),
-    _q("threshold", "dimensionless", "Reflectors: the smallest relative change reported.", default=0.05,
+    Field("method", "string", "`matching` (regularised signal matching with soil and 90 % bands: the method for "
+                              "real pile records), `peeling` (clean lossless force and velocity, or any blow with "
+                              "`deconvolve`), `beta` (reflectors and integrity factors from the reflectogram) or "
+                              "`striker` (the striker from an incident pulse).", choices=METHODS),
+    _q("threshold", "dimensionless", "The smallest relative change reported as an anomaly (default: the "
+                                     "method's, 0.08 for matching, 0.05 for peeling and beta).", required=False),
+    Field("penalty", "string", "Matching: `tv` (total variation of ln Z, keeps steps) or `smooth` (second "
+                               "differences).", default="tv", choices=("tv", "smooth")),
+    _q("weight", "dimensionless", "Matching: the penalty weight alpha (default: chosen by the discrepancy "
+                                  "principle from the baseline's noise, else the L-curve).", sign="non_negative",
        required=False),
+    Field("bands", "string", "Matching: `laplace` (Gauss-Newton covariance), `sampling` (MCMC chains, stopped "
+                             "at convergence) or `none`.", default="laplace", choices=("laplace", "sampling", "none")),
+    _q("band_scale", "dimensionless", "Matching: an empirical factor on the band widths (1: none; the "
+                                      "identification benchmark's calibration is 1.624, docs/"
+                                      "identification-matching.md).", default=1.0, required=False),
+    _q("velocity_noise", "velocity", "Matching: standard deviation of the velocity record's noise (default: from "
+                                     "the record's pre-trigger baseline).", required=False),
+    _q("extension", "dimensionless", "Matching: the model reaches (1 + extension) length.", sign="non_negative",
+       default=0.25, required=False),
+    Field("elements", "integer", "Matching: elements over the length (default: one per sample interval; the "
+                                 "record is resampled)."),
+    Field("toe", "string", "Matching: the toe a `spring` (spring-dashpot, fitted) or `fixed`.", default="spring",
+          choices=("spring", "fixed")),
+    Field("soil", "boolean", "Matching: fit a shaft spring and dashpot.", default=True),
+    Field("deconvolve", "boolean", "Peeling: deconvolve the blow first (for a smooth blow such as a hammer's "
+                                   "half-sine).", default=False),
+    _q("water_level", "dimensionless", "Peeling with `deconvolve`: the regularisation eps, a share of the blow's "
+                                       "peak power (default 0.01).", required=False),
     _q("depth", "length", "Peeling: identify down to this depth.", required=False),
     _q("noise", "force", "Peeling: standard deviation of the force record's noise, for 90 % bands by "
                          "resampling (the velocity's: noise / Z).", required=False),
@@ -98,8 +126,8 @@ TEMPLATE = '''# rodimpact identification spec: rodimpact identify RECORD.csv --s
 title = "pile integrity test"
 
 [identify]
-method = "beta"          # peeling, beta or striker
-threshold = 0.05         # smallest relative impedance change reported
+method = "matching"      # matching, peeling, beta or striker
+threshold = 0.08         # smallest relative impedance change reported
 
 [record]
 force_sign = "compression"   # pile practice: force positive in compression
@@ -107,6 +135,7 @@ force_sign = "compression"   # pile practice: force positive in compression
 [rod]
 impedance = "1.2 MN s/m"     # E A / c at the head
 wave_speed = "4000 m/s"
+length = "12 m"              # expected length (matching: the toe is found within 1.25 times it)
 '''
 
 
@@ -151,7 +180,8 @@ def loads_spec(text: str, base_dir: str | Path = ".", name: str = "spec",
 
 def _spec(raw: dict, base: Path, text: str, name: str) -> IdentifySpec:
     if "identify" not in raw:
-        raise ModelError("identify: missing; give [identify] with method = \"peeling\", \"beta\" or \"striker\"")
+        raise ModelError("identify: missing; give [identify] with method = \"matching\", \"peeling\", \"beta\" or "
+                         "\"striker\"")
     d = validate_table(SPEC, raw, "")
     for key, table in (("record", RECORD), ("rod", ROD), ("output", OUTPUT)):
         d[key] = d[key] or validate_table(table, {}, key)
@@ -168,8 +198,10 @@ def _spec(raw: dict, base: Path, text: str, name: str) -> IdentifySpec:
     return IdentifySpec(d, base, text, name)
 
 
-def run(spec: IdentifySpec, files: Sequence[str | Path] = ()) -> IdentificationResult:
-    """Read the record (``files``, else ``record.files``) and identify with the spec's method."""
+def run(spec: IdentifySpec, files: Sequence[str | Path] = (),
+        progress: Optional[Callable[[str], None]] = None) -> IdentificationResult:
+    """Read the record (``files``, else ``record.files``) and identify with the spec's method; ``progress``
+    receives the matching method's progress lines."""
     rec, rod, settings = spec.values["record"], spec.values["rod"], spec.values["identify"]
     if files and rec["files"]:
         raise ModelError("record.files: the record is given on the command line as well; give it once")
@@ -194,15 +226,25 @@ def run(spec: IdentifySpec, files: Sequence[str | Path] = ()) -> IdentificationR
                         record.source)
     if rec["low_pass"] is not None:
         record = band_limited(record, rec["low_pass"])
-    z, c = _required(rod, "impedance"), _required(rod, "wave_speed")
     method = settings["method"]
+    threshold = {} if settings["threshold"] is None else {"threshold": settings["threshold"]}
+    if method == "matching":
+        return identify_by_matching(
+            record, rod["impedance"], _required(rod, "wave_speed"), length=_required(rod, "length"),
+            elements=settings["elements"], extension=settings["extension"], noise=settings["velocity_noise"],
+            penalty=settings["penalty"], weight="auto" if settings["weight"] is None else settings["weight"],
+            soil=settings["soil"], toe=settings["toe"], bands=settings["bands"], band_scale=settings["band_scale"],
+            progress=progress, **({} if not threshold else {"min_change": threshold["threshold"]}))
+    z, c = _required(rod, "impedance"), _required(rod, "wave_speed")
     if method == "peeling":
-        return identify_by_peeling(record, z, c, depth=settings["depth"], threshold=settings["threshold"],
-                                   noise=settings["noise"], resamples=max(settings["resamples"], 2),
-                                   diameter=rod["diameter"])
+        extra = {"length": rod["length"]} if settings["deconvolve"] else {}
+        if settings["water_level"] is not None:
+            extra["water_level"] = settings["water_level"]
+        return identify_by_peeling(record, z, c, depth=settings["depth"], noise=settings["noise"],
+                                   resamples=max(settings["resamples"], 2), diameter=rod["diameter"],
+                                   deconvolve=settings["deconvolve"], **threshold, **extra)
     if method == "beta":
-        return identify_by_beta(record, z, c, threshold=settings["threshold"], length=rod["length"],
-                                diameter=rod["diameter"])
+        return identify_by_beta(record, z, c, length=rod["length"], diameter=rod["diameter"], **threshold)
     return identify_striker(record.time, record.force, z, settings["striker_wave_speed"] or c,
                             velocity=settings["striker_velocity"], striker_impedance=settings["striker_impedance"],
                             resamples=settings["resamples"])

@@ -127,3 +127,42 @@ def test_bad_specs_name_the_key(tmp_path, capsys, monkeypatch, text, message):
     (tmp_path / "spec.toml").write_text(text)
     code, _, err = main(["identify", "pile.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
     assert code == 2 and message in err, err
+
+
+def test_identify_matching_from_a_csv(tmp_path, capsys, monkeypatch):
+    """Method matching through the command line: a pile of 48 elements with a 30 % neck at 1.5-2.25 m, shaft and
+    toe soil, computed on a lattice twice as fine, 2 % noise with a pre-trigger baseline; the neck and the toe
+    (6 m) come back, with bands, into the output folder."""
+    from rodimpact.identify.matching import PileModel, half_sine
+
+    n, c, length, z0 = 48, 4000.0, 6.0, 3e5
+    dt = length / (c * n)
+    zf = np.full(2 * n, z0)
+    zf[24:36] *= 0.7
+    pre, steps = 40, 40 + 2 * 66 + 10
+    tf = np.arange(2 * steps) * dt / 2
+    ff = half_sine(tf, 1e4, 6 * dt, pre * dt)
+    y = PileModel(dt / 2, 2 * n, ff, z0).simulate(np.r_[np.log(zf / z0), 0.4, 0.4, 8.0, 0.4])
+    y = y.reshape(-1, 2).mean(axis=1)
+    y = y + np.random.default_rng(3).normal(0.0, 0.02 * np.sqrt(np.mean(y[pre:] ** 2)), y.size)
+    rows = np.column_stack([np.arange(steps) * dt, ff.reshape(-1, 2).mean(axis=1), y])
+    (tmp_path / "pile.csv").write_text("time [s],force [N],velocity [m/s]\n"
+                                       + "\n".join(",".join(repr(float(x)) for x in r) for r in rows) + "\n")
+    (tmp_path / "spec.toml").write_text(f'[identify]\nmethod = "matching"\n'
+                                        f'[rod]\nimpedance = "300 kN s/m"\nwave_speed = "{c} m/s"\nlength = "6.3 m"\n')
+    code, out, err = main(["identify", "pile.csv", "--spec", "spec.toml", "-o", "out", "--json"], tmp_path, capsys,
+                          monkeypatch)
+    assert code == 0, err
+    summary = json.loads(out)
+    assert summary["method"] == "matching"
+    assert abs(summary["toe_m"] - length) <= c * dt + 1e-9
+    assert summary["toe_band"][0] <= summary["toe_m"] <= summary["toe_band"][1]
+    neck = [a for a in summary["anomalies"] if a["relative_change"] < 0]
+    assert neck and abs(neck[0]["depth"] - 12 * c * dt) <= c * dt and abs(neck[0]["relative_change"] + 0.3) < 0.08
+    back = ri.load(tmp_path / "out" / "identification.nc")
+    assert back.lower is not None and np.all(back.lower <= back.impedance) and np.all(back.impedance <= back.upper)
+    assert (tmp_path / "out" / "profile.csv").is_file() and (tmp_path / "out" / "plots" / "profile.png").is_file()
+    # the expected length is required for matching, and named
+    (tmp_path / "spec.toml").write_text(f'[identify]\nmethod = "matching"\n[rod]\nwave_speed = "{c} m/s"\n')
+    code, _, err = main(["identify", "pile.csv", "--spec", "spec.toml", "--no-output"], tmp_path, capsys, monkeypatch)
+    assert code == 2 and "rod.length: missing" in err
