@@ -23,10 +23,12 @@ dispersion between the impact face and the gauge) is averaged over and the first
 a window much shorter than the rise asks the striker's tip for a force growth that its waves cannot give
 (existence, thesis eq. 4.20), since a 1D striker cannot make a finite rise time other than by a soft tip.
 
-Bands: the pre-trigger baseline's standard deviation sigma is the
-noise level; ``resamples`` copies of the pulse with independent normal noise of that sigma added go through the
-whole identification, and the 5 % and 95 % quantiles of each number are its 90 % band (white noise: it does not
-know the correlation of the real noise, docs/identification.md).
+Bands: the pre-trigger baseline is noise alone; an autoregressive model of it
+(:func:`rodimpact.identify.uncertainty.ar_noise_model`: Yule-Walker, the order by AIC, up to 20 and a quarter of
+the baseline) gives its level and its colour. ``resamples`` copies of the pulse, each with an independent draw
+of that stationary process added, go through the whole identification, and the 5 % and 95 % quantiles of each
+number are its 90 % band. The colour matters: the impact velocity rests on the plateau's mean, the length on
+two crossings, and low-frequency noise moves both far more than white noise of the same variance.
 """
 
 from __future__ import annotations
@@ -44,6 +46,7 @@ from ..inverse.recursive import SynthesisWarning, synthesize
 from ..rods.rod import Rod
 from ..signals.pulses import pulse_features
 from .records import check_uniform, time_series
+from .uncertainty import ar_noise_model
 from .validity import IdentificationWarning
 from .result import IdentificationResult
 
@@ -102,7 +105,7 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     ``striker_wave_speed`` (m/s; depth along the striker = c_s x travel time). ``velocity``: v0 if known, else
     from ``striker_impedance`` (default: that of the bar) and the plateau. ``baseline``: the (start, end) time
     span (s) of the pre-trigger baseline (default: everything before the pulse's 10 % crossing less 5 % of the
-    record); its mean is removed and its standard deviation is the noise level. ``resamples``: noisy copies for
+    record); its mean is removed and its AR model is the noise (module docstring). ``resamples``: noisy copies for
     the bands (0: no bands); ``seed``: their random generator's seed. ``window``: samples per force window (two
     element travel times; default: the pulse's 10-90 % rise time; module docstring).
 
@@ -131,7 +134,8 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
         raise ValueError("baseline: fewer than 2 pre-trigger samples; the record must start before the pulse "
                          "(or give baseline=(start, end) in s)")
     f = f - float(np.mean(f[base]))
-    sigma = float(np.std(f[base], ddof=1))
+    noise = ar_noise_model(f[base], max_order=min(20, base.size // 4))
+    sigma = float(np.sqrt(noise.variance()))
     if not np.max(-f) > 0:
         raise ValueError("force: no compressive pulse (tension positive: an incident pulse is negative)")
     point = estimate_striker(t, f, zb, cs, velocity, striker_impedance, window)
@@ -142,7 +146,7 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     samples = []
     for _ in range(resamples):
         try:
-            samples.append(estimate_striker(t, f + rng.normal(0.0, sigma, f.size), zb, cs, velocity,
+            samples.append(estimate_striker(t, f + noise.draw(rng, f.size), zb, cs, velocity,
                                             striker_impedance, int(round(2 * point.dt / (t[1] - t[0])))))
         except ValueError:              # a noisy copy whose synthesis fails counts as missing, reported below
             continue
@@ -162,7 +166,8 @@ def identify_striker(time: Any, force: Any, bar_impedance: float, striker_wave_s
     matched = {"face force": (report.time, report.target, report.achieved)}
     diagnostics = {"version": __version__, "wall_time_s": _time.perf_counter() - wall0,
                    "striker_velocity_m_per_s": point.velocity, "striker_velocity_band": bands.get("velocity"),
-                   "length_m": point.length, "noise_sigma_N": sigma, "resamples": resamples,
+                   "length_m": point.length, "noise_sigma_N": sigma, "noise_model_order": noise.order,
+                   "resamples": resamples,
                    "resamples_used": len(samples), "velocity_given": velocity is not None,
                    "elements_synthesized": m, "element_travel_time_s": point.dt,
                    "synthesis_failure": None if point.synthesis.failure is None

@@ -91,6 +91,15 @@ class NoiseModel:
         h = lfilter([1.0], np.r_[1.0, -self.a], np.r_[1.0, np.zeros(4095)])
         return float(self.innovation * np.sum(h * h))
 
+    def draw(self, rng: np.random.Generator, size: int) -> np.ndarray:
+        """``size`` samples of the stationary process: the recursion run from rest over a burn-in of 4096 samples
+        (the span :meth:`variance` sums the impulse response over), which is then dropped."""
+        from scipy.signal import lfilter
+
+        burn = 4096 if self.a.size else 0
+        e = rng.normal(0.0, np.sqrt(self.innovation), size + burn)
+        return lfilter([1.0], np.r_[1.0, -self.a], e)[burn:]
+
     def misfit(self, residual: np.ndarray) -> float:
         """1/2 r^T Sigma^-1 r = 1/2 |W r|^2 / s2: the negative log-likelihood of the residual r under the model
         (up to a constant), with W r the filter e_k = r_k - sum_i a_i r_{k-i} from rest."""

@@ -98,6 +98,17 @@ def test_noise_model_misfit_is_the_gaussian_negative_log_likelihood():
     assert unc.NoiseModel(np.zeros(0), 2.3).misfit(r) == pytest.approx(0.5 * r @ r / 2.3, rel=1e-14)
 
 
+def test_noise_model_draws_are_the_stationary_process():
+    """Draws of AR(1) (a = 0.9, innovation 2): variance s2 / (1 - a^2) = 10.53 and lag-1 correlation a, from the
+    first sample on (stationary, not started from rest), over 400 draws of 50 samples."""
+    model = unc.NoiseModel(np.array([0.9]), 2.0)
+    x = np.array([model.draw(np.random.default_rng(i), 50) for i in range(400)])
+    assert np.var(x[:, 0]) == pytest.approx(2.0 / (1 - 0.81), rel=0.15)
+    assert np.mean(x[:, 1:] * x[:, :-1]) / np.mean(x * x) == pytest.approx(0.9, abs=0.03)
+    assert np.var(unc.NoiseModel(np.zeros(0), 2.0).draw(np.random.default_rng(0), 20000)) == pytest.approx(2.0,
+                                                                                                          rel=0.03)
+
+
 def test_sandwich_with_white_noise_model_is_the_laplace_covariance():
     rng = np.random.default_rng(4)
     J = rng.normal(size=(50, 5))
