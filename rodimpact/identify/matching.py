@@ -755,10 +755,13 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     per_element = 0.5 * np.log(vel.size)
     w = max(3, n_pile // 20)
     step = max(1, w // 3)
-    # screening at steps of w/3 around each candidate; the best TOE_REFINE screened truncations in full, then the
-    # walk out from the best (a descent: it goes on while a neighbour is lower, and closes the 90 % interval)
-    scan = sorted({j for j0 in toe_candidates(best.theta[:n], max(4, int(0.6 * n_pile)), w)
-                   for j in range(max(4, j0 - w), min(n, j0 + w) + 1, step)})
+    # screening at steps of w/3 around each candidate (the two largest steps of the extended profile and the
+    # expected length itself: a strong neck's two edges can outrank a weakly reflecting toe); the best TOE_REFINE
+    # screened truncations in full, then the walk out from the best (a descent: it goes on while a neighbour is
+    # lower, and closes the 90 % interval), within the candidates' range: beyond 0.6 of the expected length
+    first = max(4, int(0.6 * n_pile))
+    scan = sorted({j for j0 in toe_candidates(best.theta[:n], first, w) + [min(n_pile, n)]
+                   for j in range(max(first, j0 - w), min(n, j0 + w) + 1, step)})
     prefetch(scan, full=False)
     prefetch(sorted(scan, key=lambda q: cache[q][0])[:TOE_REFINE], full=True)
 
@@ -770,8 +773,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             pmin = crit(jb)
             sides = [-1, 1]
             for d in range(1, max_toe_scan + 1):          # both sides a step at a time, their fits at once
-                prefetch([jb + s * d for s in sides if 4 <= jb + s * d <= n], full=True)
-                sides = [s for s in sides if 4 <= jb + s * d <= n and 2 * (crit(jb + s * d) - pmin) <= limit]
+                prefetch([jb + s * d for s in sides if first <= jb + s * d <= n], full=True)
+                sides = [s for s in sides if first <= jb + s * d <= n and 2 * (crit(jb + s * d) - pmin) <= limit]
                 if not sides:
                     break
             if min((q for q in cache if cache[q][3]), key=crit) == jb:
