@@ -275,10 +275,16 @@ def run(piles: int, seed: int = 2024, quick: bool = False, progress: bool = True
     piles i with i mod m = k (all piles are drawn, so each keeps its record). ``rows_file``: every pile's rows
     are appended to it as JSON lines, and piles found there are not run again (a stopped run resumes)."""
     rng = np.random.default_rng(seed)
-    done = {}
+    done: dict[int, list[dict]] = {}
     if rows_file is not None and rows_file.exists():
-        for row in load_rows([rows_file]):
+        for row in load_rows([rows_file], repair=True):
             done.setdefault(row["pile"], []).append(row)
+        partial = [i for i, rs in done.items() if len(rs) < len(methods)]
+        if partial:                  # a pile stopped between its methods: run again, its rows dropped
+            for i in partial:
+                del done[i]
+            rows_file.write_text("".join(json.dumps(r, default=_plain) + "\n" for i in sorted(done)
+                                         for r in done[i]))
     rows = [r for i in sorted(done) for r in done[i]]
     t0 = time.perf_counter()
     mine = [i for i in range(piles) if i % shard[1] == shard[0]]
@@ -300,6 +306,7 @@ def run(piles: int, seed: int = 2024, quick: bool = False, progress: bool = True
                 "true_count": len(pile.anomalies), "depth_cov": [], "size_cov": [], "toe_err": None,
                 "toe_cov": None, "z_cov": None, "cmp": {}, "refused": why}
             new.append({"pile": i, "method": method, "noise": pile.noise, "colour": pile.colour, "n": pile.n,
+                        "seed": seed, "quick": quick, "band_scale": band_scale,
                         "seconds": time.perf_counter() - w0, **s})
         rows += new
         if rows_file is not None:
@@ -351,9 +358,29 @@ def threshold_sweep(piles: int, seed: int = 2024, quick: bool = False,
     return {key: (a[0], a[1], a[2] / a[3]) for key, a in acc.items()}
 
 
-def load_rows(paths: list[Path]) -> list[dict]:
-    """The rows saved by :func:`run` with ``rows_file`` (JSON lines), in pile order."""
-    rows = [json.loads(line) for p in paths for line in Path(p).read_text().splitlines() if line.strip()]
+def load_rows(paths: list[Path], repair: bool = False) -> list[dict]:
+    """The rows saved by :func:`run` with ``rows_file`` (JSON lines), in pile order. A last line cut short (a
+    run stopped while writing) is dropped, and with ``repair`` removed from its file; a row given twice (the same
+    pile and method in two files) is an error."""
+    rows = []
+    for p in paths:
+        lines = [line for line in Path(p).read_text().splitlines() if line.strip()]
+        for k, line in enumerate(lines):
+            try:
+                rows.append(json.loads(line))
+            except json.JSONDecodeError:
+                if k != len(lines) - 1:
+                    raise SystemExit(f"{p}: line {k + 1} is not a row (JSON); the file is damaged")
+                print(f"{p}: its last line was cut short (a stopped run); dropped", file=sys.stderr)
+                if repair:
+                    Path(p).write_text("".join(x + "\n" for x in lines[:-1]))
+    seen = set()
+    for r in rows:
+        key = (r["pile"], r["method"])
+        if key in seen:
+            raise SystemExit(f"pile {r['pile']}, method {r['method']}: given twice (overlapping shards or the "
+                             f"same rows file twice)")
+        seen.add(key)
     return sorted(rows, key=lambda r: (r["pile"], METHODS.index(r["method"])))
 
 
@@ -515,8 +542,13 @@ def main(argv: Optional[list[str]] = None) -> None:
         piles = len({r["pile"] for r in rows})
         if sorted({r["pile"] for r in rows}) != list(range(piles)):
             ap.error("--merge: the rows files do not hold piles 0 .. N-1 (a shard missing or unfinished)")
+        for key, given in (("seed", args.seed), ("quick", args.quick), ("band_scale", args.band_scale)):
+            stored = {r[key] for r in rows if key in r}
+            if stored and stored != {given}:
+                ap.error(f"--merge: the rows were run with {key} {sorted(stored)}, not {given} (give the same "
+                         f"--{key.replace('_', '-')} as the runs)")
         text = report(summarise(rows), piles, args.seed, args.band_scale, calibration,
-                      threshold_sweep(piles, args.seed))
+                      threshold_sweep(piles, args.seed, args.quick))
         print(text)
         if args.write:
             DOC.write_text(text)

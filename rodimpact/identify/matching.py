@@ -575,6 +575,9 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     band_scale:
         A factor on the band widths (the covariance times its square), for an empirical calibration (default 1:
         none); the uncalibrated bands are then in ``diagnostics["comparison_bands"]["uncalibrated"]``.
+    refit, block_step:
+        Refit the plateaus of the total-variation profile (a new block where ln Z jumps by more than
+        ``block_step``) without penalty (default), or keep the TV profile (``refit=False``).
     threads:
         Threads for the toe scan's independent fits (default: the cores this process may use); the result does
         not depend on it.
@@ -698,7 +701,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
 
     cache: dict[int, tuple[float, Fit, PileModel, bool]] = {}     # j -> (criterion, fit, model, full)
 
-    def refit(j: int, full: bool) -> tuple[float, Fit, PileModel]:
+    def fit_truncated(j: int, full: bool) -> tuple[float, Fit, PileModel]:
         """Phi + j ln(K)/2 of the model truncated at j, its fit and model: refitted from the extended fit or the
         nearest refitted model, the soil first, then everything, for at most :data:`TOE_COARSE` iterations
         (``full=False``, a screening value, always started from the extended fit so that screening errors do not
@@ -740,8 +743,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         return not (j in cache and (cache[j][3] or not full))
 
     def truncated(j: int, full: bool = True) -> float:
-        """The criterion of the model truncated at j (:func:`refit`), cached."""
-        return store(j, full, refit(j, full)) if wanted(j, full) else cache[j][0]
+        """The criterion of the model truncated at j (:func:`fit_truncated`), cached."""
+        return store(j, full, fit_truncated(j, full)) if wanted(j, full) else cache[j][0]
 
     def prefetch(js: list[int], full: bool) -> None:
         """:func:`truncated` for every j of ``js`` at once, on ``threads`` threads (the fits are independent: the
@@ -749,7 +752,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         threads."""
         todo = [j for j in js if wanted(j, full)]
         with ThreadPoolExecutor(max_workers=max(1, min(workers, len(todo)))) as pool, _one_blas_thread():
-            for j, got in zip(todo, list(pool.map(lambda q: refit(q, full), todo))):
+            for j, got in zip(todo, list(pool.map(lambda q: fit_truncated(q, full), todo))):
                 store(j, full, got)
 
     per_element = 0.5 * np.log(vel.size)
@@ -837,6 +840,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         its weight relative to the misfit (alpha sigma^2 / var(nm)), the same price per element. The criterion's
         values are kept in ``diagnostics["toe_profile"]``."""
         memo: dict[int, float] = {}
+        if nm is not None and not nm.innovation > 0:       # a residual without noise: no model to whiten with
+            nm = None
 
         def crit(j):
             value = truncated(j)

@@ -86,10 +86,10 @@ SETTINGS = Table("identify", "The method and its settings.", (
                                       "identification-matching.md).", default=1.0, required=False),
     _q("velocity_noise", "velocity", "Matching: standard deviation of the velocity record's noise (default: from "
                                      "the record's pre-trigger baseline).", required=False),
-    _q("extension", "dimensionless", "Matching: the model reaches (1 + extension) length.", sign="non_negative",
-       default=0.25, required=False),
+    _q("extension", "dimensionless", "Matching: the model reaches (1 + extension) length; at most 2.",
+       sign="non_negative", default=0.25, required=False),
     Field("elements", "integer", "Matching: elements over the length (default: one per sample interval; the "
-                                 "record is resampled)."),
+                                 "record is resampled).", minimum=4),
     Field("toe", "string", "Matching: the toe a `spring` (spring-dashpot, fitted) or `fixed`.", default="spring",
           choices=("spring", "fixed")),
     Field("soil", "boolean", "Matching: fit a shaft spring and dashpot.", default=True),
@@ -190,6 +190,8 @@ def _spec(raw: dict, base: Path, text: str, name: str) -> IdentifySpec:
         raise ModelError(f"identify.method: missing; one of {', '.join(METHODS)}")
     if d["record"]["polarity"] not in (1, -1):
         raise ModelError(f"record.polarity: must be 1 or -1, got {d['record']['polarity']}")
+    if not settings["extension"] <= 2.0:
+        raise ModelError(f"identify.extension: must be a share of the length in [0, 2], got {settings['extension']}")
     if settings["resamples"] < 0:
         raise ModelError(f"identify.resamples: must be >= 0, got {settings['resamples']}")
     start, end = d["record"]["start"], d["record"]["end"]

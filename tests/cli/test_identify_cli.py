@@ -121,6 +121,11 @@ def test_identify_peeling_with_noise_bands(tmp_path, capsys, monkeypatch):
     ('[identify]\nmethod = "beta"\n[record]\nstart = "2 ms"\nend = "1 ms"\n', "record.end: must be after record.start"),
     ('[identify]\nmethod = "beta"\n[record]\nlow_pass = "5 kN"\n', "record.low_pass"),
     ('[rod]\nimpedance = "1 kN s/m"\n', "identify: missing"),
+    ('[identify]\nmethod = "matching"\nextension = 3\n', "identify.extension: must be a share of the length in [0, 2]"),
+    ('[identify]\nmethod = "matching"\nelements = 2\n', "identify.elements"),
+    ('[identify]\nmethod = "matching"\nband_scale = 0\n', "identify.band_scale"),
+    ('[identify]\nmethod = "matching"\nweight = -1\n', "identify.weight"),
+    ('[identify]\nmethod = "matching"\nbands = "mcmc"\n', "identify.bands"),
 ])
 def test_bad_specs_name_the_key(tmp_path, capsys, monkeypatch, text, message):
     pile_csv(tmp_path / "pile.csv")
