@@ -204,6 +204,14 @@ class BlockModel:
         return y, np.hstack([J[:, :self.pile.n] @ self.B, J[:, self.pile.n:]])
 
 
+def fused_groups(m: np.ndarray, step: float) -> int:
+    """The number of plateaus of m (a new one where |m_{j+1} - m_j| > ``step``): the degrees of freedom of a
+    total-variation (fused-lasso) estimate, which are its number of fused groups (Tibshirani and Taylor 2011,
+    "The solution path of the generalized lasso", Ann. Statist. 39; 2012, "Degrees of freedom in lasso
+    problems", Ann. Statist. 40), not its number of elements."""
+    return int(np.count_nonzero(np.abs(np.diff(m)) > step)) + 1
+
+
 def blocks_of(m: np.ndarray, step: float) -> np.ndarray:
     """The indicator matrix B (n x blocks) of the plateaus of m: a new block starts where |m_{j+1} - m_j| > step."""
     starts = np.r_[0, np.flatnonzero(np.abs(np.diff(m)) > step) + 1]
@@ -690,8 +698,10 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     # screened at steps of w/3 over +-w (short fits from the extended one), the best two refitted in full, then
     # single steps out from the best until the 90 % interval 2 (Phi(j) - Phi_min) <= 2.71 is closed on both sides.
     # Elements below the toe imitate any toe better than its spring-dashpot does, so a deeper truncation always
-    # fits a little better: every element is charged ln(K) / 2, Schwarz's (1978) BIC price of a parameter, and the
-    # criterion compared is Phi(j) + j ln(K) / 2.
+    # fits a little better: every degree of freedom of the profile is charged ln(K) / 2, Schwarz's (1978) BIC
+    # price of a parameter, and the criterion compared is Phi(j) + g(j) ln(K) / 2 with g(j) the fused groups
+    # (plateaus) of the truncated TV profile (fused_groups): its degrees of freedom, not its j elements (charging
+    # every element drove toes under strong noise to the shallowest candidate).
     weight_vec = np.full(vel.size, 1.0 / sigma ** 2)
     phase1 = _time.perf_counter()
 
@@ -702,7 +712,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     cache: dict[int, tuple[float, Fit, PileModel, bool]] = {}     # j -> (criterion, fit, model, full)
 
     def fit_truncated(j: int, full: bool) -> tuple[float, Fit, PileModel]:
-        """Phi + j ln(K)/2 of the model truncated at j, its fit and model: refitted from the extended fit or the
+        """Phi + g ln(K)/2 of the model truncated at j (g its fused groups), its fit and model: refitted from the
+        extended fit or the
         nearest refitted model, the soil first, then everything, for at most :data:`TOE_COARSE` iterations
         (``full=False``, a screening value, always started from the extended fit so that screening errors do not
         propagate: an upper bound of the converged criterion) or :data:`TOE_FULL` from the nearest full fit (a
@@ -730,7 +741,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             soil_first = fit(mm, vel, sigma, alpha, pen, start, [(v, v) for v in start[:j]] + bnds[j:],
                              max_iterations=100)
             f = fit(mm, vel, sigma, alpha, pen, soil_first.theta, bnds, max_iterations=cap)
-        return phi_of(mm, f.theta) + per_element * j, f, mm
+        return phi_of(mm, f.theta) + per_element * fused_groups(f.theta[:j], block_step), f, mm
 
     def store(j: int, full: bool, got: tuple[float, Fit, PileModel]) -> float:
         iterations["toe"] += got[1].iterations
@@ -837,8 +848,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         """The toe's interval 2 (crit - min) <= ``limit`` over the truncated models (:func:`walk`), holding the
         chosen toe. ``nm`` ``None``: the criterion of the scan (white noise at ``sigma``); else the misfit of the
         AR noise model ``nm``, the whitened residual 1/2 |W r|^2 / s2 for 1/2 |r / sigma|^2, the penalty keeping
-        its weight relative to the misfit (alpha sigma^2 / var(nm)), the same price per element. The criterion's
-        values are kept in ``diagnostics["toe_profile"]``."""
+        its weight relative to the misfit (alpha sigma^2 / var(nm)), the same price per fused group. The
+        criterion's values are kept in ``diagnostics["toe_profile"]``."""
         memo: dict[int, float] = {}
         if nm is not None and not nm.innovation > 0:       # a residual without noise: no model to whiten with
             nm = None
@@ -848,7 +859,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             if j not in memo:
                 if nm is not None:
                     f = cache[j][1]
-                    value = (nm.misfit(f.y - vel) + per_element * j
+                    value = (nm.misfit(f.y - vel) + per_element * fused_groups(f.theta[:j], block_step)
                              + alpha * sigma ** 2 / nm.variance() * pen.value_gradient(f.theta[:j])[0])
                 memo[j] = value
             return memo[j]
