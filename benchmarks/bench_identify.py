@@ -495,7 +495,8 @@ def timing_section() -> str:
     return ("## Identification (benchmarks/bench_identify.py)\n\n"
             f"One 256-element pile (model {d['elements_model']} elements incl. the 25 % extension, "
             f"{record.time.size} samples), on the shared 2-core machine (load average {load:.1f} from other work "
-            "while measured: wall times are then up to twice the CPU times); matching best of 3:\n\n"
+            "while measured); matching best of 3, its toe scan on the 2 cores (CPU time above wall time; other "
+            "work on the machine makes wall times longer); peeling after deconvolution:\n\n"
             "| method | wall s | CPU s |\n|---|---|---|\n"
             f"| matching, Laplace bands (weight search, toe scan, covariance) | {lap:.2f} | {lap_cpu:.2f} |\n"
             f"| ... of which the weight search | {d0['time_weight_s']:.2f} | |\n"
@@ -505,7 +506,7 @@ def timing_section() -> str:
             f"| matching, pCN sampling bands ({d.get('sampling_draws')} draws, R-hat "
             f"{d.get('sampling_rhat', float('nan')):.3f}, ESS {d.get('sampling_ess', float('nan')):.0f}, converged "
             f"{d.get('sampling_converged')}) | {samp:.2f} | {samp_cpu:.2f} |\n"
-            f"| layer peeling (baseline) | {peel:.4f} | |\n| beta method (baseline) | {beta:.4f} | |\n")
+            f"| layer peeling, deconvolved (baseline) | {peel:.4f} | |\n| beta method (baseline) | {beta:.4f} | |\n")
 
 
 #: the band factor of the benchmark's matching runs, from ``--calibrate --piles 36 --seed 7`` (seeds disjoint from the
