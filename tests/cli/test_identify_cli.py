@@ -14,6 +14,11 @@ DT = 1e-6
 LANL = Path(__file__).resolve().parents[1] / "data" / "hoppybar" / "LANLstandard-Cu" / "20061201_1148HE_CuOFE_273K.raw"
 
 
+def write_head_csv(path, rows, header="time [s],force [N],velocity [m/s]"):
+    """A head record as the CSV table `rodimpact identify` reads: a header, then one row per sample."""
+    path.write_text(header + "\n" + "\n".join(",".join(repr(float(x)) for x in r) for r in rows) + "\n")
+
+
 def pile_csv(path):
     """A pile of 50 + 150 elements, impedance 4e5 then 2.8e5 N s/m (beta = 0.7), hit by a half-sine pulse."""
     rod = ri.Rod.from_impedance([4.0e5] * 50 + [2.8e5] * 150, dt=DT)
@@ -22,8 +27,7 @@ def pile_csv(path):
     system = ri.System([rod], [0.0], left=ri.ForceEnd((tk, f), interpolation="previous"), right="nonreflecting")
     res = ri.simulate(ri.Problem.of(system, steps=300, dt=DT), backend="numpy")
     rows = np.column_stack([res.time * 1e3, -np.asarray(res.end_force["left"]) / 1e3, res.end_velocity["left"]])
-    path.write_text("time [ms],force [kN],velocity [m/s]\n" + "\n".join(",".join(repr(float(x)) for x in r)
-                                                                        for r in rows) + "\n")
+    write_head_csv(path, rows, "time [ms],force [kN],velocity [m/s]")
     m = rod.segments[0].material
     return float(np.sqrt(m.youngs_modulus / m.density))
 
@@ -102,8 +106,7 @@ def test_identify_peeling_with_noise_bands(tmp_path, capsys, monkeypatch):
     res = ri.simulate(ri.Problem.of(ri.System([rod], [0.0], left=head, right="nonreflecting"), steps=120, dt=DT),
                       backend="numpy")
     rows = np.column_stack([res.time, res.end_force["left"], res.end_velocity["left"]])[::2]
-    (tmp_path / "head.csv").write_text("time [s],force [N],velocity [m/s]\n" + "\n".join(
-        ",".join(repr(float(x)) for x in r) for r in rows) + "\n")
+    write_head_csv(tmp_path / "head.csv", rows)
     (tmp_path / "spec.toml").write_text('[identify]\nmethod = "peeling"\nnoise = "1 N"\nresamples = 20\n'
                                         '[rod]\nimpedance = "400 kN s/m"\nwave_speed = "5175.5 m/s"\n')
     code, _, err = main(["identify", "head.csv", "--spec", "spec.toml", "-o", "out", "--no-plots"], tmp_path, capsys,
@@ -151,8 +154,7 @@ def test_identify_matching_from_a_csv(tmp_path, capsys, monkeypatch):
     y = y.reshape(-1, 2).mean(axis=1)
     y = y + np.random.default_rng(3).normal(0.0, 0.02 * np.sqrt(np.mean(y[pre:] ** 2)), y.size)
     rows = np.column_stack([np.arange(steps) * dt, ff.reshape(-1, 2).mean(axis=1), y])
-    (tmp_path / "pile.csv").write_text("time [s],force [N],velocity [m/s]\n"
-                                       + "\n".join(",".join(repr(float(x)) for x in r) for r in rows) + "\n")
+    write_head_csv(tmp_path / "pile.csv", rows)
     (tmp_path / "spec.toml").write_text(f'[identify]\nmethod = "matching"\n'
                                         f'[rod]\nimpedance = "300 kN s/m"\nwave_speed = "{c} m/s"\nlength = "6.3 m"\n')
     code, out, err = main(["identify", "pile.csv", "--spec", "spec.toml", "-o", "out", "--json"], tmp_path, capsys,
