@@ -209,12 +209,17 @@ def fused_groups(m: np.ndarray, step: float) -> int:
     total-variation (fused-lasso) estimate, which are its number of fused groups (Tibshirani and Taylor 2011,
     "The solution path of the generalized lasso", Ann. Statist. 39; 2012, "Degrees of freedom in lasso
     problems", Ann. Statist. 40), not its number of elements."""
-    return int(np.count_nonzero(np.abs(np.diff(m)) > step)) + 1
+    return plateau_starts(m, step).size
+
+
+def plateau_starts(m: np.ndarray, step: float) -> np.ndarray:
+    """The first element of every plateau of m: 0 and every j where |m_j - m_{j-1}| > ``step``."""
+    return np.r_[0, np.flatnonzero(np.abs(np.diff(m)) > step) + 1]
 
 
 def blocks_of(m: np.ndarray, step: float) -> np.ndarray:
-    """The indicator matrix B (n x blocks) of the plateaus of m: a new block starts where |m_{j+1} - m_j| > step."""
-    starts = np.r_[0, np.flatnonzero(np.abs(np.diff(m)) > step) + 1]
+    """The indicator matrix B (n x blocks) of the plateaus of m (:func:`plateau_starts`)."""
+    starts = plateau_starts(m, step)
     label = np.zeros(m.size, dtype=int)
     label[starts[1:]] = 1
     label = np.cumsum(label)
@@ -713,8 +718,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
 
     def fit_truncated(j: int, full: bool) -> tuple[float, Fit, PileModel]:
         """Phi + g ln(K)/2 of the model truncated at j (g its fused groups), its fit and model: refitted from the
-        extended fit or the
-        nearest refitted model, the soil first, then everything, for at most :data:`TOE_COARSE` iterations
+        extended fit or the nearest refitted model, the soil first, then everything, for at most :data:`TOE_COARSE` iterations
         (``full=False``, a screening value, always started from the extended fit so that screening errors do not
         propagate: an upper bound of the converged criterion) or :data:`TOE_FULL` from the nearest full fit (a
         screened entry asked for in full is continued from where it stopped). Reads the cache, does not write it
