@@ -838,15 +838,51 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         sd[:, idx] = rng.standard_normal((draws, idx.size)) @ (V * np.sqrt(np.maximum(ev, 0.0))).T
         return z_ref * lo_m, z_ref * up_m, m + sd @ B.T
 
-    def anomaly_bands(ft, samples):
-        """5-95 % of the depth (m) and size of the feature matched to ``ft`` in every drawn profile."""
+    def anomaly_bands(ft, samples) -> Optional[tuple[float, float]]:
+        """5-95 % of the size of the feature matched to ``ft`` in every drawn profile (None without draws)."""
+        if samples is None:
+            return None
         got = [unc.match_feature(unc.find_anomalies(np.exp(s), None, None, window=win, min_change=min_change), ft)
                for s in samples]
-        got = [g for g in got if g is not None]
-        if not got:
-            return None, None
-        return (tuple(np.percentile([g.start * h for g in got], [5, 95])),
-                tuple(np.percentile([g.change for g in got], [5, 95])))
+        got = [g.change for g in got if g is not None]
+        return tuple(np.percentile(got, [5, 95])) if got else None
+
+    def edge_residuals(start: int) -> tuple[np.ndarray, list[np.ndarray], np.ndarray, int]:
+        """The depths x (elements) of :func:`~rodimpact.identify.uncertainty.edge_profiles` for the step at
+        element ``start`` of the final profile, the residuals y - d of those profiles (the soil held), the
+        profiles, and ``start``."""
+        if start == 0:                 # an anomaly from the head down has no step above it
+            return np.zeros(1), [final.y - vel], theta[None, :jb], 0
+        x, profiles = unc.edge_profiles(theta[:jb], start)
+        return x, [fmodel.simulate(np.r_[p, theta[jb:]]) - vel for p in profiles], profiles, start
+
+    def edge_interval(edge, nm: Optional["unc.NoiseModel"], limit: float,
+                      keep: bool = False) -> tuple[float, float, float]:
+        """The best depth (m) of a step and its 90 % interval 2 (crit(x) - min) <= ``limit``: the profile
+        likelihood of the step's depth x. crit(x) is the criterion of the work model (the misfit under the AR noise
+        model ``nm``, None: white noise at ``sigma``, plus its penalty weighted as in the toe's criterion) at the
+        profile with the step at x (:func:`edge_residuals`), minimised over the work model's free parameters to
+        first order, one Gauss-Newton step from the fit with its Jacobian J: crit = f0 - 1/2 b^T A^+ b with
+        b = J^T Sigma^-1 r + a grad R and A = J^T Sigma^-1 J + a hess R (the levels and the soil follow the
+        step; held, they pin it to the element edge where they were fitted). ``keep``: the depths and criterion
+        are appended to ``diagnostics["depth_profiles"]``."""
+        x, residuals, profiles, start = edge
+        use = nm if nm is not None and nm.innovation > 0 else None
+        white = use.whiten if use is not None else (lambda v: np.asarray(v) / sigma)
+        weight = work_alpha * (sigma ** 2 / use.variance() if use is not None else 1.0)
+        WJ = white(J[:, free])
+        A_inv = np.linalg.pinv(WJ.T @ WJ + weight * ph_full[np.ix_(free, free)])
+        crit = np.empty(x.size)
+        for i, (r, p) in enumerate(zip(residuals, profiles)):
+            wr = white(r)
+            value, grad = pen.value_gradient(p) if weight > 0 else (0.0, np.zeros(nb))
+            b = WJ.T @ wr + weight * np.r_[grad, np.zeros(J.shape[1] - nb)][free]
+            crit[i] = 0.5 * float(wr @ wr) + weight * value - 0.5 * float(b @ A_inv @ b)
+        best, lo, hi = unc.profile_interval(x, crit, limit, at=start)
+        if keep:
+            diag_extra.setdefault("depth_profiles", []).append({"depth_m": (x * h).tolist(),
+                                                                "criterion": crit.tolist()})
+        return best * h, lo * h, hi * h
 
     def toe_band_of(nm: Optional["unc.NoiseModel"], limit: float) -> tuple[float, float]:
         """The toe's interval 2 (crit - min) <= ``limit`` over the truncated models (:func:`walk`), holding the
@@ -880,6 +916,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         bu = np.array([b[1] for b in work_bounds])
         free = bu > bl
         ph = pen.hessian(work_theta[:nb]) if work_alpha > 0 else np.zeros((nb, nb))
+        ph_full = np.zeros((J.shape[1], J.shape[1]))
+        ph_full[:nb, :nb] = ph
         C_white = unc.laplace_covariance(J, sigma, ph, work_alpha, free)
         noise_model = None
         C = C_white
@@ -921,17 +959,24 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
                                "sampling_ess": res.ess, "sampling_converged": res.converged,
                                "sampling_evaluations": res.evaluations, "sampling_draws": int(flat.shape[0])})
     feats = unc.find_anomalies(Z, lower, upper, window=win, min_change=min_change)
+    # each anomaly's top is the fitted step (the first element of its run); its band is the profile-likelihood
+    # interval of the step's depth (edge_profiles: the step moved in eighths of an element; edge_interval: the
+    # levels and the soil refitted to first order), tempered by the band factor as the toe's
+    edges = [edge_residuals(ft.start) if samples_m is not None else None for ft in feats]
     anomalies = []
-    for ft in feats:
-        depth_band, size_band = anomaly_bands(ft, samples_m) if samples_m is not None else (None, None)
+    for ft, edge in zip(feats, edges):
+        depth_band = edge_interval(edge, noise_model, PROFILE_90 * band_scale ** 2, keep=True)[1:] if edge else None
         beta = 1.0 + ft.change
         anomalies.append(Anomaly(ft.start * h, (ft.stop - ft.start) * h, ft.change, beta, beta_class(beta),
-                                 depth_band, size_band))
+                                 depth_band, anomaly_bands(ft, samples_m)))
     # the bands before the residual noise model (white noise at the baseline's level) and before the calibration,
     # on the same anomalies, for comparison
     diag_extra["comparison_bands"] = {
         name: {"lower": lo.tolist(), "upper": up.tolist(),
-               "anomaly_bands": [anomaly_bands(ft, smp) for ft in feats]} for name, (lo, up, smp) in compare.items()}
+               "anomaly_bands": [(edge_interval(edge, noise_model if name == "uncalibrated" else None,
+                                                PROFILE_90)[1:], anomaly_bands(ft, smp))
+                                 for ft, edge in zip(feats, edges)]}
+        for name, (lo, up, smp) in compare.items()}
     y = final.y
     K = vel.size
     diag_extra.update({"time_weight_s": phase1 - phase0, "time_toe_s": phase2 - phase1,

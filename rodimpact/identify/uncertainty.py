@@ -100,13 +100,18 @@ class NoiseModel:
         e = rng.normal(0.0, np.sqrt(self.innovation), size + burn)
         return lfilter([1.0], np.r_[1.0, -self.a], e)[burn:]
 
+    def whiten(self, x: np.ndarray) -> np.ndarray:
+        """W x / sqrt(s2) along the first axis (time): the filter e_k = x_k - sum_i a_i x_{k-i} from rest, scaled
+        so that whitened noise has unit variance and 1/2 r^T Sigma^-1 r = 1/2 |whiten(r)|^2."""
+        from scipy.signal import lfilter
+
+        return lfilter(np.r_[1.0, -self.a], [1.0], np.asarray(x, dtype=float), axis=0) / np.sqrt(self.innovation)
+
     def misfit(self, residual: np.ndarray) -> float:
         """1/2 r^T Sigma^-1 r = 1/2 |W r|^2 / s2: the negative log-likelihood of the residual r under the model
         (up to a constant), with W r the filter e_k = r_k - sum_i a_i r_{k-i} from rest."""
-        from scipy.signal import lfilter
-
-        e = lfilter(np.r_[1.0, -self.a], [1.0], np.asarray(residual, dtype=float))
-        return 0.5 * float(e @ e) / self.innovation
+        e = self.whiten(residual)
+        return 0.5 * float(e @ e)
 
     def jt_sigma_j(self, J: np.ndarray) -> np.ndarray:
         """J^T Sigma J = s2 (W^-T J)^T (W^-T J); W^-T J is the synthesis filter 1 / (1 - sum a_i z^-i) run
@@ -212,6 +217,46 @@ def match_feature(features: list[Feature], ref: Feature) -> Optional[Feature]:
         if o > over:
             best, over = f, o
     return best
+
+
+def edge_profiles(m: np.ndarray, start: int, reach: int = 6, substeps: int = 8) -> tuple[np.ndarray, np.ndarray]:
+    """The log-profile ``m`` with its step at element ``start`` (between the levels a = m[start - 1] above and
+    b = m[start] below) moved to the depths x (in elements, continuous) of a grid of ``substeps`` per element:
+    returns (x, profiles), profiles[i] equal to m but on the elements around the step, where element k holds
+    a + (b - a) q_k with q_k = clip(k + 1 - x_i, 0, 1) its share below x_i (a partial-volume element, mixed in
+    ln Z). The step moves within the runs of elements equal to a above it and to b below it, at most ``reach``
+    elements each way, strictly inside both; at x = start the profile is ``m`` itself. A block profile (the refit
+    of :mod:`rodimpact.identify.matching`) has such runs; a profile without them lets the step move within the
+    two elements beside it."""
+    a, b = m[start - 1], m[start]
+    up = 1
+    while up < reach and start - up - 1 >= 0 and m[start - up - 1] == a:
+        up += 1
+    down = 1
+    while down < reach and start + down < m.size and m[start + down] == b:
+        down += 1
+    # the step stays strictly inside the two runs: each keeps at least 1 / substeps of an element at its level
+    x = np.arange((start - up) * substeps + 1, (start + down) * substeps) / substeps
+    k = np.arange(start - up, start + down)
+    q = np.clip(k[None, :] + 1 - x[:, None], 0.0, 1.0)
+    profiles = np.repeat(m[None, :], x.size, axis=0)
+    profiles[:, k] = (1.0 - q) * a + q * b          # exactly a and b on whole elements
+    return x, profiles
+
+
+def profile_interval(x: np.ndarray, crit: np.ndarray, limit: float, at: float) -> tuple[float, float, float]:
+    """The best x (lowest ``crit``; of equal ones, the nearest to ``at``) and the connected interval around it
+    where 2 (crit - min) <= ``limit`` (the profile-likelihood interval; 2.71 for 90 %, Wilks): (best, lo, hi).
+    An interval that reaches an end of x is cut there."""
+    i = min(range(x.size), key=lambda j: (crit[j], abs(x[j] - at)))
+    ok = 2.0 * (crit - crit[i]) <= limit
+    lo = i
+    while lo > 0 and ok[lo - 1]:
+        lo -= 1
+    hi = i
+    while hi < x.size - 1 and ok[hi + 1]:
+        hi += 1
+    return float(x[i]), float(x[lo]), float(x[hi])
 
 
 # ------------------------------------------------------------------------------------------------ sampling

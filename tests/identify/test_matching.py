@@ -118,15 +118,15 @@ def test_baseline_noise_is_the_spread_before_the_blow():
     assert baseline_noise(rec, half_sine(t, 1e4, 10 * DT)) is None     # no baseline before the blow
 
 
-def _synthetic(seed: int, noise: float, toe: tuple[float, float] = (8.0, 0.4)):
-    """A pile of 48 elements computed on a lattice twice as fine (96 elements, dt/2), a 30 % neck at elements
-    12-17 and a 25 % bulge at 30-33, shaft and toe soil (``toe``: k_t T / Z, c_t / Z); the record averaged over
-    pairs of fine samples."""
+def _synthetic(seed: int, noise: float, toe: tuple[float, float] = (8.0, 0.4), neck: int = 24):
+    """A pile of 48 elements computed on a lattice twice as fine (96 elements, dt/2), a 30 % neck from fine
+    element ``neck`` (24: elements 12-17) six elements long and a 25 % bulge at 30-33, shaft and toe soil
+    (``toe``: k_t T / Z, c_t / Z); the record averaged over pairs of fine samples."""
     n, c, length = 48, 4000.0, 6.0
     dt = length / (c * n)
     z0 = 3e5
     zf = np.full(2 * n, z0)
-    zf[24:36] *= 0.7
+    zf[neck:neck + 12] *= 0.7
     zf[60:68] *= 1.25
     pre, steps = 40, 40 + 2 * 66 + 10
     tf = np.arange(2 * steps) * dt / 2
@@ -307,6 +307,38 @@ def test_toe_interval_is_the_tempered_profile_likelihood_of_the_residual_noise()
         else:
             one_band = res.toe_band
             assert "toe_band_white" in res.diagnostics
+
+
+def test_depth_band_is_the_profile_likelihood_of_the_step_and_holds_a_top_between_element_edges():
+    """A neck whose top lies in the middle of element 12 (fine element 25): the fitted top is an element edge, the
+    depth band is the interval 2 Delta <= 2.71 k^2 around the lowest criterion of the step moved in eighths of an
+    element (its levels and the soil refitted to first order: held, they pin the step to the fitted edge) and
+    holds the true top; k = 2 widens it, and keeps the k = 1 band as the uncalibrated one."""
+    from rodimpact.identify.matching import PROFILE_90
+
+    record, c, length, z0, h = _synthetic(6, 0.03, neck=25)
+    bands = {}
+    for k in (1.0, 2.0):
+        res = identify_by_matching(record, z0, c, length=1.05 * length, band_scale=k)
+        neck = res.anomalies[0]
+        assert neck.relative_change < 0 and neck.depth / h == pytest.approx(round(neck.depth / h))
+        prof = res.diagnostics["depth_profiles"][0]
+        depth, crit = np.array(prof["depth_m"]), np.array(prof["criterion"])
+        assert depth[1] - depth[0] == pytest.approx(h / 8)
+        i = int(np.argmin(crit))
+        inside = 2 * (crit - crit[i]) <= PROFILE_90 * k ** 2
+        lo, hi = i, i
+        while lo > 0 and inside[lo - 1]:
+            lo -= 1
+        while hi < depth.size - 1 and inside[hi + 1]:
+            hi += 1
+        assert neck.depth_band == pytest.approx((depth[lo], depth[hi]), abs=1e-12)
+        assert neck.depth_band[0] <= 12.5 * h <= neck.depth_band[1]
+        assert neck.depth_band[1] - neck.depth_band[0] < 3 * h
+        bands[k] = neck.depth_band
+    assert res.diagnostics["comparison_bands"]["uncalibrated"]["anomaly_bands"][0][0] == pytest.approx(bands[1.0])
+    assert bands[2.0][0] <= bands[1.0][0] and bands[2.0][1] >= bands[1.0][1]
+    assert bands[2.0][1] - bands[2.0][0] > bands[1.0][1] - bands[1.0][0]
 
 
 def test_toe_scan_on_threads_gives_the_one_thread_result():
