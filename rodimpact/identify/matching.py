@@ -476,6 +476,8 @@ def summary_of(theta: np.ndarray, model: PileModel) -> dict[str, Any]:
 # ------------------------------------------------------------------------------------------------ entry
 #: 2 Delta Phi of a 90 % profile-likelihood interval for one parameter (chi-square, 1 degree of freedom)
 PROFILE_90 = 2.705543454095404
+#: how far (elements) an anomaly's top is moved each way for its depth band (``edge_profiles``)
+EDGE_REACH = 6
 #: iteration caps of the toe scan's truncated-model fits: screening (the coarse steps) and full
 TOE_COARSE = 40
 TOE_FULL = 150
@@ -847,13 +849,16 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         got = [g.change for g in got if g is not None]
         return tuple(np.percentile(got, [5, 95])) if got else None
 
-    def edge_residuals(start: int) -> tuple[np.ndarray, list[np.ndarray], np.ndarray, int]:
-        """The depths x (elements) of :func:`~rodimpact.identify.uncertainty.edge_profiles` for the step at
-        element ``start`` of the final profile, the residuals y - d of those profiles (the soil held), the
-        profiles, and ``start``."""
+    def edge_residuals(ft: "unc.Feature", above: int) -> tuple[np.ndarray, list[np.ndarray], np.ndarray, int]:
+        """The depths x (elements) of :func:`~rodimpact.identify.uncertainty.edge_profiles` for the top of the
+        feature ``ft`` of the final profile (moved at most :data:`EDGE_REACH` elements each way, not above
+        ``above``, the end of the feature above it, nor past its own last element), the residuals y - d of those
+        profiles (the soil held), the profiles, and the fitted top."""
+        start = ft.start
         if start == 0:                 # an anomaly from the head down has no step above it
             return np.zeros(1), [final.y - vel], theta[None, :jb], 0
-        x, profiles = unc.edge_profiles(theta[:jb], start)
+        x, profiles = unc.edge_profiles(theta[:jb], start, max(start - EDGE_REACH, above, 0),
+                                        min(start + EDGE_REACH, ft.stop - 1))
         return x, [fmodel.simulate(np.r_[p, theta[jb:]]) - vel for p in profiles], profiles, start
 
     def edge_interval(edge, nm: Optional["unc.NoiseModel"], limit: float,
@@ -961,11 +966,13 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     feats = unc.find_anomalies(Z, lower, upper, window=win, min_change=min_change)
     # each anomaly's top is the fitted step (the first element of its run); its band is the profile-likelihood
     # interval of the step's depth (edge_profiles: the step moved in eighths of an element; edge_interval: the
-    # levels and the soil refitted to first order), tempered by the band factor as the toe's
-    edges = [edge_residuals(ft.start) if samples_m is not None else None for ft in feats]
+    # levels and the soil refitted to first order). The band factor does not temper it: on the calibration
+    # piles (seed 7) the untempered interval held the true top in 91 % of 115 cases, the tempered one in 98 %
+    edges = [edge_residuals(ft, feats[i - 1].stop if i else 0) if samples_m is not None else None
+             for i, ft in enumerate(feats)]
     anomalies = []
     for ft, edge in zip(feats, edges):
-        depth_band = edge_interval(edge, noise_model, PROFILE_90 * band_scale ** 2, keep=True)[1:] if edge else None
+        depth_band = edge_interval(edge, noise_model, PROFILE_90, keep=True)[1:] if edge else None
         beta = 1.0 + ft.change
         anomalies.append(Anomaly(ft.start * h, (ft.stop - ft.start) * h, ft.change, beta, beta_class(beta),
                                  depth_band, anomaly_bands(ft, samples_m)))

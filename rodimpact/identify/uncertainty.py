@@ -219,44 +219,39 @@ def match_feature(features: list[Feature], ref: Feature) -> Optional[Feature]:
     return best
 
 
-def edge_profiles(m: np.ndarray, start: int, reach: int = 6, substeps: int = 8) -> tuple[np.ndarray, np.ndarray]:
-    """The log-profile ``m`` with its step at element ``start`` (between the levels a = m[start - 1] above and
-    b = m[start] below) moved to the depths x (in elements, continuous) of a grid of ``substeps`` per element:
-    returns (x, profiles), profiles[i] equal to m but on the elements around the step, where element k holds
-    a + (b - a) q_k with q_k = clip(k + 1 - x_i, 0, 1) its share below x_i (a partial-volume element, mixed in
-    ln Z). The step moves within the runs of elements equal to a above it and to b below it, at most ``reach``
-    elements each way, strictly inside both; at x = start the profile is ``m`` itself. A block profile (the refit
-    of :mod:`rodimpact.identify.matching`) has such runs; a profile without them lets the step move within the
-    two elements beside it."""
+def edge_profiles(m: np.ndarray, start: int, top: int, bottom: int,
+                  substeps: int = 8) -> tuple[np.ndarray, np.ndarray]:
+    """The log-profile ``m`` with its step at element ``start`` (from a = m[start - 1] above to b = m[start]
+    below) moved to the depths x (in elements, continuous) from ``top`` to ``bottom`` (top <= start <= bottom),
+    ``substeps`` per element: returns (x, profiles). Moved up to x < start, the elements between x and the step
+    take b; moved down, those between the step and x take a; the element that holds x takes the level by its
+    share (partial volume, mixed in ln Z): element k < start becomes (1 - q) m_k + q b with q = clip(k + 1 - x,
+    0, 1) its share below x, element k >= start becomes (1 - p) m_k + p a with p = clip(x - k, 0, 1) its share
+    above x. Every other element keeps m; at x = start the profile is ``m`` itself. A step reached through a
+    transition element (an intermediate level between a and b, as a fit makes of a step inside an element) moves
+    across it."""
+    if not 0 <= top <= start <= bottom <= m.size:
+        raise ValueError(f"edge_profiles: need 0 <= top <= start <= bottom <= {m.size}, got {top}, {start}, "
+                         f"{bottom}")
     a, b = m[start - 1], m[start]
-    up = 1
-    while up < reach and start - up - 1 >= 0 and m[start - up - 1] == a:
-        up += 1
-    down = 1
-    while down < reach and start + down < m.size and m[start + down] == b:
-        down += 1
-    # the step stays strictly inside the two runs: each keeps at least 1 / substeps of an element at its level
-    x = np.arange((start - up) * substeps + 1, (start + down) * substeps) / substeps
-    k = np.arange(start - up, start + down)
-    q = np.clip(k[None, :] + 1 - x[:, None], 0.0, 1.0)
+    x = np.arange(top * substeps, bottom * substeps + 1) / substeps
     profiles = np.repeat(m[None, :], x.size, axis=0)
-    profiles[:, k] = (1.0 - q) * a + q * b          # exactly a and b on whole elements
+    k = np.arange(top, start)
+    q = np.clip(k[None, :] + 1 - x[:, None], 0.0, 1.0)
+    profiles[:, k] = (1.0 - q) * m[k] + q * b
+    k = np.arange(start, bottom)
+    p = np.clip(x[:, None] - k[None, :], 0.0, 1.0)
+    profiles[:, k] = (1.0 - p) * m[k] + p * a
     return x, profiles
 
 
 def profile_interval(x: np.ndarray, crit: np.ndarray, limit: float, at: float) -> tuple[float, float, float]:
-    """The best x (lowest ``crit``; of equal ones, the nearest to ``at``) and the connected interval around it
-    where 2 (crit - min) <= ``limit`` (the profile-likelihood interval; 2.71 for 90 %, Wilks): (best, lo, hi).
-    An interval that reaches an end of x is cut there."""
+    """The best x (lowest ``crit``; of equal ones, the nearest to ``at``) and the profile-likelihood interval: the
+    smallest one holding every x with 2 (crit - min) <= ``limit`` (2.71 for 90 %, Wilks; the toe's rule too), so
+    a second basin within the limit widens it: (best, lo, hi). It ends at the ends of x at the most."""
     i = min(range(x.size), key=lambda j: (crit[j], abs(x[j] - at)))
-    ok = 2.0 * (crit - crit[i]) <= limit
-    lo = i
-    while lo > 0 and ok[lo - 1]:
-        lo -= 1
-    hi = i
-    while hi < x.size - 1 and ok[hi + 1]:
-        hi += 1
-    return float(x[i]), float(x[lo]), float(x[hi])
+    inside = x[2.0 * (crit - crit[i]) <= limit]
+    return float(x[i]), float(inside.min()), float(inside.max())
 
 
 # ------------------------------------------------------------------------------------------------ sampling

@@ -255,28 +255,35 @@ def test_whitened_residual_gives_the_misfit_and_unit_variance_noise():
     np.testing.assert_allclose(nm.whiten(J)[:, 1], nm.whiten(J[:, 1]), rtol=1e-14)
 
 
-def test_edge_profiles_move_a_step_by_partial_volume_within_its_runs():
+def test_edge_profiles_move_a_step_by_partial_volume():
     """The step between the levels a (5 elements above) and b (3 below) moved to x: the volume at level b,
     sum (m - a) / (b - a) over the elements, is the length below x to the run's end; x = start gives m itself;
-    the step stays strictly inside the runs (and within ``reach``)."""
+    a step reached through a transition element moves across it; bad limits are refused."""
     a, b = 0.1, -0.3
     m = np.r_[np.full(5, a), np.full(3, b), np.full(4, 0.4)]
-    x, profiles = unc.edge_profiles(m, 5, reach=6, substeps=4)
-    assert x[0] == pytest.approx(0.25) and x[-1] == pytest.approx(7.75)
-    np.testing.assert_allclose(profiles[:, 8:], np.broadcast_to(m[8:], (x.size, 4)))
+    x, profiles = unc.edge_profiles(m, 5, 1, 7, substeps=4)
+    assert x[0] == pytest.approx(1.0) and x[-1] == pytest.approx(7.0) and x[1] - x[0] == pytest.approx(0.25)
+    np.testing.assert_array_equal(profiles[:, 8:], np.broadcast_to(m[8:], (x.size, 4)))
+    np.testing.assert_array_equal(profiles[:, 0], np.full(x.size, a))
     volume = ((profiles[:, :8] - a) / (b - a)).sum(axis=1)
     np.testing.assert_allclose(volume, 8.0 - x, rtol=1e-12)
     np.testing.assert_array_equal(profiles[np.flatnonzero(x == 5.0)[0]], m)
-    mid = profiles[np.flatnonzero(x == 4.5)[0]]
-    assert mid[4] == pytest.approx(0.5 * (a + b))
-    x2, _ = unc.edge_profiles(m, 5, reach=2, substeps=4)
-    assert x2[0] == pytest.approx(3.25) and x2[-1] == pytest.approx(6.75)
+    assert profiles[np.flatnonzero(x == 4.5)[0]][4] == pytest.approx(0.5 * (a + b))
+    # a transition element (3) between a and b: moved up to x = 3.5, half of element 3 takes b, all of 4
+    t = np.r_[np.full(3, a), -0.1, np.full(4, b)]
+    x, profiles = unc.edge_profiles(t, 4, 2, 6, substeps=2)
+    up = profiles[np.flatnonzero(x == 3.5)[0]]
+    np.testing.assert_allclose(up, np.r_[a, a, a, 0.5 * (-0.1 + b), b, b, b, b], rtol=1e-15)
+    down = profiles[np.flatnonzero(x == 5.0)[0]]
+    np.testing.assert_allclose(down, np.r_[a, a, a, -0.1, -0.1, b, b, b], rtol=1e-15)
+    with pytest.raises(ValueError, match="top <= start <= bottom"):
+        unc.edge_profiles(m, 5, 6, 7)
 
 
 def test_profile_interval_is_the_wilks_interval_of_a_quadratic():
     """crit = (x - x0)^2 / (2 s^2): the interval 2 Delta <= 2.71 is x0 +- 1.645 s (to the grid); a second, lower
-    basin outside is found as the best, and its interval does not reach across the ridge; of equal values the
-    one nearest ``at`` wins."""
+    basin is found as the best, and the interval spans the first basin too where that is within the limit, not
+    where it is above it; of equal values the one nearest ``at`` wins."""
     x = np.arange(0, 2001) / 100
     s = 0.8
     crit = (x - 7.3) ** 2 / (2 * s * s)
@@ -285,6 +292,10 @@ def test_profile_interval_is_the_wilks_interval_of_a_quadratic():
     assert lo == pytest.approx(7.3 - 1.6449 * s, abs=0.011) and hi == pytest.approx(7.3 + 1.6449 * s, abs=0.011)
     two = np.minimum(crit, (x - 15.0) ** 2 / (2 * 0.1 ** 2) - 1.0)
     best, lo, hi = unc.profile_interval(x, two, 2.705543454095404, at=0.0)
+    assert best == pytest.approx(15.0) and hi < 15.3
+    assert lo == pytest.approx(7.3 - np.sqrt(2.705543454095404 / 2 - 1.0) * np.sqrt(2) * s, abs=0.011)
+    far = np.minimum(crit, (x - 15.0) ** 2 / (2 * 0.1 ** 2) - 2.0)
+    best, lo, hi = unc.profile_interval(x, far, 2.705543454095404, at=0.0)
     assert best == pytest.approx(15.0) and lo > 14.7 and hi < 15.3
     flat = np.zeros(x.size)
     assert unc.profile_interval(x, flat, 2.7, at=4.0) == pytest.approx((4.0, 0.0, 20.0))
