@@ -588,8 +588,10 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         ``noise`` (the baseline's level). With ``"residual"`` the white-noise bands are also given, for comparison,
         in ``diagnostics["comparison_bands"]["white"]``.
     band_scale:
-        A factor on the band widths (the covariance times its square), for an empirical calibration (default 1:
-        none); the uncalibrated bands are then in ``diagnostics["comparison_bands"]["uncalibrated"]``.
+        A factor on the band widths (the covariance times its square, the toe's likelihood tempered by its
+        square), for an empirical calibration (default 1: none); the uncalibrated bands are then in
+        ``diagnostics["comparison_bands"]["uncalibrated"]``. The anomaly depth bands (profile-likelihood
+        intervals of each step's depth, ``diagnostics["depth_profiles"]``) do not take it.
     refit, block_step:
         Refit the plateaus of the total-variation profile (a new block where ln Z jumps by more than
         ``block_step``) without penalty (default), or keep the TV profile (``refit=False``).

@@ -22,6 +22,9 @@ preconditioned Crank-Nicolson method, and the reading of anomalies and the toe f
   target.
 * **Anomalies** (:func:`find_anomalies`): contiguous elements where the profile departs from the local baseline
   (running median) by more than ``min_change`` and the 90 % band excludes the baseline.
+* **A step's depth** (:func:`edge_profiles`, :func:`profile_interval`): the profile with the step moved to
+  depths x between element edges (partial volume), and the profile-likelihood interval 2 (crit(x) - min) <=
+  2.71 (Wilks 1938; Pawitan 2001, "In all likelihood", ch. 2.6) of a criterion evaluated at each x.
 """
 
 from __future__ import annotations
