@@ -30,9 +30,12 @@ def test_quick_benchmark_metrics_are_sane():
         assert level in bench.NOISE_LEVELS and method in bench.METHODS
         assert s["piles"] == 2 and 0 <= s["found"] <= s["true"]
         assert 0 <= s["common"] <= s["found"]       # found by all three methods, so by this one
-        for key in ("z_cov", "depth_cov", "size_cov", "toe_cov"):
+        for key in ("z_cov", "depth_cov", "depth_cov_allow", "size_cov", "toe_cov"):
             assert np.isnan(s[key]) or 0.0 <= s[key] <= 1.0
     matching = [r for r in rows if r["method"] == "matching"]
+    for r in matching:        # the earlier measure (the depth band widened by D/8) holds every top the band holds
+        assert len(r["depth_cov"]) == len(r["depth_cov_allow"])
+        assert all(a or not b for b, a in zip(r["depth_cov"], r["depth_cov_allow"]))
     assert all(r["z_cov"] is not None and r["toe_cov"] is not None for r in matching)
     assert sum(r["toe_err"] is not None and r["toe_err"] < 2 * bench.DIAMETER for r in matching) >= 4
     page = bench.report(table, 6, 2024)
