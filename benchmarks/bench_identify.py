@@ -444,8 +444,11 @@ def report(table: dict, piles: int, seed: int, band_scale: float = 1.0, calibrat
               "2.71 k^2: a band k times wider is a likelihood tempered by 1 / k^2). On the same fits and anomalies: "
               "the coverage with that model before the factor (`uncal.`), and with white noise at the baseline's "
               "level, no factor (`white`: the bands of the earlier version). The depth band is the "
-              "profile-likelihood interval of the step's depth, tempered the same way; `depth +-D/8` is its "
-              "coverage by the measure of the earlier version (the band widened by D/8 = 62.5 mm).", "",
+              "profile-likelihood interval of the step's depth under the same noise model, not tempered (so "
+              "`depth uncal.` is the same; its `white` column is the interval with white noise at the baseline's "
+              "level); `depth +-D/8` is its coverage by the measure of the earlier version, the band widened by "
+              "D/8 = 62.5 mm (that version read the depth band off the Laplace draws in whole elements and "
+              "covered 0.97 at every level by that measure).", "",
               "| noise | piles | Z cov | Z uncal. | Z white | depth cov | depth uncal. | depth white | depth +-D/8 "
               "| size cov | size uncal. | size white | toe cov | toe uncal. | toe white |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
