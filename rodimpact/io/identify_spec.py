@@ -81,7 +81,8 @@ SETTINGS = Table("identify", "The method and its settings.", (
        required=False),
     Field("bands", "string", "Matching: `laplace` (Gauss-Newton covariance), `sampling` (MCMC chains, stopped "
                              "at convergence) or `none`.", default="laplace", choices=("laplace", "sampling", "none")),
-    _q("band_scale", "dimensionless", "Matching: an empirical factor on the band widths (1: none; the "
+    _q("band_scale", "dimensionless", "Matching: an empirical factor on the widths of the Laplace bands and "
+                                      "the toe interval, not the anomaly depth bands (1: none; the "
                                       "identification benchmark's calibration is 1.624, docs/"
                                       "identification-matching.md).", default=1.0, required=False),
     _q("velocity_noise", "velocity", "Matching: standard deviation of the velocity record's noise (default: from "
