@@ -195,7 +195,8 @@ def score(pile: Pile, res) -> dict[str, Any]:
             false += 1
     out = {"depth_err": depth_err, "size_err": size_err, "hits": hits, "missed": missed, "false": false,
            "true_count": len(pile.anomalies), "depth_cov": depth_cov, "depth_cov_allow": depth_cov_allow,
-           "size_cov": size_cov, "toe_err": None if res.toe is None else abs(res.toe - LENGTH), "toe_cov": None, "z_cov": None}
+           "size_cov": size_cov, "toe_err": None if res.toe is None else abs(res.toe - LENGTH), "toe_cov": None,
+           "z_cov": None}
     toe_in = lambda band: bool(band[0] - 1e-9 <= LENGTH <= band[1] + 1e-9)
     if res.toe_band is not None:
         out["toe_cov"] = toe_in(res.toe_band)

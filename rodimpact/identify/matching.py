@@ -722,8 +722,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
 
     def fit_truncated(j: int, full: bool) -> tuple[float, Fit, PileModel]:
         """Phi + g ln(K)/2 of the model truncated at j (g its fused groups), its fit and model: refitted from the
-        extended fit or the nearest refitted model, the soil first, then everything, for at most :data:`TOE_COARSE` iterations
-        (``full=False``, a screening value, always started from the extended fit so that screening errors do not
+        extended fit or the nearest refitted model, the soil first, then everything, for at most
+        :data:`TOE_COARSE` iterations (``full=False``, a screening value, always started from the extended fit so that screening errors do not
         propagate: an upper bound of the converged criterion) or :data:`TOE_FULL` from the nearest full fit (a
         screened entry asked for in full is continued from where it stopped). Reads the cache, does not write it
         (several run at once in :func:`prefetch`)."""
@@ -864,8 +864,8 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
         return x, [fmodel.simulate(np.r_[p, theta[jb:]]) - vel for p in profiles], profiles, start
 
     def edge_interval(edge, nm: Optional["unc.NoiseModel"], limit: float,
-                      keep: bool = False) -> tuple[float, float, float]:
-        """The best depth (m) of a step and its 90 % interval 2 (crit(x) - min) <= ``limit``: the profile
+                      keep: bool = False) -> tuple[float, float]:
+        """The 90 % interval (m) of a step's depth, 2 (crit(x) - min) <= ``limit``: the profile
         likelihood of the step's depth x. crit(x) is the criterion of the work model (the misfit under the AR noise
         model ``nm``, None: white noise at ``sigma``, plus its penalty weighted as in the toe's criterion) at the
         profile with the step at x (:func:`edge_residuals`), minimised over the work model's free parameters to
@@ -885,11 +885,11 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
             value, grad = pen.value_gradient(p) if weight > 0 else (0.0, np.zeros(nb))
             b = WJ.T @ wr + weight * np.r_[grad, np.zeros(J.shape[1] - nb)][free]
             crit[i] = 0.5 * float(wr @ wr) + weight * value - 0.5 * float(b @ A_inv @ b)
-        best, lo, hi = unc.profile_interval(x, crit, limit, at=start)
+        _, lo, hi = unc.profile_interval(x, crit, limit, at=start)
         if keep:
             diag_extra.setdefault("depth_profiles", []).append({"depth_m": (x * h).tolist(),
                                                                 "criterion": crit.tolist()})
-        return best * h, lo * h, hi * h
+        return lo * h, hi * h
 
     def toe_band_of(nm: Optional["unc.NoiseModel"], limit: float) -> tuple[float, float]:
         """The toe's interval 2 (crit - min) <= ``limit`` over the truncated models (:func:`walk`), holding the
@@ -974,7 +974,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
              for i, ft in enumerate(feats)]
     anomalies = []
     for ft, edge in zip(feats, edges):
-        depth_band = edge_interval(edge, noise_model, PROFILE_90, keep=True)[1:] if edge else None
+        depth_band = edge_interval(edge, noise_model, PROFILE_90, keep=True) if edge else None
         beta = 1.0 + ft.change
         anomalies.append(Anomaly(ft.start * h, (ft.stop - ft.start) * h, ft.change, beta, beta_class(beta),
                                  depth_band, anomaly_bands(ft, samples_m)))
@@ -983,7 +983,7 @@ def identify_by_matching(record: Any, impedance: Optional[float], wave_speed: fl
     diag_extra["comparison_bands"] = {
         name: {"lower": lo.tolist(), "upper": up.tolist(),
                "anomaly_bands": [(edge_interval(edge, noise_model if name == "uncalibrated" else None,
-                                                PROFILE_90)[1:], anomaly_bands(ft, smp))
+                                                PROFILE_90), anomaly_bands(ft, smp))
                                  for ft, edge in zip(feats, edges)]}
         for name, (lo, up, smp) in compare.items()}
     y = final.y

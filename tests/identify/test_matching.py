@@ -204,7 +204,8 @@ def test_bad_arguments_are_refused_by_name(kwargs, match):
 def test_bad_records_are_refused_by_name():
     record, c, length, z0, h = _synthetic(15, 0.01)
     with pytest.raises(ValueError, match="record"):
-        identify_by_matching(HeadRecord(record.time[:80], record.force[:80], record.velocity[:80]), z0, c, length=length)
+        identify_by_matching(HeadRecord(record.time[:80], record.force[:80], record.velocity[:80]), z0, c,
+                             length=length)
     with pytest.raises(ValueError, match="force"):
         identify_by_matching(HeadRecord(record.time, 0 * record.force, record.velocity), z0, c, length=length)
     with pytest.raises(TypeError, match="record"):
